@@ -1,0 +1,24 @@
+//! # haff-restitution — the physics of one collision
+//!
+//! Everything about a single binary collision of smooth spheres: materials and units
+//! ([`material`]), the scaled viscoelastic collision equation solved exactly ([`exact`]),
+//! the linear dash-pot ([`dashpot`]), and the coefficient-of-restitution laws that engines
+//! consume through the [`Restitution`] trait ([`law`]).
+//!
+//! References used throughout the documentation:
+//! - **MP2011**: P. Müller and T. Pöschel, Phys. Rev. E 84, 021302 (2011) — Padé approximants.
+//! - **SP2008**: T. Schwager and T. Pöschel, Phys. Rev. E 78, 051304 (2008) — delayed recovery.
+
+pub mod dashpot;
+pub mod error;
+pub mod exact;
+// pub mod fast;
+// pub mod law;
+pub mod material;
+pub mod ode;
+// pub mod pade;
+// pub mod series;
+
+pub use error::{Error, Result};
+pub use exact::Criterion;
+
