@@ -1,0 +1,259 @@
+//! The [`Restitution`] trait through which engines obtain eps at each collision, and its
+//! implementations: constant, dash-pot and the viscoelastic laws.
+
+use crate::dashpot::{dashpot, DashpotCriterion};
+use crate::error::{require_positive, Error, Result};
+use crate::exact::{self, Criterion};
+use crate::fast::Fast;
+use crate::pade::Pade;
+use crate::series::Series;
+use std::fmt;
+use std::str::FromStr;
+
+/// A coefficient-of-restitution law: eps as a function of the normal impact speed.
+///
+/// Implementations are immutable, thread-safe, cheap to clone and allocate nothing per call.
+pub trait Restitution: Send + Sync + fmt::Debug {
+    /// eps for a collision with normal impact speed `speed` >= 0, in the law's units.
+    fn eps(&self, speed: f64) -> f64;
+    /// The collision duration in the law's time unit, where the law knows it.
+    fn duration(&self, _speed: f64) -> Option<f64> {
+        None
+    }
+    /// A short description, e.g. `viscoelastic fast (beta = 0.1)`.
+    fn describe(&self) -> String;
+    /// A boxed copy (for `Clone` on `Box<dyn Restitution>`).
+    fn box_clone(&self) -> Box<dyn Restitution>;
+}
+
+impl Clone for Box<dyn Restitution> {
+    fn clone(&self) -> Self {
+        self.box_clone()
+    }
+}
+
+/// A velocity-independent coefficient of restitution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Constant {
+    eps: f64,
+}
+
+impl Constant {
+    pub fn new(eps: f64) -> Result<Self> {
+        if eps.is_finite() && (0.0..=1.0).contains(&eps) {
+            Ok(Constant { eps })
+        } else {
+            Err(Error::out_of_range("restitution", eps, "0 <= eps <= 1"))
+        }
+    }
+}
+
+impl Restitution for Constant {
+    fn eps(&self, _speed: f64) -> f64 {
+        self.eps
+    }
+    fn describe(&self) -> String {
+        format!("constant (eps = {})", self.eps)
+    }
+    fn box_clone(&self) -> Box<dyn Restitution> {
+        Box::new(*self)
+    }
+}
+
+/// The linear dash-pot (Eqs. 10 and 12 of SP2008): eps independent of speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dashpot {
+    ratio: f64,
+    criterion: DashpotCriterion,
+    eps: f64,
+    /// omega_0 t_c and omega_0, if known, for the physical duration.
+    scaled_duration: f64,
+    omega0: Option<f64>,
+}
+
+impl Dashpot {
+    /// From the damping ratio R = b/omega_0 (b = gamma/(2 m_eff)).
+    pub fn new(ratio: f64, criterion: DashpotCriterion, omega0: Option<f64>) -> Result<Self> {
+        if let Some(w) = omega0 {
+            require_positive("omega0", w)?;
+        }
+        let outcome = dashpot(ratio, criterion)?;
+        Ok(Dashpot {
+            ratio,
+            criterion,
+            eps: outcome.eps,
+            scaled_duration: outcome.scaled_duration,
+            omega0,
+        })
+    }
+}
+
+impl Restitution for Dashpot {
+    fn eps(&self, _speed: f64) -> f64 {
+        self.eps
+    }
+    fn duration(&self, _speed: f64) -> Option<f64> {
+        self.omega0.map(|w| self.scaled_duration / w)
+    }
+    fn describe(&self) -> String {
+        format!("dashpot {:?} (damping ratio = {})", self.criterion, self.ratio)
+    }
+    fn box_clone(&self) -> Box<dyn Restitution> {
+        Box::new(*self)
+    }
+}
+
+/// How a viscoelastic law computes eps(v*).
+#[derive(Debug, Clone)]
+pub enum ScaledForm {
+    /// Integration of Eq. (9) of MP2011 with the given end-of-collision criterion.
+    Exact(Criterion),
+    /// A Padé approximant (Eq. 11 of MP2011).
+    Pade(Pade),
+    /// The truncated series (Eq. 7 of MP2011).
+    Series(Series),
+    /// The tabulated exact law of [`crate::fast`].
+    Fast(Fast),
+}
+
+impl ScaledForm {
+    /// eps at scaled impact speed v* >= 0.
+    #[inline]
+    pub fn eps(&self, vstar: f64) -> f64 {
+        match self {
+            ScaledForm::Exact(c) => exact_or_asymptotic(vstar, *c),
+            ScaledForm::Pade(p) => p.eval(vstar),
+            ScaledForm::Series(s) => s.eval(vstar),
+            ScaledForm::Fast(f) => f.eval(vstar),
+        }
+    }
+
+    /// Scaled collision duration tau_c, known to the exact forms.
+    pub fn duration(&self, vstar: f64) -> Option<f64> {
+        match self {
+            ScaledForm::Exact(c) => exact::solve(vstar, *c).ok().map(|col| col.duration),
+            _ => None,
+        }
+    }
+}
+
+/// The exact law; beyond its validated range (v* > 1e6) the asymptotic power law of the
+/// fast law is used instead of failing.
+fn exact_or_asymptotic(vstar: f64, criterion: Criterion) -> f64 {
+    match exact::solve(vstar, criterion) {
+        Ok(c) => c.eps,
+        Err(_) => Fast::new(criterion).eval(vstar),
+    }
+}
+
+impl fmt::Display for ScaledForm {
+    /// The name that [`ScaledForm::from_str`] parses back.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let naive = |c: &Criterion| if *c == Criterion::Naive { "-naive" } else { "" };
+        match self {
+            ScaledForm::Exact(c) => write!(f, "exact{}", naive(c)),
+            ScaledForm::Fast(x) => write!(f, "fast{}", naive(&x.criterion())),
+            ScaledForm::Pade(p) => write!(f, "pade:{}/{}", p.orders().0, p.orders().1),
+            ScaledForm::Series(s) => write!(f, "series:{}", s.order()),
+        }
+    }
+}
+
+impl FromStr for ScaledForm {
+    type Err = Error;
+    /// `exact`, `exact-naive`, `fast`, `fast-naive`, `pade:M/N`, `series:K`.
+    fn from_str(s: &str) -> Result<Self> {
+        let bad = |m: &str| Error::parse("law", format!("'{s}': {m}"));
+        match s {
+            "exact" => return Ok(ScaledForm::Exact(Criterion::Improved)),
+            "exact-naive" => return Ok(ScaledForm::Exact(Criterion::Naive)),
+            "fast" => return Ok(ScaledForm::Fast(Fast::new(Criterion::Improved))),
+            "fast-naive" => return Ok(ScaledForm::Fast(Fast::new(Criterion::Naive))),
+            _ => {}
+        }
+        if let Some(order) = s.strip_prefix("series:") {
+            let k: usize = order
+                .parse()
+                .map_err(|_| bad("series:K needs an integer K"))?;
+            return Ok(ScaledForm::Series(Series::table_v(k)?));
+        }
+        if let Some(orders) = s.strip_prefix("pade:") {
+            let (m, n) = orders
+                .split_once('/')
+                .and_then(|(m, n)| Some((m.parse().ok()?, n.parse().ok()?)))
+                .ok_or_else(|| bad("pade:M/N needs integers M and N"))?;
+            return Ok(ScaledForm::Pade(Pade::table_i(m, n)?));
+        }
+        Err(bad(
+            "allowed: exact, exact-naive, fast, fast-naive, pade:M/N, series:K",
+        ))
+    }
+}
+
+/// A viscoelastic law in physical units: v* = beta^(1/2) v^(1/10) (Eq. 7 of MP2011).
+#[derive(Debug, Clone)]
+pub struct Viscoelastic {
+    beta: f64,
+    half_ln_beta: f64,
+    /// (rho/m_eff)^(-2/5): the time unit of Eq. (9) is this times v^(-1/5).
+    time_unit: Option<f64>,
+    form: ScaledForm,
+}
+
+impl Viscoelastic {
+    /// A law with material constant beta (units (time/length)^(1/5), consistent with the
+    /// speeds passed to `eps`).
+    pub fn new(beta: f64, form: ScaledForm) -> Result<Self> {
+        require_positive("beta", beta)?;
+        Ok(Viscoelastic {
+            beta,
+            half_ln_beta: 0.5 * beta.ln(),
+            time_unit: None,
+            form,
+        })
+    }
+
+    /// Adds k = rho/m_eff (Eq. 18 of SP2008) so that `duration` is known in physical time.
+    pub fn with_k(mut self, k: f64) -> Result<Self> {
+        self.time_unit = Some(require_positive("k", k)?.powf(-0.4));
+        Ok(self)
+    }
+
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+
+    pub fn form(&self) -> &ScaledForm {
+        &self.form
+    }
+
+    /// v* = beta^(1/2) v^(1/10).
+    #[inline]
+    pub fn vstar(&self, speed: f64) -> f64 {
+        self.beta.sqrt() * speed.powf(0.1)
+    }
+}
+
+impl Restitution for Viscoelastic {
+    #[inline]
+    fn eps(&self, speed: f64) -> f64 {
+        match &self.form {
+            // ln v* = ln(beta)/2 + ln(v)/10: one logarithm instead of a power.
+            ScaledForm::Fast(f) if speed > 0.0 => f.eval_log(self.half_ln_beta + 0.1 * speed.ln()),
+            form => form.eps(self.vstar(speed)),
+        }
+    }
+
+    fn duration(&self, speed: f64) -> Option<f64> {
+        let tau = self.form.duration(self.vstar(speed))?;
+        Some(tau * self.time_unit? * speed.powf(-0.2))
+    }
+
+    fn describe(&self) -> String {
+        format!("viscoelastic {} (beta = {})", self.form, self.beta)
+    }
+
+    fn box_clone(&self) -> Box<dyn Restitution> {
+        Box::new(self.clone())
+    }
+}

@@ -12,13 +12,14 @@
 pub mod dashpot;
 pub mod error;
 pub mod exact;
-// pub mod fast;
-// pub mod law;
+pub mod fast;
+pub mod law;
 pub mod material;
 pub mod ode;
-// pub mod pade;
-// pub mod series;
+pub mod pade;
+pub mod series;
 
 pub use error::{Error, Result};
 pub use exact::Criterion;
 
+pub use law::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};

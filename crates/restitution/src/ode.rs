@@ -209,6 +209,19 @@ impl Radau5 {
         Err(format!("more than {} steps", self.max_steps))
     }
 
+    /// An accurate step of size s, split into halves (up to `depth` times) where a Newton
+    /// iteration fails; NaN only if every split failed.
+    fn robust_step<S: System>(&self, sys: &S, t: f64, y: State, s: f64, depth: u32) -> State {
+        if let Some((ys, _)) = self.doubled_step(sys, t, y, s) {
+            return ys;
+        }
+        if depth == 0 {
+            return [f64::NAN; 2];
+        }
+        let mid = self.robust_step(sys, t, y, 0.5 * s, depth - 1);
+        self.robust_step(sys, t + 0.5 * s, mid, 0.5 * s, depth - 1)
+    }
+
     /// Finds the step size s in (0, h) at which g(step(s)) = 0 (Illinois regula falsi).
     fn locate<S: System>(
         &self,
@@ -221,10 +234,7 @@ impl Radau5 {
         g1: f64,
     ) -> (f64, State) {
         let eval = |s: f64| -> (f64, State) {
-            let ys = self
-                .doubled_step(sys, t, y, s)
-                .map(|(v, _)| v)
-                .unwrap_or([f64::NAN; 2]);
+            let ys = self.robust_step(sys, t, y, s, 6);
             (g(t + s, ys), ys)
         };
         let (mut a, mut ga) = (0.0, g0);
@@ -236,9 +246,16 @@ impl Radau5 {
             if !s.is_finite() || (s - a) * (s - b) >= 0.0 {
                 s = 0.5 * (a + b);
             }
-            let (gs, ys) = eval(s);
+            let (mut gs, mut ys) = eval(s);
+            if !gs.is_finite() {
+                s = 0.5 * (a + b);
+                (gs, ys) = eval(s);
+                if !gs.is_finite() {
+                    break;
+                }
+            }
             best = ys;
-            if gs == 0.0 || !gs.is_finite() {
+            if gs == 0.0 {
                 return (t + s, ys);
             }
             if (gs > 0.0) == (ga > 0.0) {
