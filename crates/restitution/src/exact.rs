@@ -454,7 +454,8 @@ pub fn trajectory(vstar: f64, criterion: Criterion, points: usize) -> Result<(Co
             xddot: 0.0,
         }],
     };
-    let again = Solver::new(vstar, DEFAULT_RTOL).collide(vstar, criterion, &mut sampler)?;
-    debug_assert_eq!(again, collision);
-    Ok((collision, sampler.points))
+    // Stopping at the samples changes the steps, hence the result at the 1e-13 level:
+    // report the collision of this run so that its last point is the end of collision.
+    let sampled = Solver::new(vstar, DEFAULT_RTOL).collide(vstar, criterion, &mut sampler)?;
+    Ok((sampled, sampler.points))
 }

@@ -191,8 +191,15 @@ impl Radau5 {
             }
             self.steps += 1;
             let t1 = if last { t_end } else { t + h };
-            if let Some((k, gk)) = first_event(events, &g_old, t1, y1) {
-                let (te, ye) = self.locate(sys, t, y, h, events[k], g_old[k], gk);
+            // Of the events that change sign in this step, the earliest one wins.
+            let earliest = sign_changes(events, &g_old, t1, y1)
+                .into_iter()
+                .map(|(k, gk)| {
+                    let (te, ye) = self.locate(sys, t, y, h, events[k], g_old[k], gk);
+                    (k, te, ye)
+                })
+                .min_by(|a, b| ((a.1 - t) * dir).total_cmp(&((b.1 - t) * dir)));
+            if let Some((k, te, ye)) = earliest {
                 return Ok(Stop {
                     t: te,
                     y: ye,
@@ -286,16 +293,17 @@ impl Radau5 {
     }
 }
 
-/// The first event (by index) whose function changes sign between `g_old` and (t, y).
-fn first_event(events: &[EventFn<'_>], g_old: &[f64], t: f64, y: State) -> Option<(usize, f64)> {
+/// The events whose function changes sign between `g_old` and (t, y), with their new value.
+fn sign_changes(events: &[EventFn<'_>], g_old: &[f64], t: f64, y: State) -> Vec<(usize, f64)> {
     events
         .iter()
         .zip(g_old)
         .enumerate()
-        .find_map(|(k, (g, &go))| {
+        .filter_map(|(k, (g, &go))| {
             let gn = g(t, y);
             (go != 0.0 && (gn == 0.0 || (gn > 0.0) != (go > 0.0))).then_some((k, gn))
         })
+        .collect()
 }
 
 /// Solves the 6x6 system m x = r by Gaussian elimination with partial pivoting.
