@@ -301,9 +301,11 @@ impl Solver {
         t_end: f64,
         h0: f64,
         events: &[EventFn<'_>],
+        soft: &[EventFn<'_>],
         sampler: &mut Sampler,
     ) -> Result<Stop> {
         let (mut t, mut y) = (t0, y0);
+        let mut h0 = h0;
         loop {
             let unit = self.s.unit;
             let clock = |t: f64, y: State| -> f64 {
@@ -317,22 +319,25 @@ impl Solver {
                     let sample = move |t: f64, y: State| clock(t, y) - target;
                     let mut all: Vec<EventFn<'_>> = events.to_vec();
                     all.push(&sample);
-                    let sys_stop = self.run(chart, t, y, t_end, h0, &all)?;
+                    let sys_stop = self.run(chart, t, y, t_end, h0, &all, soft)?;
                     if sys_stop.event == Some(events.len()) {
                         sampler.points.push(self.record(chart, sys_stop.t, sys_stop.y));
                         sampler.next += 1;
                         t = sys_stop.t;
                         y = sys_stop.y;
+                        h0 = self.rk.next_step.max(1e-300);
                         continue;
                     }
                     sys_stop
                 }
-                None => self.run(chart, t, y, t_end, h0, events)?,
+                None => self.run(chart, t, y, t_end, h0, events, soft)?,
             };
             return Ok(stop);
         }
     }
 
+    /// Integrates in a chart; a soft event k is reported as `events.len() + k`.
+    #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
         chart: Chart,
@@ -341,26 +346,34 @@ impl Solver {
         t_end: f64,
         h0: f64,
         events: &[EventFn<'_>],
+        soft: &[EventFn<'_>],
     ) -> Result<Stop> {
         let s = self.s;
         let out = match chart {
-            Chart::Time => self.rk.integrate(&TimeChart(s), t, y, t_end, h0, events),
-            Chart::Root => self.rk.integrate(&RootChart(s), t, y, t_end, h0, events),
+            Chart::Time => self
+                .rk
+                .integrate_until(&TimeChart(s), t, y, t_end, h0, events, soft),
+            Chart::Root => self
+                .rk
+                .integrate_until(&RootChart(s), t, y, t_end, h0, events, soft),
         };
         out.map_err(|m| Error::Numerical(format!("collision at v* = {}: {m}", 0.0f64.max(s.damping).sqrt())))
     }
 
     fn collide(&mut self, vstar: f64, criterion: Criterion, sampler: &mut Sampler) -> Result<Collision> {
         let s = self.s;
-        let improved = criterion == Criterion::Improved;
+        // Without damping the force vanishes only with the overlap: both criteria coincide.
+        let improved = criterion == Criterion::Improved && s.damping > 0.0;
         // Phase 1: compression from contact, in the root chart, until p = 1/2.
         let half_speed = |w: f64, y: State| s.velocity(w * w, y[0]) - 0.5;
-        let stop = self.phase(Chart::Root, 0.0, [1.0, 0.0], 10.0, 1e-2, &[&half_speed], sampler)?;
+        let stop = self.phase(Chart::Root, 0.0, [1.0, 0.0], 10.0, 1e-2, &[], &[&half_speed], sampler)?;
         expect_event(&stop, "p = 1/2 during compression")?;
         // Phase 2: through maximal compression in the time chart.
         let (t1, x1, v1) = (stop.y[1], stop.t * stop.t, stop.y[0]);
         let at_rest = |_t: f64, y: State| s.velocity(y[0], y[1]);
-        let max = self.phase(Chart::Time, t1, [x1, v1], 1e300, 1e-2, &[&at_rest], sampler)?;
+        // dtau = (2w/p) dw carries the step size across the chart change.
+        let h = self.rk.next_step * 2.0 * stop.t / 0.5;
+        let max = self.phase(Chart::Time, t1, [x1, v1], 1e300, h, &[&at_rest], &[], sampler)?;
         expect_event(&max, "maximal compression")?;
         let (x_max, t_max) = (max.y[0], max.t);
         // Phase 3: expansion in the time chart, until the force vanishes (improved) or the
@@ -368,12 +381,12 @@ impl Solver {
         let zero_force = |_t: f64, y: State| s.force_sign(y[0], y[1]);
         let switch = |_t: f64, y: State| y[0] - 0.25 * x_max;
         let events: Vec<EventFn<'_>> = if improved {
-            vec![&zero_force, &switch]
+            vec![&zero_force]
         } else {
-            vec![&switch]
+            vec![]
         };
-        let h = 1e-2 * t_max.max(1e-300);
-        let exp = self.phase(Chart::Time, t_max, max.y, 1e300, h, &events, sampler)?;
+        let h = self.rk.next_step;
+        let exp = self.phase(Chart::Time, t_max, max.y, 1e300, h, &events, &[&switch], sampler)?;
         expect_event(&exp, "expansion")?;
         let end = if improved && exp.event == Some(0) {
             (Chart::Time, exp.t, exp.y)
@@ -386,7 +399,9 @@ impl Solver {
             } else {
                 vec![]
             };
-            let fin = self.phase(Chart::Root, w, [exp.y[1], exp.t], 0.0, 1e-2 * w, &events, sampler)?;
+            let p = s.velocity(exp.y[0], exp.y[1]).abs();
+            let h = (self.rk.next_step * p / (2.0 * w)).min(0.5 * w);
+            let fin = self.phase(Chart::Root, w, [exp.y[1], exp.t], 0.0, h, &events, &[], sampler)?;
             (Chart::Root, fin.t, fin.y)
         };
         let last = self.record(end.0, end.1, end.2);

@@ -60,6 +60,8 @@ pub struct Radau5 {
     pub max_steps: usize,
     /// Accepted steps so far (statistics).
     pub steps: usize,
+    /// The step size proposed after the last accepted step (to restart efficiently).
+    pub next_step: f64,
 }
 
 impl Radau5 {
@@ -69,10 +71,15 @@ impl Radau5 {
             atol: [1e-300, 1e-300],
             max_steps: 200_000,
             steps: 0,
+            next_step: 0.0,
         }
     }
 
     /// One Radau IIA step of size h from (t, y); `None` if the Newton iteration fails.
+    ///
+    /// Simplified Newton: the iteration matrix I - h (A ⊗ J_j) is factorized once, with
+    /// the Jacobians at the initial stage guesses, and refreshed only when the iteration
+    /// contracts slowly.
     pub fn step<S: System>(&self, sys: &S, t: f64, y: State, h: f64) -> Option<State> {
         use tableau::{A, C};
         let f0 = sys.rhs(t, y);
@@ -80,32 +87,33 @@ impl Radau5 {
         for (zi, ci) in z.iter_mut().zip(C) {
             *zi = [ci * h * f0[0], ci * h * f0[1]];
         }
-        let mut last_norm = f64::INFINITY;
-        for _ in 0..25 {
-            let mut f = [[0.0; 2]; 3];
-            let mut jac = [[[0.0; 2]; 2]; 3];
-            for j in 0..3 {
-                let yj = [y[0] + z[j][0], y[1] + z[j][1]];
-                f[j] = sys.rhs(t + C[j] * h, yj);
-                jac[j] = sys.jacobian(t + C[j] * h, yj);
-            }
-            // Residual r = Z - h A F(Z) and Newton matrix M = I - h (A ⊗ J_j).
+        let stage = |z: &[[f64; 2]; 3], j: usize| [y[0] + z[j][0], y[1] + z[j][1]];
+        let newton_matrix = |z: &[[f64; 2]; 3]| {
+            let jac: [[[f64; 2]; 2]; 3] =
+                std::array::from_fn(|j| sys.jacobian(t + C[j] * h, stage(z, j)));
             let mut m = [[0.0; 6]; 6];
-            let mut r = [0.0; 6];
             for i in 0..3 {
                 for k in 0..2 {
-                    let mut acc = z[i][k];
                     for j in 0..3 {
-                        acc -= h * A[i][j] * f[j][k];
                         for l in 0..2 {
                             m[2 * i + k][2 * j + l] = -h * A[i][j] * jac[j][k][l];
                         }
                     }
                     m[2 * i + k][2 * i + k] += 1.0;
-                    r[2 * i + k] = -acc;
                 }
             }
-            let dz = solve6(m, r)?;
+            Lu6::factor(m)
+        };
+        let mut lu = newton_matrix(&z)?;
+        let mut last_norm = f64::INFINITY;
+        for _ in 0..40 {
+            let f: [State; 3] = std::array::from_fn(|j| sys.rhs(t + C[j] * h, stage(&z, j)));
+            // Residual r = -(Z - h A F(Z)).
+            let r: [f64; 6] = std::array::from_fn(|row| {
+                let (i, k) = (row / 2, row % 2);
+                -(z[i][k] - h * (0..3).map(|j| A[i][j] * f[j][k]).sum::<f64>())
+            });
+            let dz = lu.solve(r);
             let mut norm: f64 = 0.0;
             for i in 0..3 {
                 for k in 0..2 {
@@ -117,15 +125,19 @@ impl Radau5 {
             if !norm.is_finite() {
                 return None;
             }
+            let done = [y[0] + z[2][0], y[1] + z[2][1]];
             if norm <= 1e-3 * self.rtol.min(1e-10) || norm == 0.0 {
-                return Some([y[0] + z[2][0], y[1] + z[2][1]]);
+                return Some(done);
             }
-            // Stalled at round-off: accept if tiny, otherwise fail.
+            // Stalled at round-off: accept if tiny.
             if norm >= last_norm && norm < 1e-13 {
-                return Some([y[0] + z[2][0], y[1] + z[2][1]]);
+                return Some(done);
             }
-            if norm > 2.0 * last_norm && last_norm < 1.0 {
-                return None;
+            if norm > 0.5 * last_norm {
+                if norm > 2.0 * last_norm && last_norm < 1.0 {
+                    return None;
+                }
+                lu = newton_matrix(&z)?;
             }
             last_norm = norm;
         }
@@ -153,7 +165,8 @@ impl Radau5 {
     }
 
     /// Integrates from (t0, y0) towards `t_end` (either direction) starting with step `h0`
-    /// (its sign is ignored), stopping at `t_end` or at the first sign change of an event.
+    /// (its sign is ignored), stopping at `t_end` or at the first sign change of an event,
+    /// located to the accuracy of the integration.
     pub fn integrate<S: System>(
         &mut self,
         sys: &S,
@@ -163,10 +176,29 @@ impl Radau5 {
         h0: f64,
         events: &[EventFn<'_>],
     ) -> Result<Stop, String> {
+        self.integrate_until(sys, t0, y0, t_end, h0, events, &[])
+    }
+
+    /// As [`Radau5::integrate`], with `soft` events in addition that are not located: the
+    /// integration stops at the end of the first step after which one of them has changed
+    /// sign, reported as event `events.len() + k`. For chart switches, where any point in
+    /// the right region will do.
+    #[allow(clippy::too_many_arguments)]
+    pub fn integrate_until<S: System>(
+        &mut self,
+        sys: &S,
+        t0: f64,
+        y0: State,
+        t_end: f64,
+        h0: f64,
+        events: &[EventFn<'_>],
+        soft: &[EventFn<'_>],
+    ) -> Result<Stop, String> {
         let dir = if t_end >= t0 { 1.0 } else { -1.0 };
         let mut h = h0.abs().min((t_end - t0).abs()) * dir;
         let (mut t, mut y) = (t0, y0);
         let mut g_old: Vec<f64> = events.iter().map(|g| g(t, y)).collect();
+        let soft_old: Vec<f64> = soft.iter().map(|g| g(t, y)).collect();
         for _ in 0..self.max_steps {
             if (t_end - t) * dir <= 0.0 {
                 return Ok(Stop { t, y, event: None });
@@ -206,12 +238,20 @@ impl Radau5 {
                     event: Some(k),
                 });
             }
+            if let Some((k, _)) = sign_changes(soft, &soft_old, t1, y1).first() {
+                return Ok(Stop {
+                    t: t1,
+                    y: y1,
+                    event: Some(events.len() + k),
+                });
+            }
             for (go, g) in g_old.iter_mut().zip(events) {
                 *go = g(t1, y1);
             }
             t = t1;
             y = y1;
             h *= (0.9 * err.max(1e-12).powf(-1.0 / 6.0)).clamp(0.2, 4.0);
+            self.next_step = h.abs();
         }
         Err(format!("more than {} steps", self.max_steps))
     }
@@ -248,6 +288,7 @@ impl Radau5 {
         let (mut b, mut gb) = (h, g1);
         let mut best = eval(h).1;
         let mut side = 0i8;
+        let mut previous = f64::NAN;
         for _ in 0..200 {
             let mut s = (a * gb - b * ga) / (gb - ga);
             if !s.is_finite() || (s - a) * (s - b) >= 0.0 {
@@ -262,9 +303,11 @@ impl Radau5 {
                 }
             }
             best = ys;
-            if gs == 0.0 {
+            // Converged when g vanishes or the step size stops moving at round-off level.
+            if gs == 0.0 || (s - previous).abs() <= 2.0 * f64::EPSILON * (t.abs() + s.abs()) {
                 return (t + s, ys);
             }
+            previous = s;
             if (gs > 0.0) == (ga > 0.0) {
                 a = s;
                 ga = gs;
@@ -306,29 +349,46 @@ fn sign_changes(events: &[EventFn<'_>], g_old: &[f64], t: f64, y: State) -> Vec<
         .collect()
 }
 
-/// Solves the 6x6 system m x = r by Gaussian elimination with partial pivoting.
-fn solve6(mut m: [[f64; 6]; 6], mut r: [f64; 6]) -> Option<[f64; 6]> {
-    for col in 0..6 {
-        let piv = (col..6).max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))?;
-        if m[piv][col] == 0.0 || !m[piv][col].is_finite() {
-            return None;
-        }
-        m.swap(col, piv);
-        r.swap(col, piv);
-        for row in col + 1..6 {
-            let factor = m[row][col] / m[col][col];
-            for k in col..6 {
-                m[row][k] -= factor * m[col][k];
+/// LU factorization with partial pivoting of a 6x6 matrix.
+struct Lu6 {
+    lu: [[f64; 6]; 6],
+    perm: [usize; 6],
+}
+
+impl Lu6 {
+    /// `None` if the matrix is singular or not finite.
+    fn factor(mut m: [[f64; 6]; 6]) -> Option<Self> {
+        let mut perm = [0, 1, 2, 3, 4, 5];
+        for col in 0..6 {
+            let piv = (col..6).max_by(|&i, &j| m[i][col].abs().total_cmp(&m[j][col].abs()))?;
+            if m[piv][col] == 0.0 || !m[piv][col].is_finite() {
+                return None;
             }
-            r[row] -= factor * r[col];
+            m.swap(col, piv);
+            perm.swap(col, piv);
+            for row in col + 1..6 {
+                let factor = m[row][col] / m[col][col];
+                m[row][col] = factor;
+                for k in col + 1..6 {
+                    m[row][k] -= factor * m[col][k];
+                }
+            }
         }
+        Some(Lu6 { lu: m, perm })
     }
-    let mut x = [0.0; 6];
-    for row in (0..6).rev() {
-        let tail: f64 = (row + 1..6).map(|k| m[row][k] * x[k]).sum();
-        x[row] = (r[row] - tail) / m[row][row];
+
+    fn solve(&self, r: [f64; 6]) -> [f64; 6] {
+        let mut x: [f64; 6] = std::array::from_fn(|i| r[self.perm[i]]);
+        for row in 1..6 {
+            let s: f64 = (0..row).map(|k| self.lu[row][k] * x[k]).sum();
+            x[row] -= s;
+        }
+        for row in (0..6).rev() {
+            let s: f64 = (row + 1..6).map(|k| self.lu[row][k] * x[k]).sum();
+            x[row] = (x[row] - s) / self.lu[row][row];
+        }
+        x
     }
-    Some(x)
 }
 
 #[cfg(test)]
