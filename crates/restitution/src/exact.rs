@@ -321,7 +321,9 @@ impl Solver {
                     all.push(&sample);
                     let sys_stop = self.run(chart, t, y, t_end, h0, &all, soft)?;
                     if sys_stop.event == Some(events.len()) {
-                        sampler.points.push(self.record(chart, sys_stop.t, sys_stop.y));
+                        sampler
+                            .points
+                            .push(self.record(chart, sys_stop.t, sys_stop.y));
                         sampler.next += 1;
                         t = sys_stop.t;
                         y = sys_stop.y;
@@ -357,36 +359,69 @@ impl Solver {
                 .rk
                 .integrate_until(&RootChart(s), t, y, t_end, h0, events, soft),
         };
-        out.map_err(|m| Error::Numerical(format!("collision at v* = {}: {m}", 0.0f64.max(s.damping).sqrt())))
+        out.map_err(|m| {
+            Error::Numerical(format!(
+                "collision at v* = {}: {m}",
+                0.0f64.max(s.damping).sqrt()
+            ))
+        })
     }
 
-    fn collide(&mut self, vstar: f64, criterion: Criterion, sampler: &mut Sampler) -> Result<Collision> {
+    fn collide(
+        &mut self,
+        vstar: f64,
+        criterion: Criterion,
+        sampler: &mut Sampler,
+    ) -> Result<Collision> {
         let s = self.s;
         // Without damping the force vanishes only with the overlap: both criteria coincide.
         let improved = criterion == Criterion::Improved && s.damping > 0.0;
         // Phase 1: compression from contact, in the root chart, until p = 1/2.
         let half_speed = |w: f64, y: State| s.velocity(w * w, y[0]) - 0.5;
-        let stop = self.phase(Chart::Root, 0.0, [1.0, 0.0], 10.0, 1e-2, &[], &[&half_speed], sampler)?;
+        let stop = self.phase(
+            Chart::Root,
+            0.0,
+            [1.0, 0.0],
+            10.0,
+            1e-2,
+            &[],
+            &[&half_speed],
+            sampler,
+        )?;
         expect_event(&stop, "p = 1/2 during compression")?;
         // Phase 2: through maximal compression in the time chart.
         let (t1, x1, v1) = (stop.y[1], stop.t * stop.t, stop.y[0]);
         let at_rest = |_t: f64, y: State| s.velocity(y[0], y[1]);
         // dtau = (2w/p) dw carries the step size across the chart change.
         let h = self.rk.next_step * 2.0 * stop.t / 0.5;
-        let max = self.phase(Chart::Time, t1, [x1, v1], 1e300, h, &[&at_rest], &[], sampler)?;
+        let max = self.phase(
+            Chart::Time,
+            t1,
+            [x1, v1],
+            1e300,
+            h,
+            &[&at_rest],
+            &[],
+            sampler,
+        )?;
         expect_event(&max, "maximal compression")?;
         let (x_max, t_max) = (max.y[0], max.t);
         // Phase 3: expansion in the time chart, until the force vanishes (improved) or the
         // compression has dropped enough for the root chart to take over.
         let zero_force = |_t: f64, y: State| s.force_sign(y[0], y[1]);
         let switch = |_t: f64, y: State| y[0] - 0.25 * x_max;
-        let events: Vec<EventFn<'_>> = if improved {
-            vec![&zero_force]
-        } else {
-            vec![]
-        };
+        let events: Vec<EventFn<'_>> = if improved { vec![&zero_force] } else { vec![] };
         let h = self.rk.next_step;
-        let exp = self.phase(Chart::Time, t_max, max.y, 1e300, h, &events, &[&switch], sampler)?;
+        let exp = self.phase(
+            Chart::Time,
+            t_max,
+            max.y,
+            1e300,
+            h,
+            &events,
+            &[&switch],
+            sampler,
+        )?;
         expect_event(&exp, "expansion")?;
         let end = if improved && exp.event == Some(0) {
             (Chart::Time, exp.t, exp.y)
@@ -401,7 +436,16 @@ impl Solver {
             };
             let p = s.velocity(exp.y[0], exp.y[1]).abs();
             let h = (self.rk.next_step * p / (2.0 * w)).min(0.5 * w);
-            let fin = self.phase(Chart::Root, w, [exp.y[1], exp.t], 0.0, h, &events, &[], sampler)?;
+            let fin = self.phase(
+                Chart::Root,
+                w,
+                [exp.y[1], exp.t],
+                0.0,
+                h,
+                &events,
+                &[],
+                sampler,
+            )?;
             (Chart::Root, fin.t, fin.y)
         };
         let last = self.record(end.0, end.1, end.2);
@@ -451,14 +495,20 @@ pub fn solve_with_tolerance(vstar: f64, criterion: Criterion, rtol: f64) -> Resu
 
 /// The collision and its trajectory sampled at `points` equidistant scaled times from 0 to
 /// tau_c inclusive (Fig. 3 of SP2008).
-pub fn trajectory(vstar: f64, criterion: Criterion, points: usize) -> Result<(Collision, Vec<TrajectoryPoint>)> {
+pub fn trajectory(
+    vstar: f64,
+    criterion: Criterion,
+    points: usize,
+) -> Result<(Collision, Vec<TrajectoryPoint>)> {
     let vstar = validate(vstar)?;
     if points < 2 {
         return Err(Error::out_of_range("points", points, "an integer >= 2"));
     }
     let collision = solve(vstar, criterion)?;
     let n = points - 1;
-    let targets = (1..n).map(|k| collision.duration * k as f64 / n as f64).collect();
+    let targets = (1..n)
+        .map(|k| collision.duration * k as f64 / n as f64)
+        .collect();
     let mut sampler = Sampler {
         targets,
         next: 0,

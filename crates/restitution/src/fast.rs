@@ -106,7 +106,9 @@ fn chebyshev_monomials(f: impl Fn(f64) -> f64) -> [f64; DEGREE + 1] {
     let values: Vec<f64> = (0..n).map(|j| f(angle(j).cos())).collect();
     let cheb: Vec<f64> = (0..n)
         .map(|k| {
-            let s: f64 = (0..n).map(|j| values[j] * (k as f64 * angle(j)).cos()).sum();
+            let s: f64 = (0..n)
+                .map(|j| values[j] * (k as f64 * angle(j)).cos())
+                .sum();
             s * 2.0 / n as f64 * if k == 0 { 0.5 } else { 1.0 }
         })
         .collect();

@@ -96,7 +96,10 @@ impl Restitution for Dashpot {
         self.omega0.map(|w| self.scaled_duration / w)
     }
     fn describe(&self) -> String {
-        format!("dashpot {:?} (damping ratio = {})", self.criterion, self.ratio)
+        format!(
+            "dashpot {:?} (damping ratio = {})",
+            self.criterion, self.ratio
+        )
     }
     fn box_clone(&self) -> Box<dyn Restitution> {
         Box::new(*self)

@@ -227,7 +227,7 @@ impl Radau5 {
             let earliest = sign_changes(events, &g_old, t1, y1)
                 .into_iter()
                 .map(|(k, gk)| {
-                    let (te, ye) = self.locate(sys, t, y, h, events[k], g_old[k], gk);
+                    let (te, ye) = self.locate(sys, t, y, h, events[k], (g_old[k], gk));
                     (k, te, ye)
                 })
                 .min_by(|a, b| ((a.1 - t) * dir).total_cmp(&((b.1 - t) * dir)));
@@ -277,8 +277,7 @@ impl Radau5 {
         y: State,
         h: f64,
         g: EventFn<'_>,
-        g0: f64,
-        g1: f64,
+        (g0, g1): (f64, f64),
     ) -> (f64, State) {
         let eval = |s: f64| -> (f64, State) {
             let ys = self.robust_step(sys, t, y, s, 6);
@@ -366,11 +365,13 @@ impl Lu6 {
             }
             m.swap(col, piv);
             perm.swap(col, piv);
-            for row in col + 1..6 {
-                let factor = m[row][col] / m[col][col];
-                m[row][col] = factor;
-                for k in col + 1..6 {
-                    m[row][k] -= factor * m[col][k];
+            let (upper, lower) = m.split_at_mut(col + 1);
+            let pivot_row = &upper[col];
+            for row in lower.iter_mut() {
+                let factor = row[col] / pivot_row[col];
+                row[col] = factor;
+                for (x, p) in row[col + 1..].iter_mut().zip(&pivot_row[col + 1..]) {
+                    *x -= factor * p;
                 }
             }
         }
@@ -406,7 +407,10 @@ mod tests {
         for i in 0..3 {
             for q in 1..=3 {
                 let s: f64 = (0..3).map(|j| A[i][j] * C[j].powi(q - 1)).sum();
-                assert!((s - C[i].powi(q) / q as f64).abs() < 1e-15, "C({q}) row {i}");
+                assert!(
+                    (s - C[i].powi(q) / q as f64).abs() < 1e-15,
+                    "C({q}) row {i}"
+                );
             }
         }
     }
@@ -425,7 +429,14 @@ mod tests {
     fn harmonic_oscillator_and_event() {
         let mut rk = Radau5::new(1e-13);
         let stop = rk
-            .integrate(&Oscillator, 0.0, [0.0, 1.0], 10.0, 0.1, &[&|_, y| y[0] + 0.0])
+            .integrate(
+                &Oscillator,
+                0.0,
+                [0.0, 1.0],
+                10.0,
+                0.1,
+                &[&|_, y| y[0] + 0.0],
+            )
             .unwrap();
         // First zero of sin after t = 0 is pi.
         assert_eq!(stop.event, Some(0));
@@ -451,7 +462,9 @@ mod tests {
     #[test]
     fn stiff_problem() {
         let mut rk = Radau5::new(1e-12);
-        let end = rk.integrate(&Stiff, 0.0, [0.0, 1.0], 5.0, 1e-3, &[]).unwrap();
+        let end = rk
+            .integrate(&Stiff, 0.0, [0.0, 1.0], 5.0, 1e-3, &[])
+            .unwrap();
         assert!((end.y[1] - (-5f64).exp()).abs() < 1e-12);
         // Slow manifold y0 = cos t + sin t * 1e-9 + O(1e-18).
         assert!((end.y[0] - (5f64.cos() + 5f64.sin() * 1e-9)).abs() < 1e-12);

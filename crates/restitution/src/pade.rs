@@ -164,12 +164,14 @@ fn solve_dense(m: &mut [Vec<f64>], r: &mut [f64]) -> Option<Vec<f64>> {
         }
         m.swap(col, piv);
         r.swap(col, piv);
-        for row in col + 1..n {
-            let f = m[row][col] / m[col][col];
-            for k in col..n {
-                m[row][k] -= f * m[col][k];
+        let (upper, lower) = m.split_at_mut(col + 1);
+        let pivot_row = &upper[col];
+        for (offset, row) in lower.iter_mut().enumerate() {
+            let f = row[col] / pivot_row[col];
+            for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= f * p;
             }
-            r[row] -= f * r[col];
+            r[col + 1 + offset] -= f * r[col];
         }
     }
     let mut x = vec![0.0; n];

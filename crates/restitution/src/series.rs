@@ -44,7 +44,10 @@ impl Series {
     /// The series from explicit coefficients h_0 .. h_K.
     pub fn new(coefficients: &[f64]) -> Result<Self> {
         if coefficients.is_empty() || coefficients.iter().any(|c| !c.is_finite()) {
-            return Err(Error::parse("series", "coefficients must be finite and non-empty"));
+            return Err(Error::parse(
+                "series",
+                "coefficients must be finite and non-empty",
+            ));
         }
         Ok(Series {
             coefficients: coefficients.into(),

@@ -68,7 +68,10 @@ fn pade_table_i_from_table_v() {
         }
     }
     // The omitted b_3 of [0/3] is exactly 0.
-    assert_eq!(Pade::from_series(&TABLE_V, 0, 3).unwrap().denominator()[3], 0.0);
+    assert_eq!(
+        Pade::from_series(&TABLE_V, 0, 3).unwrap().denominator()[3],
+        0.0
+    );
 }
 
 /// MP2011 says [2/5] "reveals a pole at v* ~ 5.6801". Its denominator has only positive
@@ -90,7 +93,13 @@ fn pade_2_5_has_a_zero_not_a_pole_at_5_68() {
 #[test]
 fn series_against_exact_for_small_vstar() {
     let series = Series::table_v(20).unwrap();
-    for (v, tol) in [(0.01, 1e-12), (0.05, 1e-11), (0.1, 3e-11), (0.2, 1e-10), (0.3, 2.5e-10)] {
+    for (v, tol) in [
+        (0.01, 1e-12),
+        (0.05, 1e-11),
+        (0.1, 3e-11),
+        (0.2, 1e-10),
+        (0.3, 2.5e-10),
+    ] {
         let d = (series.eval(v) - exact(v)).abs();
         assert!(d < tol, "v* = {v}: {d}");
     }
@@ -196,7 +205,14 @@ fn viscoelastic_law_in_physical_units() {
 
 #[test]
 fn law_names_round_trip_and_errors() {
-    for name in ["exact", "exact-naive", "fast", "pade:1/4", "pade:3/6", "series:7"] {
+    for name in [
+        "exact",
+        "exact-naive",
+        "fast",
+        "pade:1/4",
+        "pade:3/6",
+        "series:7",
+    ] {
         let form: ScaledForm = name.parse().unwrap();
         assert_eq!(form.to_string(), name);
     }

@@ -164,14 +164,14 @@ pub fn start(damping: f64, n: usize, tol: f64) -> (f64, f64, f64) {
     };
     let (xs, ps) = puiseux(n, &c_el, &c_d);
     let mut sigma = f64::INFINITY;
-    for j in n - 5..=n {
-        if xs[j] != 0.0 {
-            sigma = sigma.min((tol / xs[j].abs()).powf(1.0 / (j - 2) as f64));
+    for (j, x) in xs.iter().enumerate().take(n + 1).skip(n - 5) {
+        if *x != 0.0 {
+            sigma = sigma.min((tol / x.abs()).powf(1.0 / (j - 2) as f64));
         }
     }
-    for m in n - 7..=n - 2 {
-        if ps[m] != 0.0 {
-            sigma = sigma.min((tol / ps[m].abs()).powf(1.0 / m as f64));
+    for (m, p) in ps.iter().enumerate().take(n - 1).skip(n - 7) {
+        if *p != 0.0 {
+            sigma = sigma.min((tol / p.abs()).powf(1.0 / m as f64));
         }
     }
     // Stay well inside the compression phase (the scaled time of maximal compression is
@@ -466,7 +466,7 @@ impl Reference {
                 "reference: bad step {h} at v* = {vstar}, x = {x:e}, y = {y:e}"
             );
             let mut x_new = eval(&jet.x, h);
-            while !(x_new > 0.0) {
+            while x_new.is_nan() || x_new <= 0.0 {
                 h *= 0.5;
                 x_new = eval(&jet.x, h);
             }
