@@ -1,1 +1,190 @@
-fn main() {}
+//! `haff`: granular-gas physics from the command line.
+//!
+//! This file holds the command-line grammar (clap) and the dispatch to the commands; the
+//! commands themselves parse and validate their arguments, call the `restitution` library
+//! and write the output. Every failure is one line `haff: error: <message>` on stderr and
+//! a non-zero exit code (2 for bad input).
+
+mod bench;
+mod cor;
+mod demo;
+mod error;
+mod output;
+
+use clap::error::ErrorKind;
+use clap::{Args, Parser, Subcommand};
+use error::{CliError, CliResult};
+use output::{DataFormat, ReportFormat};
+use std::process::ExitCode;
+
+/// Granular-gas physics from the command line.
+#[derive(Debug, Parser)]
+#[command(name = "haff", version, arg_required_else_help = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// The coefficient of restitution: laws, single collisions, the linear dash-pot.
+    #[command(subcommand)]
+    Cor(CorCommand),
+    /// Timing measurements.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+    /// eps(v) of ice spheres with every law side by side.
+    Demo,
+}
+
+#[derive(Debug, Subcommand)]
+enum CorCommand {
+    /// eps of a viscoelastic law at scaled speeds v* (or at speeds v with --beta).
+    Eps(EpsArgs),
+    /// The scaled trajectory of one viscoelastic collision, integrated exactly.
+    Collision(CollisionArgs),
+    /// eps and duration of the linear dash-pot for given damping ratios.
+    Dashpot(DashpotArgs),
+}
+
+#[derive(Debug, Subcommand)]
+enum BenchCommand {
+    /// Nanoseconds per evaluation of each coefficient-of-restitution law.
+    Cor(BenchCorArgs),
+}
+
+/// Arguments of `haff cor eps`.
+#[derive(Debug, Args)]
+pub struct EpsArgs {
+    /// The law: exact, exact-naive, fast, fast-naive, pade:M/N (0/3, 1/4, 2/5, 3/6) or
+    /// series:K (0 <= K <= 20).
+    #[arg(long, allow_hyphen_values = true)]
+    pub law: String,
+    /// Scaled impact speeds v*, comma-separated, each 0 <= v* <= 1e6.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "v",
+        conflicts_with = "v"
+    )]
+    pub vstar: Option<String>,
+    /// Impact speeds v, comma-separated, each >= 0, in the units of --units (needs --beta).
+    #[arg(
+        long = "v",
+        value_name = "V",
+        allow_hyphen_values = true,
+        requires = "beta"
+    )]
+    pub v: Option<String>,
+    /// Material constant beta > 0: (s/m)^(1/5) for --units si, (s/cm)^(1/5) for cgs.
+    #[arg(long, allow_hyphen_values = true, requires = "v")]
+    pub beta: Option<String>,
+    /// Unit system of --v and --beta: si or cgs [default: si].
+    #[arg(long, requires = "v")]
+    pub units: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = DataFormat::Csv)]
+    pub format: DataFormat,
+}
+
+/// Arguments of `haff cor collision`.
+#[derive(Debug, Args)]
+pub struct CollisionArgs {
+    /// Scaled impact speed v*, 0 <= v* <= 1e6.
+    #[arg(long, allow_hyphen_values = true)]
+    pub vstar: String,
+    /// End of the collision: improved (the force vanishes) or naive (the overlap vanishes).
+    #[arg(long, default_value = "improved")]
+    pub criterion: String,
+    /// Number of trajectory points from tau = 0 to tau_c inclusive (>= 2).
+    #[arg(long, default_value = "201", allow_hyphen_values = true)]
+    pub points: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = DataFormat::Csv)]
+    pub format: DataFormat,
+}
+
+/// Arguments of `haff cor dashpot`.
+#[derive(Debug, Args)]
+pub struct DashpotArgs {
+    /// Damping ratios R = b/omega_0, comma-separated, each >= 0.
+    #[arg(long, allow_hyphen_values = true)]
+    pub damping_ratio: String,
+    /// End of the collision: improved (the force vanishes) or naive (the overlap vanishes).
+    #[arg(long, default_value = "improved")]
+    pub criterion: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = DataFormat::Csv)]
+    pub format: DataFormat,
+}
+
+/// Arguments of `haff bench cor`.
+#[derive(Debug, Args)]
+pub struct BenchCorArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
+    /// Timed repetitions per law; the median is reported.
+    #[arg(long, default_value = "7", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Evaluations per repetition for the cheap laws (the exact laws get 1/10000 of them,
+    /// at least 10).
+    #[arg(long, default_value = "1000000", allow_hyphen_values = true)]
+    pub evaluations: String,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => return clap_exit(error),
+    };
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            error.report();
+            error.exit_code()
+        }
+    }
+}
+
+/// Runs one command.
+fn run(command: Command) -> CliResult {
+    match command {
+        Command::Cor(CorCommand::Eps(args)) => cor::eps(&args),
+        Command::Cor(CorCommand::Collision(args)) => cor::collision(&args),
+        Command::Cor(CorCommand::Dashpot(args)) => cor::dashpot(&args),
+        Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
+        Command::Demo => demo::run(),
+    }
+}
+
+/// Help and version go out as clap prints them; usage errors become one line.
+fn clap_exit(error: clap::Error) -> ExitCode {
+    match error.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // Nothing sensible is left to do if the help text cannot be written.
+            let _ = error.print();
+            ExitCode::from(error.exit_code().clamp(0, 255) as u8)
+        }
+        _ => {
+            let failure = CliError::usage(one_line(&error));
+            failure.report();
+            failure.exit_code()
+        }
+    }
+}
+
+/// The first paragraph of clap's message on one line, without its `error: ` prefix.
+fn one_line(error: &clap::Error) -> String {
+    let rendered = error.render().to_string();
+    let paragraph: Vec<&str> = rendered
+        .lines()
+        .map(str::trim)
+        .take_while(|line| !line.is_empty())
+        .collect();
+    let message = paragraph.join(" ");
+    let message = message.strip_prefix("error: ").unwrap_or(&message);
+    format!("{message} (see --help)")
+}

@@ -218,3 +218,13 @@ pub fn duration(ratio: f64, criterion: DashpotCriterion, k: f64, m_eff: f64) -> 
     let outcome = dashpot(ratio, criterion)?;
     Ok(outcome.scaled_duration * (m_eff / k).sqrt())
 }
+
+/// The two end-of-collision criteria are the same for every force law.
+impl From<crate::exact::Criterion> for DashpotCriterion {
+    fn from(c: crate::exact::Criterion) -> Self {
+        match c {
+            crate::exact::Criterion::Improved => DashpotCriterion::Improved,
+            crate::exact::Criterion::Naive => DashpotCriterion::Naive,
+        }
+    }
+}

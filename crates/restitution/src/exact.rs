@@ -306,6 +306,7 @@ impl Solver {
     ) -> Result<Stop> {
         let (mut t, mut y) = (t0, y0);
         let mut h0 = h0;
+        let soft_at_start: Vec<f64> = soft.iter().map(|g| g(t0, y0)).collect();
         loop {
             let unit = self.s.unit;
             let clock = |t: f64, y: State| -> f64 {
@@ -328,6 +329,19 @@ impl Solver {
                         t = sys_stop.t;
                         y = sys_stop.y;
                         h0 = self.rk.next_step.max(1e-300);
+                        // A soft event passed in the step cut short by the sample ends the
+                        // phase here (a restart would take the passed state as its start).
+                        let passed = soft
+                            .iter()
+                            .zip(&soft_at_start)
+                            .position(|(g, &g0)| (g(t, y) > 0.0) != (g0 > 0.0));
+                        if let Some(k) = passed {
+                            return Ok(Stop {
+                                t,
+                                y,
+                                event: Some(events.len() + k),
+                            });
+                        }
                         continue;
                     }
                     sys_stop
@@ -451,7 +465,8 @@ impl Solver {
         let last = self.record(end.0, end.1, end.2);
         let (tau_c, x_end, v_end) = self.point(end.0, end.1, end.2);
         let p_end = s.velocity(x_end, v_end);
-        let eps = -p_end;
+        // Dissipation makes eps <= 1 exact; keep integration error (~1e-13) from crossing it.
+        let eps = (-p_end).min(1.0);
         sampler.points.push(last);
         Ok(Collision {
             vstar,

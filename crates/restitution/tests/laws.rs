@@ -250,3 +250,16 @@ fn trajectory_is_consistent_with_the_collision() {
     let after = pts.iter().filter(|p| p.tau > c.duration && p.x > 0.0);
     assert!(after.clone().count() > 0 && after.into_iter().all(|p| p.xddot > 0.0));
 }
+
+/// Dense sampling (samples in the steps where chart switches happen) at every scale.
+#[test]
+fn dense_trajectories_at_every_scale() {
+    for c in [Criterion::Improved, Criterion::Naive] {
+        for v in [0.0, 0.1, 1.25, 5.0, 100.0] {
+            let (col, pts) = trajectory(v, c, 1001).unwrap();
+            assert_eq!(pts.len(), 1001, "{c} {v}");
+            assert!(rel(-pts[1000].xdot, col.eps) < 1e-13);
+            assert!(pts.windows(2).all(|w| w[1].tau > w[0].tau));
+        }
+    }
+}

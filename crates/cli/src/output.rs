@@ -1,0 +1,292 @@
+//! Reading numbers and lists from the command line, and writing CSV, JSON and aligned
+//! tables.
+//!
+//! Number format of the machine-readable outputs (CSV and JSON): every f64 is written with
+//! the shortest digits that parse back to the same f64 (Rust's `{}`/`{:e}`; serde_json's
+//! ryu for JSON). In CSV, magnitudes in [1e-5, 1e16) are written positionally (`0.25`), all
+//! others in exponent form (`5.158381704267411e-30`), so no number is written with dozens
+//! of zeros. Non-finite values are `inf`, `-inf` and `NaN` in CSV and `null` in JSON.
+
+use crate::error::{CliError, CliResult};
+use serde::Serialize;
+use std::io::{self, BufWriter, StdoutLock, Write};
+
+/// Output format of the data commands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DataFormat {
+    /// Comma-separated values with a header line.
+    Csv,
+    /// One JSON document.
+    Json,
+}
+
+/// Output format of the benchmark.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ReportFormat {
+    /// An aligned table for people.
+    Table,
+    /// One JSON document.
+    Json,
+}
+
+/// The values a numeric argument accepts, with the quantity's name for messages.
+/// Every accepted value is finite.
+#[derive(Debug, Clone, Copy)]
+pub struct Allowed {
+    name: &'static str,
+    low: f64,
+    low_inclusive: bool,
+    high: f64,
+}
+
+impl Allowed {
+    /// Finite values >= 0.
+    pub fn non_negative(name: &'static str) -> Self {
+        Allowed::between(name, 0.0, f64::MAX)
+    }
+
+    /// Finite values > 0.
+    pub fn positive(name: &'static str) -> Self {
+        Allowed {
+            low_inclusive: false,
+            ..Allowed::non_negative(name)
+        }
+    }
+
+    /// Values in the closed interval [low, high].
+    pub fn between(name: &'static str, low: f64, high: f64) -> Self {
+        Allowed {
+            name,
+            low,
+            low_inclusive: true,
+            high,
+        }
+    }
+
+    /// Whether `x` is accepted.
+    pub fn admits(&self, x: f64) -> bool {
+        let above_low = if self.low_inclusive {
+            x >= self.low
+        } else {
+            x > self.low
+        };
+        x.is_finite() && above_low && x <= self.high
+    }
+
+    /// The accepted range in words, e.g. `0 <= v* <= 1e6`.
+    pub fn describe(&self) -> String {
+        let low_sign = if self.low_inclusive { "<=" } else { "<" };
+        if self.high == f64::MAX {
+            let high_sign = if self.low_inclusive { ">=" } else { ">" };
+            format!("a finite {} {high_sign} {}", self.name, bound(self.low))
+        } else {
+            let (name, low, high) = (self.name, bound(self.low), bound(self.high));
+            format!("{low} {low_sign} {name} <= {high}")
+        }
+    }
+}
+
+/// A range bound for messages: `1e6` rather than `1000000`.
+fn bound(x: f64) -> String {
+    if x.abs() >= 1e4 {
+        format!("{x:e}")
+    } else {
+        number(x)
+    }
+}
+
+/// Reads one number and checks it; on failure, says what is wrong with it.
+fn check_number(text: &str, allowed: &Allowed) -> Result<f64, String> {
+    let text = text.trim();
+    let value: f64 = text
+        .parse()
+        .map_err(|_| format!("'{text}' is not a number"))?;
+    if allowed.admits(value) {
+        Ok(value)
+    } else {
+        Err(format!("{} is out of range", number(value)))
+    }
+}
+
+/// Parses one number given to `flag` and checks it against `allowed`.
+pub fn parse_number(flag: &str, text: &str, allowed: Allowed) -> CliResult<f64> {
+    check_number(text, &allowed).map_err(|problem| {
+        CliError::argument(flag, format!("{problem}; allowed: {}", allowed.describe()))
+    })
+}
+
+/// Parses a comma-separated, non-empty list of numbers given to `flag`, each checked
+/// against `allowed`. Blanks around items are ignored; empty items are errors.
+pub fn parse_list(flag: &str, text: &str, allowed: Allowed) -> CliResult<Vec<f64>> {
+    let fail = |problem: String| {
+        let expected = format!("comma-separated numbers, each {}", allowed.describe());
+        CliError::argument(flag, format!("{problem}; allowed: {expected}"))
+    };
+    if text.trim().is_empty() {
+        return Err(fail("empty list".to_string()));
+    }
+    text.split(',')
+        .enumerate()
+        .map(|(index, item)| {
+            let position = index + 1;
+            if item.trim().is_empty() {
+                return Err(fail(format!("item {position} of '{text}' is empty")));
+            }
+            check_number(item, &allowed)
+                .map_err(|problem| fail(format!("item {position}: {problem}")))
+        })
+        .collect()
+}
+
+/// Parses a whole number given to `flag`, in the closed range [min, max].
+pub fn parse_count(flag: &str, text: &str, min: usize, max: usize) -> CliResult<usize> {
+    let name = flag.trim_start_matches('-');
+    let allowed = format!("an integer with {min} <= {name} <= {max}");
+    let value: usize = text.trim().parse().map_err(|_| {
+        CliError::argument(
+            flag,
+            format!("'{text}' is not an integer; allowed: {allowed}"),
+        )
+    })?;
+    if !(min..=max).contains(&value) {
+        return Err(CliError::argument(
+            flag,
+            format!("{value} is out of range; allowed: {allowed}"),
+        ));
+    }
+    Ok(value)
+}
+
+/// A number for CSV: shortest round-trip digits (see the module documentation).
+pub fn number(x: f64) -> String {
+    let positional = (1e-5..1e16).contains(&x.abs());
+    if positional || x == 0.0 || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A number for tables read by people: `digits` significant digits, positional for
+/// magnitudes in [1e-4, 1e6) (after rounding), exponent form otherwise.
+pub fn significant(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = digits.max(1);
+    let scientific = format!("{:.*e}", digits - 1, x);
+    let exponent = scientific
+        .split_once('e')
+        .and_then(|(_, exponent)| exponent.parse::<i64>().ok())
+        .unwrap_or(0);
+    if !(-4..6).contains(&exponent) {
+        return scientific;
+    }
+    let decimals = (digits as i64 - 1 - exponent).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// Buffered, locked standard output.
+pub fn stdout() -> BufWriter<StdoutLock<'static>> {
+    BufWriter::new(io::stdout().lock())
+}
+
+/// Writes a CSV header line and one line per row (cells contain no commas).
+pub fn write_csv<W: Write>(
+    out: &mut W,
+    header: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> io::Result<()> {
+    writeln!(out, "{}", header.join(","))?;
+    for row in rows {
+        writeln!(out, "{}", row.join(","))?;
+    }
+    Ok(())
+}
+
+/// Writes `value` as pretty-printed JSON followed by a newline.
+pub fn write_json<W: Write, T: Serialize>(out: &mut W, value: &T) -> CliResult {
+    serde_json::to_writer_pretty(&mut *out, value)?;
+    writeln!(out)?;
+    Ok(())
+}
+
+/// Writes an aligned table: first column left-aligned, the others right-aligned, columns
+/// separated by two blanks.
+pub fn write_table<W: Write>(
+    out: &mut W,
+    header: &[String],
+    rows: &[Vec<String>],
+) -> io::Result<()> {
+    let widths: Vec<usize> = (0..header.len())
+        .map(|column| {
+            let cells = rows.iter().map(|row| row[column].chars().count());
+            cells.fold(header[column].chars().count(), usize::max)
+        })
+        .collect();
+    for line in std::iter::once(header).chain(rows.iter().map(Vec::as_slice)) {
+        let cells: Vec<String> = line
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            .map(|(column, (cell, &width))| match column {
+                0 => format!("{cell:<width$}"),
+                _ => format!("{cell:>width$}"),
+            })
+            .collect();
+        writeln!(out, "{}", cells.join("  ").trim_end())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_round_trip() {
+        for x in [
+            0.0,
+            1.0,
+            0.27063202542608993,
+            5.158381704267411e-30,
+            1e300,
+            3.5e-6,
+        ] {
+            assert_eq!(number(x).parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(number(f64::INFINITY), "inf");
+        assert_eq!(number(0.25), "0.25");
+        assert_eq!(number(1e-30), "1e-30");
+    }
+
+    #[test]
+    fn lists_reject_empty_items_and_out_of_range_values() {
+        let allowed = Allowed::between("v*", 0.0, 1e6);
+        assert_eq!(
+            parse_list("--vstar", "0, 1.25", allowed).unwrap(),
+            vec![0.0, 1.25]
+        );
+        for bad in ["", " ", "1,,2", "1,", "-1", "nan", "inf", "2e6", "x"] {
+            assert!(parse_list("--vstar", bad, allowed).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn ranges_are_described() {
+        assert_eq!(Allowed::positive("beta").describe(), "a finite beta > 0");
+        assert_eq!(
+            Allowed::between("v*", 0.0, 1e6).describe(),
+            "0 <= v* <= 1e6"
+        );
+    }
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(significant(0.270632, 4), "0.2706");
+        assert_eq!(significant(12345.6, 4), "12346");
+        assert_eq!(significant(1e-9, 3), "1.00e-9");
+        assert_eq!(significant(9.99999, 4), "10.00");
+        assert_eq!(significant(999999.9, 4), "1.000e6");
+    }
+}

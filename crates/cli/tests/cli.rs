@@ -1,0 +1,335 @@
+//! Integration tests of the `haff` binary: output contracts (headers, formats, numbers)
+//! and the handling of bad input.
+
+use serde_json::Value;
+use std::process::{Command, Output};
+
+/// Runs `haff` with `args`.
+fn haff(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_haff"))
+        .args(args)
+        .output()
+        .expect("the haff binary runs")
+}
+
+/// Runs `haff`, checks that it succeeded and returns its stdout.
+fn stdout_of(args: &[&str]) -> String {
+    let output = haff(args);
+    assert!(
+        output.status.success(),
+        "haff {args:?} failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).expect("stdout is UTF-8")
+}
+
+/// A CSV document: its header line and its numeric rows.
+fn parse_csv(text: &str) -> (String, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().expect("a header line").to_string();
+    let rows = lines
+        .map(|line| {
+            line.split(',')
+                .map(|cell| cell.parse().expect("a number"))
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+fn json_of(args: &[&str]) -> Value {
+    serde_json::from_str(&stdout_of(args)).expect("valid JSON")
+}
+
+fn number(value: &Value) -> f64 {
+    value.as_f64().expect("a JSON number")
+}
+
+#[test]
+fn eps_at_scaled_speeds() {
+    let (header, rows) = parse_csv(&stdout_of(&[
+        "cor", "eps", "--law", "exact", "--vstar", "0,1.25",
+    ]));
+    assert_eq!(header, "vstar,eps");
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows[0][1] - 1.0).abs() < 1e-12, "eps(0) = {}", rows[0][1]);
+    assert_eq!(rows[1][0], 1.25);
+    assert!(
+        (rows[1][1] - 0.27063).abs() < 1e-4,
+        "eps(1.25) = {}",
+        rows[1][1]
+    );
+}
+
+#[test]
+fn eps_json_has_the_csv_numbers() {
+    let args = [
+        "cor",
+        "eps",
+        "--law",
+        "pade:3/6",
+        "--vstar",
+        "0,0.5,1.25,10",
+    ];
+    let (_, csv) = parse_csv(&stdout_of(&args));
+    let json = json_of(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(json["law"], "pade:3/6");
+    let rows = json["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), csv.len());
+    for (row, expected) in rows.iter().zip(&csv) {
+        assert_eq!(number(&row["vstar"]), expected[0]);
+        assert_eq!(number(&row["eps"]), expected[1]);
+        assert!(row.get("v").is_none());
+    }
+}
+
+#[test]
+fn eps_at_physical_speeds_in_cgs() {
+    let args = [
+        "cor",
+        "eps",
+        "--law",
+        "pade:3/6",
+        "--v",
+        "0.01,1,1000",
+        "--beta",
+        "1.307",
+        "--units",
+        "cgs",
+    ];
+    let (header, rows) = parse_csv(&stdout_of(&args));
+    assert_eq!(header, "v,vstar,eps");
+    let speeds = [0.01, 1.0, 1000.0];
+    for (row, v) in rows.iter().zip(speeds) {
+        assert_eq!(row[0], v);
+        let vstar = 1.307f64.sqrt() * v.powf(0.1);
+        assert!(
+            (row[1] - vstar).abs() < 1e-12 * vstar,
+            "v* = {} at v = {v}",
+            row[1]
+        );
+        assert!(row[2] > 0.0 && row[2] < 1.0);
+    }
+    let json = json_of(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(number(&json["beta"]), 1.307);
+    assert_eq!(json["units"], "cgs");
+    for (row, expected) in json["rows"].as_array().expect("rows").iter().zip(&rows) {
+        let values = [&row["v"], &row["vstar"], &row["eps"]].map(number);
+        assert_eq!(values.to_vec(), *expected);
+    }
+}
+
+#[test]
+fn collision_trajectory_runs_from_zero_to_the_end_of_contact() {
+    let points = 11;
+    let args = ["cor", "collision", "--vstar", "1.25", "--points", "11"];
+    let output = haff(&args);
+    assert!(output.status.success());
+    let stdout = String::from_utf8(output.stdout).expect("UTF-8");
+    assert_eq!(stdout.lines().count(), points + 1);
+    let (header, rows) = parse_csv(&stdout);
+    assert_eq!(header, "tau,x,xdot,xddot");
+    let summary = String::from_utf8(output.stderr).expect("UTF-8");
+    assert_eq!(summary.lines().count(), 1);
+    assert!(summary.contains("tau_c") && summary.contains("eps"));
+
+    let json = json_of(&[&args[..], &["--format", "json"]].concat());
+    let tau_c = number(&json["tau_c"]);
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows[points - 1][0] - tau_c).abs() <= 1e-12 * tau_c);
+    assert!(rows.windows(2).all(|pair| pair[1][0] > pair[0][0]));
+    assert!((number(&json["eps"]) - 0.27063).abs() < 1e-4);
+    assert_eq!(json["points"].as_array().expect("points").len(), points);
+}
+
+#[test]
+fn collision_has_201_points_by_default() {
+    let stdout = stdout_of(&["cor", "collision", "--vstar", "0.5", "--criterion", "naive"]);
+    assert_eq!(stdout.lines().count(), 202);
+}
+
+#[test]
+fn dashpot_without_damping_is_elastic() {
+    let stdout = stdout_of(&["cor", "dashpot", "--damping-ratio", "0"]);
+    let mut lines = stdout.lines();
+    assert_eq!(
+        lines.next(),
+        Some("damping_ratio,criterion,eps,omega0_tc,separated")
+    );
+    let cells: Vec<&str> = lines.next().expect("a row").split(',').collect();
+    assert_eq!(cells[1], "improved");
+    assert_eq!(cells[2].parse::<f64>().unwrap(), 1.0);
+    assert!((cells[3].parse::<f64>().unwrap() - std::f64::consts::PI).abs() < 1e-12);
+    assert_eq!(cells[4], "true");
+}
+
+#[test]
+fn dashpot_capture_has_infinite_duration() {
+    let args = [
+        "cor",
+        "dashpot",
+        "--damping-ratio",
+        "0.5,1,2",
+        "--criterion",
+        "naive",
+    ];
+    let stdout = stdout_of(&args);
+    let last: Vec<&str> = stdout.lines().last().expect("rows").split(',').collect();
+    assert_eq!(last, ["2", "naive", "0", "inf", "false"]);
+    let json = json_of(&[&args[..], &["--format", "json"]].concat());
+    let rows = json["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), 3);
+    assert!(rows[2]["omega0_tc"].is_null());
+}
+
+#[test]
+fn bench_json_lists_every_law() {
+    let json = json_of(&[
+        "bench",
+        "cor",
+        "--format",
+        "json",
+        "--repeats",
+        "1",
+        "--evaluations",
+        "100",
+    ]);
+    assert_eq!(json["unit"], "ns_per_eval");
+    let results = json["results"].as_array().expect("results");
+    let laws: Vec<&str> = results
+        .iter()
+        .map(|r| r["law"].as_str().expect("law"))
+        .collect();
+    let expected = [
+        "exact",
+        "exact-naive",
+        "fast",
+        "pade:1/4",
+        "pade:3/6",
+        "series:20",
+        "fast(v)",
+        "pade:3/6(v)",
+    ];
+    assert_eq!(laws, expected);
+    for result in results {
+        let [median, min, max] = ["median_ns", "min_ns", "max_ns"].map(|k| number(&result[k]));
+        assert!(min > 0.0 && min <= median && median <= max, "{result}");
+        assert!(number(&result["ratio_to_pade36"]) > 0.0);
+    }
+}
+
+#[test]
+fn demo_shows_every_law() {
+    let stdout = stdout_of(&["demo"]);
+    let header = stdout.lines().nth(1).expect("a table header");
+    for column in [
+        "v [cm/s]",
+        "v*",
+        "exact",
+        "exact-naive",
+        "fast",
+        "pade:1/4",
+        "pade:3/6",
+        "series:10",
+        "series:20",
+    ] {
+        assert!(header.contains(column), "{column} missing from {header}");
+    }
+}
+
+/// Bad input: exit code 2 and one line on stderr naming the argument, no panic.
+fn assert_rejected(args: &[&str], argument: &str) {
+    let output = haff(args);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "haff {args:?}: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "haff {args:?}: {stderr}");
+    assert!(
+        stderr.starts_with("haff: error: "),
+        "haff {args:?}: {stderr}"
+    );
+    assert!(
+        stderr.contains(argument),
+        "haff {args:?} does not name {argument}: {stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "haff {args:?}: {stderr}");
+    assert!(output.stdout.is_empty(), "haff {args:?} wrote output");
+}
+
+#[test]
+fn bad_speeds_are_rejected() {
+    let eps = ["cor", "eps", "--law", "exact"];
+    for vstar in ["-1", "nan", "inf", "", "1,,2", "1,", "abc", "2e6"] {
+        assert_rejected(&[&eps[..], &["--vstar", vstar]].concat(), "--vstar");
+    }
+    for v in ["-1", "inf", "", "1,,2"] {
+        assert_rejected(&[&eps[..], &["--v", v, "--beta", "1"]].concat(), "--v");
+    }
+    assert_rejected(&[&eps[..], &["--v", "1e70", "--beta", "1"]].concat(), "--v");
+}
+
+#[test]
+fn bad_laws_criteria_and_parameters_are_rejected() {
+    for law in ["foo", "pade:2/2", "series:99", "pade:x"] {
+        assert_rejected(&["cor", "eps", "--law", law, "--vstar", "1"], "--law");
+    }
+    for beta in ["0", "-1", "nan", "x"] {
+        assert_rejected(
+            &["cor", "eps", "--law", "exact", "--v", "1", "--beta", beta],
+            "--beta",
+        );
+    }
+    let units = [
+        "cor", "eps", "--law", "exact", "--v", "1", "--beta", "1", "--units", "furlong",
+    ];
+    assert_rejected(&units, "--units");
+    assert_rejected(
+        &["cor", "collision", "--vstar", "1", "--criterion", "x"],
+        "--criterion",
+    );
+    assert_rejected(
+        &["cor", "dashpot", "--damping-ratio", "1", "--criterion", "x"],
+        "--criterion",
+    );
+    for points in ["1", "0", "-3", "2.5"] {
+        assert_rejected(
+            &["cor", "collision", "--vstar", "1", "--points", points],
+            "--points",
+        );
+    }
+    assert_rejected(&["cor", "collision", "--vstar", "-1"], "--vstar");
+    assert_rejected(&["cor", "collision", "--vstar", "1e7"], "--vstar");
+    for ratio in ["-0.5", "nan", "", "0,,1"] {
+        assert_rejected(
+            &["cor", "dashpot", "--damping-ratio", ratio],
+            "--damping-ratio",
+        );
+    }
+    assert_rejected(&["bench", "cor", "--repeats", "0"], "--repeats");
+    assert_rejected(&["bench", "cor", "--evaluations", "x"], "--evaluations");
+}
+
+#[test]
+fn bad_option_combinations_are_rejected() {
+    assert_rejected(&["cor", "eps", "--vstar", "1"], "--law");
+    assert_rejected(&["cor", "eps", "--law", "exact"], "--vstar");
+    assert_rejected(&["cor", "collision"], "--vstar");
+    assert_rejected(&["cor", "dashpot"], "--damping-ratio");
+    let both = [
+        "cor", "eps", "--law", "exact", "--vstar", "1", "--v", "1", "--beta", "1",
+    ];
+    assert_rejected(&both, "--v");
+    assert_rejected(&["cor", "eps", "--law", "exact", "--v", "1"], "--beta");
+    assert_rejected(
+        &[
+            "cor", "eps", "--law", "exact", "--vstar", "1", "--beta", "1",
+        ],
+        "--beta",
+    );
+    assert_rejected(
+        &[
+            "cor", "eps", "--law", "exact", "--vstar", "1", "--format", "xml",
+        ],
+        "--format",
+    );
+}
