@@ -1,6 +1,7 @@
 //! The [`Restitution`] trait through which engines obtain eps at each collision, and its
 //! implementations: constant, dash-pot and the viscoelastic laws.
 
+use crate::bucket::BucketTable;
 use crate::dashpot::{dashpot, DashpotCriterion};
 use crate::error::{require_positive, Error, Result};
 use crate::exact::{self, Criterion};
@@ -9,6 +10,7 @@ use crate::pade::Pade;
 use crate::series::Series;
 use std::fmt;
 use std::str::FromStr;
+use std::sync::Arc;
 
 /// A coefficient-of-restitution law: eps as a function of the normal impact speed.
 ///
@@ -194,10 +196,13 @@ impl FromStr for ScaledForm {
 }
 
 /// A viscoelastic law in physical units: v* = beta^(1/2) v^(1/10) (Eq. 7 of MP2011).
+///
+/// With the fast form, eps is also tabulated directly in v (binary buckets, two per octave
+/// of v, about 50 KB shared by clones), so that a call costs no power v^(1/10).
 #[derive(Debug, Clone)]
 pub struct Viscoelastic {
     beta: f64,
-    half_ln_beta: f64,
+    speed_table: Option<Arc<BucketTable>>,
     /// (rho/m_eff)^(-2/5): the time unit of Eq. (9) is this times v^(-1/5).
     time_unit: Option<f64>,
     form: ScaledForm,
@@ -208,9 +213,13 @@ impl Viscoelastic {
     /// speeds passed to `eps`).
     pub fn new(beta: f64, form: ScaledForm) -> Result<Self> {
         require_positive("beta", beta)?;
+        let speed_table = match &form {
+            ScaledForm::Fast(fast) => Some(Arc::new(speed_table(beta, *fast))),
+            _ => None,
+        };
         Ok(Viscoelastic {
             beta,
-            half_ln_beta: 0.5 * beta.ln(),
+            speed_table,
             time_unit: None,
             form,
         })
@@ -240,10 +249,9 @@ impl Viscoelastic {
 impl Restitution for Viscoelastic {
     #[inline]
     fn eps(&self, speed: f64) -> f64 {
-        match &self.form {
-            // ln v* = ln(beta)/2 + ln(v)/10: one logarithm instead of a power.
-            ScaledForm::Fast(f) if speed > 0.0 => f.eval_log(self.half_ln_beta + 0.1 * speed.ln()),
-            form => form.eps(self.vstar(speed)),
+        match &self.speed_table {
+            Some(table) if table.contains(speed) => table.eval(speed),
+            _ => self.form.eps(self.vstar(speed)),
         }
     }
 
@@ -259,4 +267,15 @@ impl Restitution for Viscoelastic {
     fn box_clone(&self) -> Box<dyn Restitution> {
         Box::new(self.clone())
     }
+}
+
+/// The fast law tabulated in the physical speed v over the range that maps to the fast
+/// table's v* range, v = v*^10 / beta^5.
+fn speed_table(beta: f64, fast: Fast) -> BucketTable {
+    use crate::fast::{VSTAR_MAX, VSTAR_MIN};
+    let log2_v = |vstar: f64| 10.0 * vstar.log2() - 5.0 * beta.log2();
+    let lo = (log2_v(VSTAR_MIN).ceil() as i32).clamp(-1021, 1021);
+    let hi = (log2_v(VSTAR_MAX).floor() as i32).clamp(lo + 1, 1022);
+    let root_beta = beta.sqrt();
+    BucketTable::new(lo, hi, 1, |v| fast.eval(root_beta * v.powf(0.1)))
 }

@@ -9,6 +9,7 @@
 //! - **MP2011**: P. Müller and T. Pöschel, Phys. Rev. E 84, 021302 (2011) — Padé approximants.
 //! - **SP2008**: T. Schwager and T. Pöschel, Phys. Rev. E 78, 051304 (2008) — delayed recovery.
 
+pub mod bucket;
 pub mod dashpot;
 pub mod error;
 pub mod exact;

@@ -263,3 +263,19 @@ fn dense_trajectories_at_every_scale() {
         }
     }
 }
+
+/// The physical-speed table of the fast law agrees with the exact law at any beta.
+#[test]
+fn fast_law_in_physical_speed() {
+    for beta in [1e-3, 0.2, 1.307, 50.0] {
+        let law = Viscoelastic::new(beta, "fast".parse().unwrap()).unwrap();
+        let mut worst: f64 = 0.0;
+        for i in 0..=120 {
+            let vstar = 1e-4 * 1e8f64.powf((i as f64 + 0.29) / 120.0);
+            let v = vstar.powi(10) / beta.powi(5);
+            worst = worst.max(rel(law.eps(v), exact(law.vstar(v))));
+        }
+        assert!(worst < 1e-11, "beta = {beta}: {worst}");
+        assert_eq!(law.eps(0.0), 1.0);
+    }
+}
