@@ -6,6 +6,7 @@ use crate::dashpot::{dashpot, DashpotCriterion};
 use crate::error::{require_positive, Error, Result};
 use crate::exact::{self, Criterion};
 use crate::fast::Fast;
+use crate::material::ContactPair;
 use crate::pade::Pade;
 use crate::series::Series;
 use std::fmt;
@@ -223,6 +224,12 @@ impl Viscoelastic {
             time_unit: None,
             form,
         })
+    }
+
+    /// The law of a contact pair in SI units: beta (Eq. 8 of MP2011) and k = rho/m_eff
+    /// (Eq. 18 of SP2008) from the material and the spheres; speeds in m/s, time in s.
+    pub fn for_pair(pair: &ContactPair, form: ScaledForm) -> Result<Self> {
+        Viscoelastic::new(pair.beta()?, form)?.with_k(pair.k())
     }
 
     /// Adds k = rho/m_eff (Eq. 18 of SP2008) so that `duration` is known in physical time.

@@ -279,3 +279,21 @@ fn fast_law_in_physical_speed() {
         assert_eq!(law.eps(0.0), 1.0);
     }
 }
+
+/// A law built from material data: beta and k from the pair, duration in seconds, and the
+/// undamped limit of the duration (Hertz) t_c = 2 tau_max^0 (rho/m_eff)^(-2/5) v^(-1/5).
+#[test]
+fn law_for_a_material_pair() {
+    use restitution::material::{ContactPair, Material, Sphere};
+    let glass = Material::new("glass", 7.2e10, 0.23, 2500.0, Some(1e-9), "test").unwrap();
+    let sphere = Sphere::from_density(1e-3, 2500.0).unwrap();
+    let pair = ContactPair::new(&glass, sphere, sphere).unwrap();
+    let law = Viscoelastic::for_pair(&pair, "exact".parse().unwrap()).unwrap();
+    let v = 1.0;
+    assert!(rel(law.beta(), pair.beta().unwrap()) < 1e-15);
+    let tau_c = solve(law.vstar(v), Criterion::Improved).unwrap().duration;
+    let t_c = law.duration(v).unwrap();
+    assert!(rel(t_c, tau_c * pair.time_scale(v).unwrap()) < 1e-12);
+    // Microsecond collisions, as for mm glass beads at 1 m/s.
+    assert!(t_c > 1e-6 && t_c < 1e-5, "{t_c}");
+}
