@@ -148,16 +148,17 @@ fn step_for(ratio: f64) -> f64 {
 // Closed forms against the ODE.
 // ---------------------------------------------------------------------------------------
 
-#[test]
-fn improved_matches_ode_in_all_regimes() {
+/// Compares the closed form with the ODE at every ratio of `ratios`; returns the worst
+/// relative error of t_c and eps.
+fn check_against_ode(criterion: DashpotCriterion, ratios: impl Iterator<Item = f64>) -> f64 {
     let mut worst: f64 = 0.0;
-    for &r in &RATIOS {
-        let (t_ref, eps_ref) = Oscillator::scaled(r).event_extrapolated(Improved, step_for(r));
-        let out = eval(r, Improved);
+    for r in ratios {
+        let (t_ref, eps_ref) = Oscillator::scaled(r).event_extrapolated(criterion, step_for(r));
+        let out = eval(r, criterion);
         assert!(out.separated);
         let (et, ee) = (rel(out.scaled_duration, t_ref), rel(out.eps, eps_ref));
         eprintln!(
-            "improved R = {r:<10} t_c = {:.15} (ode {t_ref:.15}, rel {et:.1e})  \
+            "{criterion:?} R = {r:<10} t_c = {:.15} (ode {t_ref:.15}, rel {et:.1e})  \
              eps = {:.15e} (ode {eps_ref:.15e}, rel {ee:.1e})",
             out.scaled_duration, out.eps
         );
@@ -169,30 +170,18 @@ fn improved_matches_ode_in_all_regimes() {
         assert!(ee <= 1e-9, "R = {r}: eps {} vs ODE {eps_ref}", out.eps);
         worst = worst.max(et).max(ee);
     }
+    worst
+}
+
+#[test]
+fn improved_matches_ode_in_all_regimes() {
+    let worst = check_against_ode(Improved, RATIOS.iter().copied());
     eprintln!("improved: max relative error vs ODE = {worst:.2e}");
 }
 
 #[test]
 fn naive_matches_ode_when_underdamped() {
-    let mut worst: f64 = 0.0;
-    for &r in RATIOS.iter().filter(|&&r| r < 1.0) {
-        let (t_ref, eps_ref) = Oscillator::scaled(r).event_extrapolated(Naive, step_for(r));
-        let out = eval(r, Naive);
-        assert!(out.separated);
-        let (et, ee) = (rel(out.scaled_duration, t_ref), rel(out.eps, eps_ref));
-        eprintln!(
-            "naive    R = {r:<10} t_c = {:.15} (ode {t_ref:.15}, rel {et:.1e})  \
-             eps = {:.15e} (ode {eps_ref:.15e}, rel {ee:.1e})",
-            out.scaled_duration, out.eps
-        );
-        assert!(
-            et <= 1e-9,
-            "R = {r}: t_c {} vs ODE {t_ref}",
-            out.scaled_duration
-        );
-        assert!(ee <= 1e-9, "R = {r}: eps {} vs ODE {eps_ref}", out.eps);
-        worst = worst.max(et).max(ee);
-    }
+    let worst = check_against_ode(Naive, RATIOS.iter().copied().filter(|&r| r < 1.0));
     eprintln!("naive: max relative error vs ODE = {worst:.2e}");
 }
 
