@@ -10,7 +10,9 @@ use crate::output::{
 use crate::{CollisionArgs, DashpotArgs, EpsArgs};
 use restitution::dashpot::{dashpot as dashpot_outcome, DashpotCriterion};
 use restitution::exact::{self, Collision, Criterion, TrajectoryPoint, VSTAR_MAX};
-use restitution::material::{speed_from_vstar, UnitSystem};
+use restitution::material::{
+    material_by_name, speed_from_vstar, ContactPair, Material, Sphere, UnitSystem,
+};
 use restitution::{Restitution, ScaledForm, Viscoelastic};
 use serde::Serialize;
 use std::io::Write;
@@ -92,11 +94,13 @@ fn forbid_without_v(args: &EpsArgs) -> CliResult {
     }
 }
 
-/// eps at the physical speeds of `--v`, with `--beta` in `--units`.
+/// eps at the physical speeds of `--v`, with `--beta` (or beta of a material) in `--units`.
 fn physical_eps(args: &EpsArgs, speeds: &str) -> CliResult<EpsTable> {
-    let beta_text = required(args.beta.as_deref(), "--beta")?;
-    let beta = parse_number("--beta", beta_text, Allowed::positive("beta"))?;
     let units = parse_units(args.units.as_deref())?;
+    let beta = match args.beta.as_deref() {
+        Some(text) => parse_number("--beta", text, Allowed::positive("beta"))?,
+        None => units.beta_from_si(material_beta(args)?),
+    };
     let v_max = speed_from_vstar(beta, VSTAR_MAX).map_err(|e| CliError::library("--beta", e))?;
     let speeds = parse_list("--v", speeds, Allowed::between("v", 0.0, v_max))?;
     let form = parse_law(&args.law)?;
@@ -314,4 +318,53 @@ fn parse_units(text: Option<&str>) -> CliResult<UnitSystem> {
 /// The value of an option that clap has already made mandatory in this context.
 fn required<'a>(value: Option<&'a str>, flag: &str) -> CliResult<&'a str> {
     value.ok_or_else(|| CliError::argument(flag, "missing (required here)"))
+}
+
+/// beta in SI of two identical spheres of the material given on the command line
+/// (Eq. 8 of MP2011, through the restitution library).
+fn material_beta(args: &EpsArgs) -> CliResult<f64> {
+    let a_text = args.dissipative_constant.as_deref().ok_or_else(|| {
+        CliError::argument(
+            "--v",
+            "needs --beta, or a material: --dissipative-constant and --radius with \
+             --material or --young/--poisson/--density",
+        )
+    })?;
+    let optional = |flag: &str, text: &Option<String>, allowed: Allowed| {
+        text.as_deref()
+            .map(|t| parse_number(flag, t, allowed))
+            .transpose()
+    };
+    let young = optional("--young", &args.young, Allowed::positive("Y"))?;
+    let poisson = optional("--poisson", &args.poisson, Allowed::open("nu", -1.0, 0.5))?;
+    let density = optional("--density", &args.density, Allowed::positive("density"))?;
+    let base = args
+        .material
+        .as_deref()
+        .map(material_by_name)
+        .transpose()
+        .map_err(|e| CliError::library("--material", e))?;
+    let pick = |given: Option<f64>, from_base: Option<f64>, flag: &str| {
+        given
+            .or(from_base)
+            .ok_or_else(|| CliError::argument(flag, "missing: give it or --material"))
+    };
+    let a = parse_number("--dissipative-constant", a_text, Allowed::non_negative("A"))?;
+    let material = Material::new(
+        base.as_ref().map_or("command line", |m| m.name.as_str()),
+        pick(young, base.as_ref().map(|m| m.young_modulus), "--young")?,
+        pick(poisson, base.as_ref().map(|m| m.poisson_ratio), "--poisson")?,
+        pick(density, base.as_ref().map(|m| m.density), "--density")?,
+        Some(a),
+        "command line",
+    )
+    .map_err(|e| CliError::library("--material", e))?;
+    let radius_text = required(args.radius.as_deref(), "--radius")?;
+    let radius = parse_number("--radius", radius_text, Allowed::positive("R"))?;
+    let sphere =
+        Sphere::of_material(radius, &material).map_err(|e| CliError::library("--radius", e))?;
+    let pair = ContactPair::new(&material, sphere, sphere)
+        .map_err(|e| CliError::library("--material", e))?;
+    pair.beta()
+        .map_err(|e| CliError::library("--dissipative-constant", e))
 }

@@ -68,14 +68,54 @@ pub struct EpsArgs {
         conflicts_with = "v"
     )]
     pub vstar: Option<String>,
-    /// Impact speeds v, comma-separated, each >= 0, in the units of --units (needs --beta).
-    #[arg(
-        long = "v",
-        value_name = "V",
-        allow_hyphen_values = true,
-        requires = "beta"
-    )]
+    /// Impact speeds v, comma-separated, each >= 0, in the units of --units (needs --beta,
+    /// or a material: --dissipative-constant and --radius with --material or
+    /// --young/--poisson/--density).
+    #[arg(long = "v", value_name = "V", allow_hyphen_values = true)]
     pub v: Option<String>,
+    /// Built-in material for Y, nu and density (steel, soda-lime-glass, aluminium, ice).
+    #[arg(long, requires = "v", conflicts_with = "beta")]
+    pub material: Option<String>,
+    /// Young modulus Y in Pa (> 0); overrides --material.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "v",
+        conflicts_with = "beta"
+    )]
+    pub young: Option<String>,
+    /// Poisson ratio nu in (-1, 0.5); overrides --material.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "v",
+        conflicts_with = "beta"
+    )]
+    pub poisson: Option<String>,
+    /// Density in kg/m^3 (> 0); overrides --material.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "v",
+        conflicts_with = "beta"
+    )]
+    pub density: Option<String>,
+    /// Radius of both spheres in m (> 0).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "v",
+        conflicts_with = "beta"
+    )]
+    pub radius: Option<String>,
+    /// Dissipative constant A in s (>= 0), Eq. (15) of SP2008.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "v",
+        conflicts_with = "beta"
+    )]
+    pub dissipative_constant: Option<String>,
     /// Material constant beta > 0: (s/m)^(1/5) for --units si, (s/cm)^(1/5) for cgs.
     #[arg(long, allow_hyphen_values = true, requires = "v")]
     pub beta: Option<String>,

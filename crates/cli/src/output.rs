@@ -37,6 +37,7 @@ pub struct Allowed {
     low: f64,
     low_inclusive: bool,
     high: f64,
+    high_inclusive: bool,
 }
 
 impl Allowed {
@@ -60,6 +61,16 @@ impl Allowed {
             low,
             low_inclusive: true,
             high,
+            high_inclusive: true,
+        }
+    }
+
+    /// Values in the open interval (low, high).
+    pub fn open(name: &'static str, low: f64, high: f64) -> Self {
+        Allowed {
+            low_inclusive: false,
+            high_inclusive: false,
+            ..Allowed::between(name, low, high)
         }
     }
 
@@ -70,7 +81,12 @@ impl Allowed {
         } else {
             x > self.low
         };
-        x.is_finite() && above_low && x <= self.high
+        let below_high = if self.high_inclusive {
+            x <= self.high
+        } else {
+            x < self.high
+        };
+        x.is_finite() && above_low && below_high
     }
 
     /// The accepted range in words, e.g. `0 <= v* <= 1e6`.
@@ -80,8 +96,9 @@ impl Allowed {
             let high_sign = if self.low_inclusive { ">=" } else { ">" };
             format!("a finite {} {high_sign} {}", self.name, bound(self.low))
         } else {
+            let high_sign = if self.high_inclusive { "<=" } else { "<" };
             let (name, low, high) = (self.name, bound(self.low), bound(self.high));
-            format!("{low} {low_sign} {name} <= {high}")
+            format!("{low} {low_sign} {name} {high_sign} {high}")
         }
     }
 }

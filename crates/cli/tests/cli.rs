@@ -333,3 +333,47 @@ fn bad_option_combinations_are_rejected() {
         "--format",
     );
 }
+
+/// beta from material data (Eq. 8 of MP2011): glass spheres of 1 mm, A = 1 ns.
+#[test]
+fn eps_from_a_material() {
+    let base = [
+        "cor",
+        "eps",
+        "--law",
+        "exact",
+        "--v",
+        "1",
+        "--radius",
+        "1e-3",
+        "--dissipative-constant",
+        "1e-9",
+    ];
+    let named = stdout_of(&[&base[..], &["--material", "soda-lime-glass"]].concat());
+    let explicit = stdout_of(
+        &[
+            &base[..],
+            &["--young", "72e9", "--poisson", "0.23", "--density", "2500"],
+        ]
+        .concat(),
+    );
+    assert_eq!(named, explicit);
+    let (header, rows) = parse_csv(&named);
+    assert_eq!(header, "v,vstar,eps");
+    // v* = sqrt(beta) v^(1/10) with beta = (3/2) A (rho/m_eff)^(2/5), computed by hand.
+    let (young, nu, density, radius, a) = (72e9f64, 0.23f64, 2500f64, 1e-3f64, 1e-9f64);
+    let mass = density * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+    let rho = 2.0 * young * (radius / 2.0).sqrt() / (3.0 * (1.0 - nu * nu));
+    let beta = 1.5 * a * (rho / (mass / 2.0)).powf(0.4);
+    assert!((rows[0][1] - beta.sqrt()).abs() < 1e-12 * beta.sqrt());
+    for (flag, value) in [("--poisson", "0.5"), ("--young", "-1"), ("--radius", "0")] {
+        let mut args = base.to_vec();
+        args.extend(["--material", "soda-lime-glass", flag, value]);
+        assert_rejected(&args, flag);
+    }
+    assert_rejected(
+        &[&base[..], &["--material", "cheese"]].concat(),
+        "--material",
+    );
+    assert_rejected(&[&base[..], &["--young", "7e10"]].concat(), "--poisson");
+}
