@@ -40,7 +40,7 @@ enum Command {
 #[derive(Debug, Subcommand)]
 enum CorCommand {
     /// eps of a viscoelastic law at scaled speeds v* (or at speeds v with --beta).
-    Eps(EpsArgs),
+    Eps(Box<EpsArgs>),
     /// The scaled trajectory of one viscoelastic collision, integrated exactly.
     Collision(CollisionArgs),
     /// eps and duration of the linear dash-pot for given damping ratios.
