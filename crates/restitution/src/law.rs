@@ -160,6 +160,7 @@ impl fmt::Display for ScaledForm {
             ScaledForm::Exact(c) => write!(f, "exact{}", naive(c)),
             ScaledForm::Fast(x) => write!(f, "fast{}", naive(&x.criterion())),
             ScaledForm::Pade(p) => write!(f, "pade:{}/{}", p.orders().0, p.orders().1),
+            ScaledForm::Series(s) if s.is_from_paper() => write!(f, "series-paper:{}", s.order()),
             ScaledForm::Series(s) => write!(f, "series:{}", s.order()),
         }
     }
@@ -167,7 +168,8 @@ impl fmt::Display for ScaledForm {
 
 impl FromStr for ScaledForm {
     type Err = Error;
-    /// `exact`, `exact-naive`, `fast`, `fast-naive`, `pade:M/N`, `series:K`.
+    /// `exact`, `exact-naive`, `fast`, `fast-naive`, `pade:M/N`, `series:K` (coefficients
+    /// computed by `haff-series`), `pade-paper:M/N`, `series-paper:K` (printed in the papers).
     fn from_str(s: &str) -> Result<Self> {
         let bad = |m: &str| Error::parse("law", format!("'{s}': {m}"));
         match s {
@@ -177,11 +179,17 @@ impl FromStr for ScaledForm {
             "fast-naive" => return Ok(ScaledForm::Fast(Fast::new(Criterion::Naive))),
             _ => {}
         }
+        if let Some(order) = s.strip_prefix("series-paper:") {
+            let k: usize = order
+                .parse()
+                .map_err(|_| bad("series-paper:K needs an integer K"))?;
+            return Ok(ScaledForm::Series(Series::table_v(k)?));
+        }
         if let Some(order) = s.strip_prefix("series:") {
             let k: usize = order
                 .parse()
                 .map_err(|_| bad("series:K needs an integer K"))?;
-            return Ok(ScaledForm::Series(Series::table_v(k)?));
+            return Ok(ScaledForm::Series(Series::computed(k)?));
         }
         if let Some(orders) = s.strip_prefix("pade:") {
             let (m, n) = orders
@@ -191,7 +199,7 @@ impl FromStr for ScaledForm {
             return Ok(ScaledForm::Pade(Pade::table_i(m, n)?));
         }
         Err(bad(
-            "allowed: exact, exact-naive, fast, fast-naive, pade:M/N, series:K",
+            "allowed: exact, exact-naive, fast, fast-naive, pade:M/N, pade-paper:M/N, series:K, series-paper:K",
         ))
     }
 }

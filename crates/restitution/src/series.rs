@@ -1,11 +1,15 @@
 //! The truncated delayed-recovery series eps = sum_{k=0}^{K} h_k v*^k (Eq. 7 of MP2011,
 //! Eq. C7 of SP2008; h_0 = 1 as in Table V, i.e. the "1 +" of Eq. 7 is already h_0).
 //!
+//! [`Series::computed`] takes the h_k from the computer-algebra chain of `haff-series`
+//! (any order, ~20 correct digits); [`Series::table_v`] the ten-digit values printed in
+//! Table V of SP2008 (whose h_2 is wrong in the ninth digit: docs/errata.md).
+//!
 //! The series has a finite radius of convergence near v* ~ 1 and every truncation diverges
 //! for large v* (Fig. 1 of MP2011): use it only for v* well below 1.
 
 use crate::error::{Error, Result};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// h_0 .. h_20 as printed in Table V of SP2008 (ten significant digits). Their accuracy is
 /// established in the tests against the exact law; they are replaced by coefficients
@@ -34,10 +38,15 @@ pub const TABLE_V: [f64; 21] = [
     -0.137_923_498_6,
 ];
 
+/// Largest truncation order `Series::computed` accepts (the chain takes ~30 s there).
+pub const MAX_COMPUTED_ORDER: usize = 100;
+
 /// A truncated power series in v*.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
     coefficients: Arc<[f64]>,
+    /// Whether the coefficients are the printed ones of Table V.
+    from_paper: bool,
 }
 
 impl Series {
@@ -51,6 +60,7 @@ impl Series {
         }
         Ok(Series {
             coefficients: coefficients.into(),
+            from_paper: false,
         })
     }
 
@@ -63,7 +73,27 @@ impl Series {
                 "0..=20 (the orders printed in Table V of SP2008)",
             ));
         }
-        Series::new(&TABLE_V[..=order])
+        let mut series = Series::new(&TABLE_V[..=order])?;
+        series.from_paper = true;
+        Ok(series)
+    }
+
+    /// h_0 ..= h_K from the computer-algebra chain (`haff-series`), computed once per
+    /// process for the largest K asked (about 0.3 s for K = 20, 1 s for 40, 5 s for 60).
+    pub fn computed(order: usize) -> Result<Self> {
+        if order > MAX_COMPUTED_ORDER {
+            return Err(Error::out_of_range(
+                "series order K",
+                order,
+                "0..=100 for computed coefficients",
+            ));
+        }
+        Series::new(&computed_coefficients(order)[..=order])
+    }
+
+    /// Whether the coefficients are those printed in Table V of SP2008.
+    pub fn is_from_paper(&self) -> bool {
+        self.from_paper
     }
 
     /// The truncation order K (highest power).
@@ -82,5 +112,21 @@ impl Series {
             .iter()
             .rev()
             .fold(0.0, |acc, &c| acc * vstar + c)
+    }
+}
+
+/// h_0 ..= h_K (at least) from the chain, cached for the largest order computed so far.
+pub(crate) fn computed_coefficients(order: usize) -> Arc<[f64]> {
+    static CACHE: Mutex<Option<Arc<[f64]>>> = Mutex::new(None);
+    let mut cache = CACHE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    match cache.as_ref() {
+        Some(h) if h.len() > order => h.clone(),
+        _ => {
+            let h: Arc<[f64]> = series::chain::restitution_coefficients_f64(order).into();
+            *cache = Some(h.clone());
+            h
+        }
     }
 }

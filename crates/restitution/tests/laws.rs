@@ -216,7 +216,15 @@ fn law_names_round_trip_and_errors() {
         let form: ScaledForm = name.parse().unwrap();
         assert_eq!(form.to_string(), name);
     }
-    for bad in ["", "pade:4/4", "pade:x", "series:21", "series:-1", "magic"] {
+    for bad in [
+        "",
+        "pade:4/4",
+        "pade:x",
+        "series:101",
+        "series-paper:21",
+        "series:-1",
+        "magic",
+    ] {
         let err = bad.parse::<ScaledForm>().unwrap_err().to_string();
         assert!(!err.is_empty(), "{bad}");
     }

@@ -1,0 +1,17 @@
+//! # haff-series — computer algebra for the coefficient of restitution
+//!
+//! Schwager & Pöschel (2008, "SP2008") obtain the coefficient of restitution of viscoelastic
+//! spheres with delayed recovery as eps = sum h_k v*^k by a chain of Maple programs (their
+//! Appendices A–C, Tables I, II, IV). This crate does the same in Rust, exactly where the
+//! algebra is exact (rational arithmetic for the trajectory and for the premature end of
+//! contact) and in arbitrary-precision floating point where transcendental numbers enter
+//! (the time of maximal compression of the elastic collision, Eq. 28).
+//!
+//! - [`trajectory`]: x(tau; A) as an exact series in sqrt(tau) with polynomial coefficients
+//!   in A (Appendix A).
+//! - [`power`]: truncated power series over rationals or floats.
+
+pub mod chain;
+pub mod pade;
+pub mod power;
+pub mod trajectory;
