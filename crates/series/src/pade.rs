@@ -1,0 +1,860 @@
+//! Padé approximants of the coefficient of restitution (MP2011, Eqs. 11–12, Table I).
+//!
+//! Müller & Pöschel (2011, "MP2011") replace the divergent series eps(v*) = sum_k h_k v*^k
+//! by the rational function
+//!
+//! ```text
+//!   [m/n](x) = (a_0 + a_1 x + ... + a_m x^m) / (b_0 + b_1 x + ... + b_n x^n),   b_0 = 1,
+//! ```
+//!
+//! whose Maclaurin series agrees with sum h_k x^k through x^(m+n). With h_i = 0 for i < 0 the
+//! denominator solves the n linear equations
+//!
+//! ```text
+//!   sum_{j=0}^{n} b_j h_{k-j} = 0,   k = m+1, ..., m+n,
+//! ```
+//!
+//! and then a_k = sum_{j=0}^{min(k,n)} b_j h_{k-j}, k = 0..m. The system (a Toeplitz matrix of
+//! the h_k) is very ill-conditioned for large orders, so it is solved by Gaussian elimination
+//! with partial pivoting in [`Real`] at the precision of the inputs, never in f64.
+//!
+//! - [`pade`]: the ordinary one-point approximant.
+//! - [`pade_with_asymptote`]: a two-point variant that fixes the large-x law
+//!   [m/n] ~ leading x^(m-n) at the price of one matching condition at x = 0.
+//! - [`Approximant::positive_real_poles`], [`Approximant::positive_real_zeros`]: the real
+//!   zeros of the denominator and the numerator on (0, limit], isolated exactly (Sturm).
+//!
+//! Findings on the eps series (see the tests): h_1 = h_3 = 0 exactly, so some entries of
+//! the Padé table do not exist (e.g. [1/1], [1/3]: the system is singular); [0/3] has
+//! b_3 = 0, which is why MP2011 print only b_0..b_2; and the "pole" of [2/5] at
+//! v* = 5.6801 that MP2011 report is a zero of the numerator (a_2 < 0), not of the
+//! denominator: [2/5] has no pole on the positive axis, it changes sign there instead.
+
+use crate::power::{Real, Scalar, Series};
+use dashu_base::{BitTest, Gcd, UnsignedAbs};
+use dashu_int::IBig;
+use std::cmp::Ordering;
+use std::fmt;
+
+/// Why an approximant could not be built.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum PadeError {
+    /// Fewer series coefficients than the approximant needs.
+    TooFewCoefficients {
+        m: usize,
+        n: usize,
+        /// h_0..h_(needed - 1) are required.
+        needed: usize,
+        available: usize,
+    },
+    /// The linear system for b_1..b_n is singular to the working precision: the [m/n]
+    /// approximant does not exist (or is degenerate, i.e. reducible to a lower order).
+    Singular {
+        m: usize,
+        n: usize,
+        /// The column (0-based, i.e. the unknown b_(column+1) after pivoting) at which
+        /// elimination found no usable pivot.
+        column: usize,
+    },
+}
+
+impl fmt::Display for PadeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PadeError::TooFewCoefficients {
+                m,
+                n,
+                needed,
+                available,
+            } => write!(
+                f,
+                "the [{m}/{n}] Padé approximant needs {needed} series coefficients \
+                 (h_0..h_{}), but only {available} were given",
+                needed.saturating_sub(1)
+            ),
+            PadeError::Singular { m, n, column } => write!(
+                f,
+                "the [{m}/{n}] Padé approximant does not exist or is degenerate: the linear \
+                 system for the denominator is singular to the working precision \
+                 (no pivot in column {column})"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for PadeError {}
+
+/// The rational function numerator(x) / denominator(x), coefficients in ascending powers;
+/// denominator[0] = 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Approximant {
+    /// a_0..a_m.
+    pub numerator: Vec<Real>,
+    /// b_0 = 1, b_1..b_n.
+    pub denominator: Vec<Real>,
+}
+
+impl Approximant {
+    /// The coefficients rounded to f64: (a_0..a_m, b_0..b_n).
+    pub fn to_f64(&self) -> (Vec<f64>, Vec<f64>) {
+        let f = |c: &[Real]| c.iter().map(|x| x.to_f64().value()).collect();
+        (f(&self.numerator), f(&self.denominator))
+    }
+
+    /// The value at x in f64 (Horner on the rounded coefficients).
+    pub fn eval_f64(&self, x: f64) -> f64 {
+        let (a, b) = self.to_f64();
+        let horner = |c: &[f64]| c.iter().rev().fold(0.0, |acc, ci| acc * x + ci);
+        horner(&a) / horner(&b)
+    }
+
+    /// The value at x in full precision.
+    pub fn eval(&self, x: &Real) -> Real {
+        let horner = |c: &[Real]| {
+            c.iter()
+                .rev()
+                .fold(c[0].zero_like(), |acc, ci| acc.mul(x).add(ci))
+        };
+        horner(&self.numerator).div(&horner(&self.denominator))
+    }
+
+    /// The first `len` Maclaurin coefficients of numerator / denominator.
+    pub fn maclaurin(&self, len: usize) -> Vec<Real> {
+        let padded = |c: &[Real]| {
+            let mut v: Vec<Real> = c.iter().take(len).cloned().collect();
+            v.resize(len, c[0].zero_like());
+            Series::new(v)
+        };
+        padded(&self.numerator)
+            .mul(&padded(&self.denominator).inverse())
+            .c
+    }
+
+    /// The distinct real zeros of the denominator on (0, limit], ascending (`limit` may be
+    /// `f64::INFINITY`). See [`positive_real_roots`] for what is guaranteed.
+    pub fn positive_real_poles(&self, limit: f64) -> Vec<f64> {
+        positive_real_roots(&self.denominator, limit)
+    }
+
+    /// The distinct real zeros of the numerator on (0, limit], ascending.
+    pub fn positive_real_zeros(&self, limit: f64) -> Vec<f64> {
+        positive_real_roots(&self.numerator, limit)
+    }
+}
+
+/// The [m/n] Padé approximant of sum_k h_k x^k (MP2011, Eqs. 11–12): b_0 = 1 and the
+/// Maclaurin series of the approximant matches h_0..h_(m+n). Needs `h.len() >= m + n + 1`.
+///
+/// Computed in [`Real`] at the largest precision among h_0..h_(m+n) (at least 64 bits).
+/// Returns [`PadeError::Singular`] when a pivot is exactly zero or smaller than
+/// 2^-(precision - 20) times the largest entry of the matrix: then the approximant does
+/// not exist or is degenerate. Note that this only recognises singularity to the working
+/// precision; if the h_k themselves carry a larger error, a (mathematically) singular
+/// system shows up as a well-pivoted one with huge, meaningless b_j.
+pub fn pade(h: &[Real], m: usize, n: usize) -> Result<Approximant, PadeError> {
+    let needed = m + n + 1;
+    if h.len() < needed {
+        return Err(PadeError::TooFewCoefficients {
+            m,
+            n,
+            needed,
+            available: h.len(),
+        });
+    }
+    let bits = working_precision(h[..needed].iter());
+    let h = Coefficients::new(&h[..needed], bits);
+    let mut matrix = Vec::with_capacity(n);
+    let mut rhs = Vec::with_capacity(n);
+    for k in m + 1..=m + n {
+        matrix.push((1..=n).map(|j| h.at(k as isize - j as isize)).collect());
+        rhs.push(h.zero.sub(&h.at(k as isize)));
+    }
+    let b = solve(matrix, rhs, bits).map_err(|column| PadeError::Singular { m, n, column })?;
+    Ok(h.assemble(m, b))
+}
+
+/// A two-point Padé approximant: [m/n] with b_0 = 1 whose Maclaurin series matches
+/// h_0..h_(m+n-1) (one condition fewer than [`pade`]) and whose leading coefficients obey
+/// a_m / b_n = `leading`, so that for large x it behaves as `leading` * x^(m-n). The number
+/// of unknowns (a_0..a_m, b_1..b_n) is the same as for [`pade`]; the condition at x = 0 of
+/// order m+n is traded for the behaviour at x = infinity. Needs `h.len() >= m + n`.
+///
+/// The n equations for b_1..b_n are sum_{j=0}^{n} b_j h_{k-j} = 0 for k = m+1..m+n-1 and
+/// sum_{j=0}^{min(m,n)} b_j h_{m-j} - `leading` b_n = 0 (a_m expressed by the series);
+/// for n = 0 simply a_k = h_k (k < m) and a_m = `leading`.
+///
+/// For the coefficient of restitution (MP2011, Eq. 10: eps -> v*^-3.2) an integer power
+/// x^(m-n) can only mimic the true law; `leading` then fixes the amplitude of the chosen
+/// power, e.g. m - n = -3 with a fitted constant.
+pub fn pade_with_asymptote(
+    h: &[Real],
+    m: usize,
+    n: usize,
+    leading: &Real,
+) -> Result<Approximant, PadeError> {
+    let needed = m + n;
+    if h.len() < needed {
+        return Err(PadeError::TooFewCoefficients {
+            m,
+            n,
+            needed,
+            available: h.len(),
+        });
+    }
+    let bits = working_precision(h[..needed].iter().chain(std::iter::once(leading)));
+    let h = Coefficients::new(&h[..needed], bits);
+    let leading = to_precision(leading, bits);
+    if n == 0 {
+        let mut numerator: Vec<Real> = (0..m).map(|k| h.at(k as isize)).collect();
+        numerator.push(leading);
+        return Ok(Approximant {
+            numerator,
+            denominator: vec![h.zero.one_like()],
+        });
+    }
+    let mut matrix: Vec<Vec<Real>> = Vec::with_capacity(n);
+    let mut rhs = Vec::with_capacity(n);
+    for k in m + 1..m + n {
+        matrix.push((1..=n).map(|j| h.at(k as isize - j as isize)).collect());
+        rhs.push(h.zero.sub(&h.at(k as isize)));
+    }
+    let mut row: Vec<Real> = (1..=n).map(|j| h.at(m as isize - j as isize)).collect();
+    row[n - 1] = row[n - 1].sub(&leading);
+    matrix.push(row);
+    rhs.push(h.zero.sub(&h.at(m as isize)));
+    let b = solve(matrix, rhs, bits).map_err(|column| PadeError::Singular { m, n, column })?;
+    Ok(h.assemble(m, b))
+}
+
+/// h_k at a common precision, with h_k = 0 outside the given range.
+struct Coefficients {
+    h: Vec<Real>,
+    zero: Real,
+}
+
+impl Coefficients {
+    fn new(h: &[Real], bits: usize) -> Self {
+        Coefficients {
+            h: h.iter().map(|x| to_precision(x, bits)).collect(),
+            zero: Real::ZERO.with_precision(bits).value(),
+        }
+    }
+
+    fn at(&self, i: isize) -> Real {
+        usize::try_from(i)
+            .ok()
+            .and_then(|i| self.h.get(i))
+            .unwrap_or(&self.zero)
+            .clone()
+    }
+
+    /// b = (b_1..b_n) -> the approximant with a_k = sum_{j<=min(k,n)} b_j h_{k-j}.
+    fn assemble(&self, m: usize, b: Vec<Real>) -> Approximant {
+        let mut denominator = vec![self.zero.one_like()];
+        denominator.extend(b);
+        let numerator = (0..=m)
+            .map(|k| {
+                denominator
+                    .iter()
+                    .enumerate()
+                    .take(k + 1)
+                    .fold(self.zero.clone(), |acc, (j, bj)| {
+                        acc.add(&bj.mul(&self.at((k - j) as isize)))
+                    })
+            })
+            .collect();
+        Approximant {
+            numerator,
+            denominator,
+        }
+    }
+}
+
+fn working_precision<'a>(xs: impl Iterator<Item = &'a Real>) -> usize {
+    xs.map(|x| x.precision()).max().unwrap_or(0).max(64)
+}
+
+fn to_precision(x: &Real, bits: usize) -> Real {
+    x.clone().with_precision(bits).value()
+}
+
+fn abs(x: &Real) -> Real {
+    if x.sign() == dashu_base::Sign::Negative {
+        -x.clone()
+    } else {
+        x.clone()
+    }
+}
+
+/// Solves A y = r by Gaussian elimination with partial pivoting. Err(column) when the
+/// pivot is zero or below 2^-(bits - 20) times the largest |A_ij|.
+fn solve(mut a: Vec<Vec<Real>>, mut r: Vec<Real>, bits: usize) -> Result<Vec<Real>, usize> {
+    let size = r.len();
+    let largest = a
+        .iter()
+        .flatten()
+        .map(abs)
+        .max()
+        .unwrap_or_else(|| Real::ZERO.with_precision(bits).value());
+    let threshold = largest << -(bits.saturating_sub(20) as isize);
+    for col in 0..size {
+        let (pivot_row, pivot) = (col..size)
+            .map(|i| (i, abs(&a[i][col])))
+            .max_by(|x, y| x.1.cmp(&y.1))
+            .expect("non-empty column");
+        if pivot.is_zero() || pivot < threshold {
+            return Err(col);
+        }
+        a.swap(col, pivot_row);
+        r.swap(col, pivot_row);
+        for i in col + 1..size {
+            if a[i][col].is_zero() {
+                continue;
+            }
+            let factor = a[i][col].div(&a[col][col]);
+            for j in col + 1..size {
+                let update = factor.mul(&a[col][j]);
+                a[i][j] = a[i][j].sub(&update);
+            }
+            r[i] = r[i].sub(&factor.mul(&r[col]));
+        }
+    }
+    let mut y: Vec<Real> = r.clone();
+    for i in (0..size).rev() {
+        let s = (i + 1..size).fold(r[i].clone(), |acc, j| acc.sub(&a[i][j].mul(&y[j])));
+        y[i] = s.div(&a[i][i]);
+    }
+    Ok(y)
+}
+
+// ---------------------------------------------------------------------------------------
+// Real roots by an exact Sturm sequence.
+
+/// A polynomial with integer coefficients, ascending, without leading zeros.
+type IntPoly = Vec<IBig>;
+
+/// A dyadic rational num / 2^shift.
+#[derive(Debug, Clone)]
+struct Dyadic {
+    num: IBig,
+    shift: usize,
+}
+
+impl Dyadic {
+    fn aligned(&self, other: &Dyadic) -> (IBig, IBig, usize) {
+        let s = self.shift.max(other.shift);
+        (
+            &self.num << (s - self.shift),
+            &other.num << (s - other.shift),
+            s,
+        )
+    }
+
+    fn midpoint(&self, other: &Dyadic) -> Dyadic {
+        let (a, b, s) = self.aligned(other);
+        Dyadic {
+            num: a + b,
+            shift: s + 1,
+        }
+    }
+
+    fn to_f64(&self) -> f64 {
+        Real::from_parts(self.num.clone(), -(self.shift as isize))
+            .to_f64()
+            .value()
+    }
+}
+
+/// The distinct real zeros on (0, limit] of the polynomial sum_i c_i x^i, ascending.
+///
+/// Method and guarantee: the coefficients, which are binary floats, are converted *exactly*
+/// to an integer polynomial p; its square-free part q = p / gcd(p, p') and the Sturm
+/// sequence of q are computed exactly over the integers (primitive pseudo-remainders), so
+/// the Sturm counts are exact and *every* distinct zero of p in (0, limit] is found exactly
+/// once, whatever its multiplicity (double zeros included) and however close zeros are.
+/// Each is isolated by exact bisection on dyadic rationals and refined (a simple zero of q
+/// changes sign) to a relative width below 2^-60, then rounded to f64.
+///
+/// The statement is about the polynomial with the *stored* (rounded) coefficients. A
+/// multiple zero of the exact polynomial generically splits under rounding into nearby
+/// simple real zeros or into a complex pair close to the axis (which is then not reported);
+/// a coefficient that should vanish but is a rounding residue (e.g. b_3 of [0/3]) creates
+/// a spurious zero of enormous size, far beyond any sensible `limit`. An identically zero
+/// polynomial yields no zeros.
+pub fn positive_real_roots(coefficients: &[Real], limit: f64) -> Vec<f64> {
+    if limit.is_nan() || limit <= 0.0 {
+        return Vec::new();
+    }
+    let mut p = to_int_poly(coefficients);
+    // Zeros at x = 0 are not in (0, limit].
+    let low = p.iter().take_while(|c| c.is_zero()).count();
+    p.drain(..low);
+    if p.len() < 2 {
+        return Vec::new();
+    }
+    let q = square_free(&p);
+    let sturm = sturm_sequence(&q);
+    let hi = upper_end(&q, limit);
+    let lo = Dyadic {
+        num: IBig::ZERO,
+        shift: 0,
+    };
+    let changes = |x: &Dyadic| sign_changes(&sturm, x);
+    let mut roots = Vec::new();
+    // Intervals (lo, hi] with their Sturm counts, processed left to right.
+    let (v_lo, v_hi) = (changes(&lo), changes(&hi));
+    let mut stack = vec![(lo, v_lo, hi, v_hi)];
+    while let Some((lo, v_lo, hi, v_hi)) = stack.pop() {
+        match v_lo.saturating_sub(v_hi) {
+            0 => {}
+            1 => roots.push(refine(&q, lo, hi)),
+            _ => {
+                let mid = lo.midpoint(&hi);
+                let v_mid = changes(&mid);
+                stack.push((mid.clone(), v_mid, hi, v_hi));
+                stack.push((lo, v_lo, mid, v_mid));
+            }
+        }
+    }
+    roots
+}
+
+/// Exact integer polynomial with the same zeros (a positive power of two times the input),
+/// leading zeros removed.
+fn to_int_poly(c: &[Real]) -> IntPoly {
+    let min_exp = c
+        .iter()
+        .filter(|x| !x.repr().significand().is_zero())
+        .map(|x| x.repr().exponent())
+        .min()
+        .unwrap_or(0);
+    let mut p: IntPoly = c
+        .iter()
+        .map(|x| {
+            let s = x.repr().significand();
+            if s.is_zero() {
+                IBig::ZERO
+            } else {
+                s << (x.repr().exponent() - min_exp) as usize
+            }
+        })
+        .collect();
+    trim(&mut p);
+    p
+}
+
+fn trim(p: &mut IntPoly) {
+    while p.last().is_some_and(|c| c.is_zero()) {
+        p.pop();
+    }
+}
+
+fn derivative(p: &IntPoly) -> IntPoly {
+    let mut d: IntPoly = p
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, c)| c * IBig::from(i))
+        .collect();
+    trim(&mut d);
+    d
+}
+
+/// p divided by the (positive) gcd of its coefficients.
+fn primitive(mut p: IntPoly) -> IntPoly {
+    let content = p
+        .iter()
+        .filter(|c| !c.is_zero())
+        .map(|c| c.unsigned_abs())
+        .reduce(|g, c| (&g).gcd(&c));
+    if let Some(g) = content {
+        let g = IBig::from(g);
+        if g != IBig::ONE {
+            for c in &mut p {
+                *c = &*c / &g;
+            }
+        }
+    }
+    p
+}
+
+/// (Q, R) with s f = Q g + R, deg R < deg g, for some constant s > 0 (a power of |lc(g)|).
+fn pseudo_divide(f: &IntPoly, g: &IntPoly) -> (IntPoly, IntPoly) {
+    let dg = g.len() - 1;
+    let lead = &g[dg];
+    let (abs_lead, negative) = (IBig::from(lead.unsigned_abs()), *lead < IBig::ZERO);
+    let mut r = f.clone();
+    let mut q = vec![IBig::ZERO; f.len().saturating_sub(dg)];
+    while !r.is_empty() && r.len() > dg {
+        let shift = r.len() - 1 - dg;
+        let c = if negative {
+            -r[r.len() - 1].clone()
+        } else {
+            r[r.len() - 1].clone()
+        };
+        for x in r.iter_mut().chain(q.iter_mut()) {
+            *x = &*x * &abs_lead;
+        }
+        for (i, gi) in g.iter().enumerate() {
+            r[shift + i] -= &c * gi;
+        }
+        q[shift] += &c;
+        r.pop();
+        trim(&mut r);
+    }
+    trim(&mut q);
+    (q, r)
+}
+
+/// p, p', -rem, ... (each made primitive; positive factors do not change the sign counts).
+fn sturm_sequence(p: &IntPoly) -> Vec<IntPoly> {
+    let mut seq = vec![primitive(p.clone()), primitive(derivative(p))];
+    loop {
+        let (_, r) = pseudo_divide(&seq[seq.len() - 2], &seq[seq.len() - 1]);
+        if r.is_empty() {
+            return seq;
+        }
+        seq.push(primitive(r.into_iter().map(|c| -c).collect()));
+    }
+}
+
+/// p / gcd(p, p') up to a positive constant: the same zeros, all simple.
+fn square_free(p: &IntPoly) -> IntPoly {
+    let seq = sturm_sequence(p);
+    let g = seq.last().expect("non-empty");
+    if g.len() <= 1 {
+        primitive(p.clone())
+    } else {
+        primitive(pseudo_divide(p, g).0)
+    }
+}
+
+/// sign of p(x) for dyadic x (homogenised Horner, exact).
+fn sign_at(p: &IntPoly, x: &Dyadic) -> Ordering {
+    let d = p.len() - 1;
+    let mut acc = p[d].clone();
+    for i in (0..d).rev() {
+        acc = acc * &x.num + (&p[i] << (x.shift * (d - i)));
+    }
+    acc.cmp(&IBig::ZERO)
+}
+
+fn sign_changes(seq: &[IntPoly], x: &Dyadic) -> usize {
+    let signs: Vec<Ordering> = seq
+        .iter()
+        .map(|p| sign_at(p, x))
+        .filter(|s| *s != Ordering::Equal)
+        .collect();
+    signs.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+/// min(limit, 2^t) with 2^t above the Cauchy bound 1 + max |q_i / q_d|, as a dyadic.
+fn upper_end(q: &IntPoly, limit: f64) -> Dyadic {
+    let d = q.len() - 1;
+    let bits = |c: &IBig| c.unsigned_abs().bit_len() as isize;
+    let largest = q[..d].iter().map(bits).max().unwrap_or(0);
+    let t = (largest - bits(&q[d]) + 2).max(1) as usize;
+    let bound = Dyadic {
+        num: IBig::ONE << t,
+        shift: 0,
+    };
+    if limit.is_infinite() {
+        return bound;
+    }
+    let l = Real::try_from(limit).expect("finite limit");
+    let (num, exp) = (l.repr().significand().clone(), l.repr().exponent());
+    let limit = if exp >= 0 {
+        Dyadic {
+            num: num << exp as usize,
+            shift: 0,
+        }
+    } else {
+        Dyadic {
+            num,
+            shift: (-exp) as usize,
+        }
+    };
+    let (a, b, _) = limit.aligned(&bound);
+    if a < b {
+        limit
+    } else {
+        bound
+    }
+}
+
+/// The single (simple) zero of q in (lo, hi], by bisection on the sign of q.
+fn refine(q: &IntPoly, mut lo: Dyadic, mut hi: Dyadic) -> f64 {
+    let s_hi = sign_at(q, &hi);
+    if s_hi == Ordering::Equal {
+        return hi.to_f64();
+    }
+    loop {
+        let (a, b, s) = lo.aligned(&hi);
+        // Relative width below 2^-60, or absolute width below the f64 range.
+        if (a > IBig::ZERO && ((&b - &a) << 60) < a) || s > 1200 {
+            return lo.midpoint(&hi).to_f64();
+        }
+        let mid = lo.midpoint(&hi);
+        match sign_at(q, &mid) {
+            Ordering::Equal => return mid.to_f64(),
+            s if s == s_hi => hi = mid,
+            _ => lo = mid,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::{compute, Settings};
+    use crate::power::real;
+    use dashu_ratio::RBig;
+    use std::sync::OnceLock;
+
+    const BITS: usize = 256;
+
+    fn r(n: i64, d: u64) -> RBig {
+        RBig::from_parts(n.into(), d.into())
+    }
+
+    fn f64_of(x: &Real) -> f64 {
+        x.to_f64().value()
+    }
+
+    /// Exact Maclaurin coefficients of num / den (den_0 = 1), as Reals.
+    fn rational_series(num: &[i64], den: &[i64], len: usize) -> Vec<Real> {
+        let pad = |c: &[i64]| {
+            let mut v: Vec<RBig> = c.iter().map(|&x| r(x, 1)).collect();
+            v.resize(len, RBig::ZERO);
+            Series::new(v)
+        };
+        let s = pad(num).mul(&pad(den).inverse());
+        s.c.iter().map(|x| real(x, BITS)).collect()
+    }
+
+    /// h_k for k <= 10 (Settings::for_order(10)), computed once.
+    fn h10() -> &'static [Real] {
+        static H: OnceLock<Vec<Real>> = OnceLock::new();
+        H.get_or_init(|| compute(Settings::for_order(10)).h)
+    }
+
+    fn assert_close(computed: &[Real], printed: &[f64], what: &str) {
+        assert_eq!(computed.len(), printed.len(), "{what}: length");
+        for (i, (c, p)) in computed.iter().zip(printed).enumerate() {
+            let c = f64_of(c);
+            // Printed to 6 decimals below 1 and to 6 significant digits above.
+            let tol = if p.abs() < 1.0 { 5e-7 } else { 5e-6 };
+            assert!(
+                (c - p).abs() <= tol,
+                "{what}_{i}: computed {c}, printed {p}"
+            );
+        }
+    }
+
+    #[test]
+    fn pade_recovers_a_rational_function() {
+        // (1 + 2x) / (1 - x + 3x^2).
+        let h = rational_series(&[1, 2], &[1, -1, 3], 12);
+        let approx = pade(&h, 1, 2).unwrap();
+        let exact = [[1.0, 2.0].as_slice(), [1.0, -1.0, 3.0].as_slice()];
+        for (got, want) in [&approx.numerator, &approx.denominator].iter().zip(exact) {
+            for (g, w) in got.iter().zip(want) {
+                assert!((f64_of(g) - w).abs() < 1e-60, "{g} vs {w}");
+                let diff = g.sub(&real(&r(*w as i64, 1), BITS));
+                assert!(diff.is_zero() || diff.repr().exponent() < -(BITS as isize) + 16);
+            }
+        }
+        // Higher orders that still determine it uniquely: [2/2] (a_2 = 0) and [1/3] (b_3 = 0).
+        let a22 = pade(&h, 2, 2).unwrap();
+        assert!(f64_of(&a22.numerator[2]).abs() < 1e-60);
+        let a13 = pade(&h, 1, 3).unwrap();
+        assert!(f64_of(&a13.denominator[3]).abs() < 1e-60);
+        assert!((a13.eval_f64(0.3) - 1.6 / (1.0 - 0.3 + 0.27)).abs() < 1e-15);
+        // [2/3] is not unique (a common factor can be added): singular.
+        let err = pade(&h, 2, 3).unwrap_err();
+        assert!(
+            matches!(err, PadeError::Singular { m: 2, n: 3, .. }),
+            "{err}"
+        );
+        assert!(err.to_string().contains("does not exist"));
+        // Too few coefficients.
+        let err = pade(&h[..4], 2, 2).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                PadeError::TooFewCoefficients {
+                    needed: 5,
+                    available: 4,
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(err.to_string().contains("h_0..h_4"), "{err}");
+        // Poles: 1 - x + 3x^2 has no real zero; the numerator's zero -1/2 is negative.
+        assert!(approx.positive_real_poles(f64::INFINITY).is_empty());
+        assert!(approx.positive_real_zeros(f64::INFINITY).is_empty());
+    }
+
+    #[test]
+    fn two_point_pade_recovers_a_rational_function() {
+        // (1 + 2x) / (1 - x + 3x^2) ~ (2/3) / x: from only h_0..h_2 and the asymptote.
+        let h = rational_series(&[1, 2], &[1, -1, 3], 3);
+        let leading = real(&r(2, 3), BITS);
+        let approx = pade_with_asymptote(&h, 1, 2, &leading).unwrap();
+        let (a, b) = approx.to_f64();
+        for (g, w) in a.iter().chain(&b).zip([1.0, 2.0, 1.0, -1.0, 3.0]) {
+            assert!((g - w).abs() < 1e-60, "{a:?} {b:?}");
+        }
+        assert!(matches!(
+            pade_with_asymptote(&h[..2], 1, 2, &leading),
+            Err(PadeError::TooFewCoefficients { needed: 3, .. })
+        ));
+    }
+
+    #[test]
+    fn two_point_pade_of_the_restitution_series() {
+        // [1/4] with a_1 / b_4 = 1: matches h_0..h_4 and behaves as 1/v*^3.
+        let h = h10();
+        let one = h[0].one_like();
+        let approx = pade_with_asymptote(h, 1, 4, &one).unwrap();
+        let ratio = approx.numerator[1].div(&approx.denominator[4]);
+        assert!((f64_of(&ratio) - 1.0).abs() < 1e-40);
+        for (k, c) in approx.maclaurin(6).iter().enumerate() {
+            let d = f64_of(&c.sub(&h[k])).abs();
+            if k < 5 {
+                assert!(d < 1e-40, "h_{k}: {d}");
+            } else {
+                assert!(d > 1e-6, "h_5 should not be matched: {d}");
+            }
+        }
+        let x: f64 = 1e4;
+        assert!((approx.eval_f64(x) * x.powi(3) - 1.0).abs() < 1e-3);
+    }
+
+    /// Table I of MP2011 from the h_k of the chain.
+    #[test]
+    fn table_one_of_mp2011() {
+        let h = h10();
+        let p03 = pade(h, 0, 3).unwrap();
+        assert_close(&p03.numerator, &[1.0], "[0/3] a");
+        assert_close(&p03.denominator[..3], &[1.0, 0.0, 1.15345], "[0/3] b");
+        // b_3 = -h_3 = 0: omitted in the paper.
+        assert!(
+            f64_of(&p03.denominator[3]).abs() < 1e-40,
+            "{}",
+            p03.denominator[3]
+        );
+
+        let p14 = pade(h, 1, 4).unwrap();
+        assert_close(&p14.numerator, &[1.0, 0.501086], "[1/4] a");
+        let b14 = [1.0, 0.501086, 1.15345, 0.577977, 0.532178];
+        assert_close(&p14.denominator, &b14, "[1/4] b");
+
+        let p25 = pade(h, 2, 5).unwrap();
+        assert_close(&p25.numerator, &[1.0, 0.553528, -0.128445], "[2/5] a");
+        let b25 = [1.0, 0.553528, 1.025, 0.638466, 0.384023, 0.027908];
+        assert_close(&p25.denominator, &b25, "[2/5] b");
+
+        let p36 = pade(h, 3, 6).unwrap();
+        let a36 = [1.0, 1.07232, 0.574198, 0.141552];
+        assert_close(&p36.numerator, &a36, "[3/6] a");
+        let b36 = [1.0, 1.07232, 1.72765, 1.37842, 1.19449, 0.467273, 0.235585];
+        assert_close(&p36.denominator, &b36, "[3/6] b");
+
+        // Each matches the series through v*^(m+n).
+        for (p, order) in [(&p03, 3), (&p14, 5), (&p25, 7), (&p36, 9)] {
+            for (k, c) in p.maclaurin(order + 1).iter().enumerate() {
+                assert!(f64_of(&c.sub(&h[k])).abs() < 1e-40, "order {order}, h_{k}");
+            }
+        }
+    }
+
+    /// MP2011 say [2/5] "reveals a pole at v* = 5.6801": it is a zero of the numerator.
+    #[test]
+    fn two_five_has_a_zero_not_a_pole() {
+        let p25 = pade(h10(), 2, 5).unwrap();
+        assert!(p25.positive_real_poles(f64::INFINITY).is_empty());
+        let zeros = p25.positive_real_zeros(100.0);
+        assert_eq!(zeros.len(), 1, "{zeros:?}");
+        assert!((zeros[0] - 5.6801).abs() < 5e-5, "{}", zeros[0]);
+        assert!(p25.eval_f64(5.0) > 0.0 && p25.eval_f64(6.5) < 0.0);
+        // [1/4] and [3/6] are free of positive poles and zeros.
+        for (m, n) in [(1, 4), (3, 6)] {
+            let p = pade(h10(), m, n).unwrap();
+            assert!(p.positive_real_poles(f64::INFINITY).is_empty(), "[{m}/{n}]");
+            assert!(p.positive_real_zeros(f64::INFINITY).is_empty(), "[{m}/{n}]");
+        }
+    }
+
+    /// h_1 = h_3 = 0 exactly, so [1/1] and [1/3] do not exist.
+    #[test]
+    fn missing_entries_of_the_pade_table() {
+        let h = h10();
+        assert!(
+            h[1].is_zero() && h[3].is_zero(),
+            "h_1 = {}, h_3 = {}",
+            h[1],
+            h[3]
+        );
+        for (m, n) in [(1, 1), (1, 3)] {
+            assert!(
+                matches!(pade(h, m, n), Err(PadeError::Singular { .. })),
+                "[{m}/{n}]"
+            );
+        }
+    }
+
+    #[test]
+    fn sturm_roots_with_multiplicity() {
+        let bits = 128;
+        let poly = |c: &[i64]| c.iter().map(|&x| real(&r(x, 1), bits)).collect::<Vec<_>>();
+        // (x - 1)^2 (x - 3) (x + 2) (x - 1/3)... use 3x - 1: roots 1/3, 1 (double), 3.
+        // (x-1)^2 = x^2 - 2x + 1; (x-3)(x+2) = x^2 - x - 6; (3x - 1).
+        let a = Series::new(poly(&[1, -2, 1, 0, 0, 0]));
+        let b = Series::new(poly(&[-6, -1, 1, 0, 0, 0]));
+        let c = Series::new(poly(&[-1, 3, 0, 0, 0, 0]));
+        let p = a.mul(&b).mul(&c).c;
+        let roots = positive_real_roots(&p, f64::INFINITY);
+        assert_eq!(roots.len(), 3, "{roots:?}");
+        for (x, want) in roots.iter().zip([1.0 / 3.0, 1.0, 3.0]) {
+            assert!((x - want).abs() < 1e-15, "{roots:?}");
+        }
+        // Limits are inclusive on the right and exclude zero.
+        assert_eq!(positive_real_roots(&p, 1.0).len(), 2);
+        assert_eq!(positive_real_roots(&p, 0.9).len(), 1);
+        let with_zero = Series::new(poly(&[0, -1, 1])).c; // x (x - 1)
+        assert_eq!(positive_real_roots(&with_zero, 2.0), vec![1.0]);
+        // Two zeros 2^-40 apart are separated.
+        let e = real(&r(1, 1 << 40), bits);
+        let one = real(&r(1, 1), bits);
+        let close = Series::new(vec![
+            one.clone(),
+            one.zero_like().sub(&one),
+            one.zero_like(),
+        ])
+        .mul(&Series::new(vec![
+            one.add(&e),
+            one.zero_like().sub(&one),
+            one.zero_like(),
+        ]))
+        .c;
+        let roots = positive_real_roots(&close, 10.0);
+        assert_eq!(roots.len(), 2, "{roots:?}");
+        assert!((roots[1] - roots[0] - 2f64.powi(-40)).abs() < 1e-20);
+    }
+
+    /// A high order: [20/23] from K = 43 coefficients agrees with the (convergent) partial
+    /// sum at v* = 0.5.
+    #[test]
+    fn high_order_approximant() {
+        let (m, n) = (20, 23);
+        let h = compute(Settings::for_order(m + n)).h;
+        let approx = pade(&h, m, n).unwrap();
+        let x = 0.5;
+        let partial: f64 = h.iter().rev().fold(0.0, |acc, c| acc * x + f64_of(c));
+        let value = f64_of(&approx.eval(&real(&r(1, 2), h[0].precision())));
+        assert!((value - partial).abs() < 1e-10, "{value} vs {partial}");
+        assert!((approx.eval_f64(x) - partial).abs() < 1e-10);
+    }
+}
