@@ -5,6 +5,7 @@
 //! and write the output. Every failure is one line `haff: error: <message>` on stderr and
 //! a non-zero exit code (2 for bad input).
 
+mod algebra;
 mod bench;
 mod cor;
 mod demo;
@@ -45,6 +46,46 @@ enum CorCommand {
     Collision(CollisionArgs),
     /// eps and duration of the linear dash-pot for given damping ratios.
     Dashpot(DashpotArgs),
+    /// Series coefficients h, c, a, b of SP2008 computed by exact and high-precision algebra.
+    Coefficients(CoefficientsArgs),
+    /// Padé approximant [M/N] of eps(v*) from the computed series.
+    Pade(PadeArgs),
+}
+
+/// Arguments of `haff cor coefficients`.
+#[derive(Debug, Args)]
+pub struct CoefficientsArgs {
+    /// Which coefficients: h (eps = sum h_k v*^k, Table V of SP2008), c (naive eps = sum
+    /// c_k A^k), a (time of maximal compression), b (maximal compression); A = v*^2.
+    #[arg(long)]
+    pub kind: String,
+    /// Highest index k, 0 <= K <= 100.
+    #[arg(long, allow_hyphen_values = true)]
+    pub order: String,
+    /// Significant digits of the decimal values, 1 <= D <= 60 [default: 20].
+    #[arg(long, default_value = "20", allow_hyphen_values = true)]
+    pub digits: String,
+    /// Order N of the trajectory series in sqrt(tau) (for convergence studies) [default:
+    /// max(150, 100 + 2K)].
+    #[arg(long, allow_hyphen_values = true)]
+    pub trajectory_order: Option<String>,
+    /// Working precision in bits (for convergence studies) [default: max(256, 128 + 4K)].
+    #[arg(long, allow_hyphen_values = true)]
+    pub bits: Option<String>,
+}
+
+/// Arguments of `haff cor pade`.
+#[derive(Debug, Args)]
+pub struct PadeArgs {
+    /// Degree M of the numerator, 0 <= M <= 60.
+    #[arg(long, allow_hyphen_values = true)]
+    pub m: String,
+    /// Degree N of the denominator, 0 <= N <= 60.
+    #[arg(long, allow_hyphen_values = true)]
+    pub n: String,
+    /// Significant digits of the decimal values, 1 <= D <= 60 [default: 20].
+    #[arg(long, default_value = "20", allow_hyphen_values = true)]
+    pub digits: String,
 }
 
 #[derive(Debug, Subcommand)]
@@ -193,6 +234,8 @@ fn run(command: Command) -> CliResult {
         Command::Cor(CorCommand::Eps(args)) => cor::eps(&args),
         Command::Cor(CorCommand::Collision(args)) => cor::collision(&args),
         Command::Cor(CorCommand::Dashpot(args)) => cor::dashpot(&args),
+        Command::Cor(CorCommand::Coefficients(args)) => algebra::coefficients(&args),
+        Command::Cor(CorCommand::Pade(args)) => algebra::pade(&args),
         Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
         Command::Demo => demo::run(),
     }

@@ -270,7 +270,7 @@ fn bad_speeds_are_rejected() {
 
 #[test]
 fn bad_laws_criteria_and_parameters_are_rejected() {
-    for law in ["foo", "pade:2/2", "series:999", "pade:x"] {
+    for law in ["foo", "pade:99/1", "pade-paper:2/2", "series:999", "pade:x"] {
         assert_rejected(&["cor", "eps", "--law", law, "--vstar", "1"], "--law");
     }
     for beta in ["0", "-1", "nan", "x"] {

@@ -159,7 +159,14 @@ impl fmt::Display for ScaledForm {
         match self {
             ScaledForm::Exact(c) => write!(f, "exact{}", naive(c)),
             ScaledForm::Fast(x) => write!(f, "fast{}", naive(&x.criterion())),
-            ScaledForm::Pade(p) => write!(f, "pade:{}/{}", p.orders().0, p.orders().1),
+            ScaledForm::Pade(p) => {
+                let kind = if p.is_from_paper() {
+                    "pade-paper"
+                } else {
+                    "pade"
+                };
+                write!(f, "{kind}:{}/{}", p.orders().0, p.orders().1)
+            }
             ScaledForm::Series(s) if s.is_from_paper() => write!(f, "series-paper:{}", s.order()),
             ScaledForm::Series(s) => write!(f, "series:{}", s.order()),
         }
@@ -191,12 +198,18 @@ impl FromStr for ScaledForm {
                 .map_err(|_| bad("series:K needs an integer K"))?;
             return Ok(ScaledForm::Series(Series::computed(k)?));
         }
-        if let Some(orders) = s.strip_prefix("pade:") {
-            let (m, n) = orders
-                .split_once('/')
+        let orders = |text: &str| {
+            text.split_once('/')
                 .and_then(|(m, n)| Some((m.parse().ok()?, n.parse().ok()?)))
-                .ok_or_else(|| bad("pade:M/N needs integers M and N"))?;
+                .ok_or_else(|| bad("pade:M/N needs integers M and N"))
+        };
+        if let Some(text) = s.strip_prefix("pade-paper:") {
+            let (m, n) = orders(text)?;
             return Ok(ScaledForm::Pade(Pade::table_i(m, n)?));
+        }
+        if let Some(text) = s.strip_prefix("pade:") {
+            let (m, n) = orders(text)?;
+            return Ok(ScaledForm::Pade(Pade::computed(m, n)?));
         }
         Err(bad(
             "allowed: exact, exact-naive, fast, fast-naive, pade:M/N, pade-paper:M/N, series:K, series-paper:K",

@@ -1,11 +1,15 @@
 //! Padé approximants [m/n] of the coefficient of restitution in v* (Eq. 11 of MP2011).
 //!
-//! The constants of Table I of MP2011 are available as [`Pade::table_i`]; the tests check
-//! them against the exact law and against Padé coefficients recomputed here from the h_k of
-//! Table V of SP2008 ([`Pade::from_series`]).
+//! [`Pade::computed`] builds any [m/n] from the h_k of the computer-algebra chain
+//! (`haff-series`, solved in high precision); the constants of Table I of MP2011 are
+//! available as [`Pade::table_i`] (the tests check them against the exact law and against
+//! the Padé approximants of Table V of SP2008, [`Pade::from_series`]).
 
 use crate::error::{Error, Result};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
+
+/// Largest numerator or denominator degree of [`Pade::computed`].
+pub const MAX_COMPUTED_DEGREE: usize = 60;
 
 /// Table I of MP2011: (m, n, a_0..a_m, b_0..b_n). The table omits b_3 of [0/3]; it is
 /// b_3 = -(h_3 + b_1 h_2 + b_2 h_1) = 0 because h_1 = h_3 = 0 and b_1 = 0.
@@ -38,6 +42,8 @@ const TABLE_I: [(usize, usize, &[f64], &[f64]); 4] = [
 pub struct Pade {
     numerator: Arc<[f64]>,
     denominator: Arc<[f64]>,
+    /// Whether the coefficients are those printed in Table I of MP2011.
+    from_paper: bool,
 }
 
 impl Pade {
@@ -53,6 +59,7 @@ impl Pade {
         Ok(Pade {
             numerator: numerator.into(),
             denominator: denominator.into(),
+            from_paper: false,
         })
     }
 
@@ -61,7 +68,11 @@ impl Pade {
         TABLE_I
             .iter()
             .find(|row| row.0 == m && row.1 == n)
-            .map(|row| Pade::new(row.2, row.3))
+            .map(|row| {
+                let mut pade = Pade::new(row.2, row.3)?;
+                pade.from_paper = true;
+                Ok(pade)
+            })
             .unwrap_or_else(|| {
                 Err(Error::out_of_range(
                     "pade order M/N",
@@ -69,6 +80,28 @@ impl Pade {
                     "one of 0/3, 1/4, 2/5, 3/6 (Table I of MP2011)",
                 ))
             })
+    }
+
+    /// [m/n] from the h_k computed by `haff-series`, the linear system solved in high
+    /// precision (the chain of order m + n is computed once per process and order).
+    pub fn computed(m: usize, n: usize) -> Result<Self> {
+        if m > MAX_COMPUTED_DEGREE || n > MAX_COMPUTED_DEGREE {
+            return Err(Error::out_of_range(
+                "pade order M/N",
+                format!("{m}/{n}"),
+                "M, N <= 60",
+            ));
+        }
+        let h = computed_chain(m + n);
+        let approximant = series::pade::pade(&h, m, n)
+            .map_err(|e| Error::Numerical(format!("Padé [{m}/{n}]: {e}")))?;
+        let (a, b) = approximant.to_f64();
+        Pade::new(&a, &b)
+    }
+
+    /// Whether the coefficients are those printed in Table I of MP2011.
+    pub fn is_from_paper(&self) -> bool {
+        self.from_paper
     }
 
     /// The [m/n] Padé approximant of the power series sum h_k x^k (needs m + n + 1
@@ -180,4 +213,21 @@ fn solve_dense(m: &mut [Vec<f64>], r: &mut [f64]) -> Option<Vec<f64>> {
         x[row] = (r[row] - tail) / m[row][row];
     }
     Some(x)
+}
+
+/// The high-precision h_k of order at least `order`, cached for the largest order so far.
+fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
+    static CACHE: Mutex<Option<Arc<[series::power::Real]>>> = Mutex::new(None);
+    let mut cache = CACHE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    match cache.as_ref() {
+        Some(h) if h.len() > order => h.clone(),
+        _ => {
+            let settings = series::chain::Settings::for_order(order.max(2));
+            let h: Arc<[series::power::Real]> = series::chain::compute(settings).h.into();
+            *cache = Some(h.clone());
+            h
+        }
+    }
 }

@@ -218,7 +218,8 @@ fn law_names_round_trip_and_errors() {
     }
     for bad in [
         "",
-        "pade:4/4",
+        "pade:61/3",
+        "pade-paper:4/4",
         "pade:x",
         "series:101",
         "series-paper:21",

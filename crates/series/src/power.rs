@@ -143,8 +143,8 @@ impl<T: Scalar> Series<T> {
     /// x^shift times the series (same length).
     pub fn shift(&self, by: usize) -> Self {
         let mut c = vec![self.model().zero_like(); self.len()];
-        for k in by..self.len() {
-            c[k] = self.c[k - by].clone();
+        if by < self.len() {
+            c[by..].clone_from_slice(&self.c[..self.len() - by]);
         }
         Series::new(c)
     }

@@ -45,7 +45,7 @@ impl SparsePoly {
 
     /// The coefficient of A^i.
     pub fn coefficient(&self, i: usize) -> RBig {
-        if i < self.first || (i - self.first) % 5 != 0 {
+        if i < self.first || !(i - self.first).is_multiple_of(5) {
             return RBig::ZERO;
         }
         self.coefficients
