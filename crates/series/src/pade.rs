@@ -25,7 +25,8 @@
 //!   zeros of the denominator and the numerator on (0, limit], isolated exactly (Sturm).
 //!
 //! Findings on the eps series (see the tests): h_1 = h_3 = 0 exactly, so some entries of
-//! the Padé table do not exist (e.g. [1/1], [1/3]: the system is singular); [0/3] has
+//! the Padé table do not exist ([1/1], [1/3], [3/1]: the system is singular; these are the
+//! only ones with m + n <= 24); [0/3] has
 //! b_3 = 0, which is why MP2011 print only b_0..b_2; and the "pole" of [2/5] at
 //! v* = 5.6801 that MP2011 report is a zero of the numerator (a_2 < 0), not of the
 //! denominator: [2/5] has no pole on the positive axis, it changes sign there instead.
@@ -307,15 +308,17 @@ fn solve(mut a: Vec<Vec<Real>>, mut r: Vec<Real>, bits: usize) -> Result<Vec<Rea
         }
         a.swap(col, pivot_row);
         r.swap(col, pivot_row);
-        for i in col + 1..size {
-            if a[i][col].is_zero() {
+        let (head, tail) = a.split_at_mut(col + 1);
+        let pivot_row = &head[col];
+        for (offset, row) in tail.iter_mut().enumerate() {
+            if row[col].is_zero() {
                 continue;
             }
-            let factor = a[i][col].div(&a[col][col]);
-            for j in col + 1..size {
-                let update = factor.mul(&a[col][j]);
-                a[i][j] = a[i][j].sub(&update);
+            let factor = row[col].div(&pivot_row[col]);
+            for (x, p) in row.iter_mut().zip(pivot_row).skip(col + 1) {
+                *x = x.sub(&factor.mul(p));
             }
+            let i = col + 1 + offset;
             r[i] = r[i].sub(&factor.mul(&r[col]));
         }
     }
@@ -632,10 +635,10 @@ mod tests {
         s.c.iter().map(|x| real(x, BITS)).collect()
     }
 
-    /// h_k for k <= 10 (Settings::for_order(10)), computed once.
-    fn h10() -> &'static [Real] {
+    /// h_k for k <= 20 (Settings::for_order(20)), computed once.
+    fn h20() -> &'static [Real] {
         static H: OnceLock<Vec<Real>> = OnceLock::new();
-        H.get_or_init(|| compute(Settings::for_order(10)).h)
+        H.get_or_init(|| compute(Settings::for_order(20)).h)
     }
 
     fn assert_close(computed: &[Real], printed: &[f64], what: &str) {
@@ -715,7 +718,7 @@ mod tests {
     #[test]
     fn two_point_pade_of_the_restitution_series() {
         // [1/4] with a_1 / b_4 = 1: matches h_0..h_4 and behaves as 1/v*^3.
-        let h = h10();
+        let h = h20();
         let one = h[0].one_like();
         let approx = pade_with_asymptote(h, 1, 4, &one).unwrap();
         let ratio = approx.numerator[1].div(&approx.denominator[4]);
@@ -735,7 +738,7 @@ mod tests {
     /// Table I of MP2011 from the h_k of the chain.
     #[test]
     fn table_one_of_mp2011() {
-        let h = h10();
+        let h = h20();
         let p03 = pade(h, 0, 3).unwrap();
         assert_close(&p03.numerator, &[1.0], "[0/3] a");
         assert_close(&p03.denominator[..3], &[1.0, 0.0, 1.15345], "[0/3] b");
@@ -773,7 +776,7 @@ mod tests {
     /// MP2011 say [2/5] "reveals a pole at v* = 5.6801": it is a zero of the numerator.
     #[test]
     fn two_five_has_a_zero_not_a_pole() {
-        let p25 = pade(h10(), 2, 5).unwrap();
+        let p25 = pade(h20(), 2, 5).unwrap();
         assert!(p25.positive_real_poles(f64::INFINITY).is_empty());
         let zeros = p25.positive_real_zeros(100.0);
         assert_eq!(zeros.len(), 1, "{zeros:?}");
@@ -781,23 +784,46 @@ mod tests {
         assert!(p25.eval_f64(5.0) > 0.0 && p25.eval_f64(6.5) < 0.0);
         // [1/4] and [3/6] are free of positive poles and zeros.
         for (m, n) in [(1, 4), (3, 6)] {
-            let p = pade(h10(), m, n).unwrap();
+            let p = pade(h20(), m, n).unwrap();
             assert!(p.positive_real_poles(f64::INFINITY).is_empty(), "[{m}/{n}]");
             assert!(p.positive_real_zeros(f64::INFINITY).is_empty(), "[{m}/{n}]");
         }
+        // The next one, [4/7], does have a pole on the positive axis (v* = 3.6874, next to a
+        // numerator zero at 3.3681 that does not cancel it), unlike [5/8].
+        let p47 = pade(h20(), 4, 7).unwrap();
+        let poles = p47.positive_real_poles(f64::INFINITY);
+        assert_eq!(poles.len(), 1, "{poles:?}");
+        assert!((poles[0] - 3.68743).abs() < 1e-4, "{poles:?}");
+        let zeros = p47.positive_real_zeros(f64::INFINITY);
+        assert!(
+            zeros.len() == 1 && (zeros[0] - 3.36813).abs() < 1e-4,
+            "{zeros:?}"
+        );
+        assert!(pade(h20(), 5, 8)
+            .unwrap()
+            .positive_real_poles(1e3)
+            .is_empty());
     }
 
-    /// h_1 = h_3 = 0 exactly, so [1/1] and [1/3] do not exist.
+    /// h_1 = h_3 = 0 exactly, so [1/1], [1/3] and [3/1] do not exist (the only singular
+    /// entries with m + n <= 20).
     #[test]
     fn missing_entries_of_the_pade_table() {
-        let h = h10();
+        let h = h20();
+        for s in 0..=20 {
+            for m in 0..=s {
+                let singular = matches!(pade(h, m, s - m), Err(PadeError::Singular { .. }));
+                let expected = matches!((m, s - m), (1, 1) | (1, 3) | (3, 1));
+                assert_eq!(singular, expected, "[{m}/{}]", s - m);
+            }
+        }
         assert!(
             h[1].is_zero() && h[3].is_zero(),
             "h_1 = {}, h_3 = {}",
             h[1],
             h[3]
         );
-        for (m, n) in [(1, 1), (1, 3)] {
+        for (m, n) in [(1, 1), (1, 3), (3, 1)] {
             assert!(
                 matches!(pade(h, m, n), Err(PadeError::Singular { .. })),
                 "[{m}/{n}]"
@@ -809,8 +835,7 @@ mod tests {
     fn sturm_roots_with_multiplicity() {
         let bits = 128;
         let poly = |c: &[i64]| c.iter().map(|&x| real(&r(x, 1), bits)).collect::<Vec<_>>();
-        // (x - 1)^2 (x - 3) (x + 2) (x - 1/3)... use 3x - 1: roots 1/3, 1 (double), 3.
-        // (x-1)^2 = x^2 - 2x + 1; (x-3)(x+2) = x^2 - x - 6; (3x - 1).
+        // (x - 1)^2 (x - 3) (x + 2) (3x - 1): positive roots 1/3, 1 (double), 3.
         let a = Series::new(poly(&[1, -2, 1, 0, 0, 0]));
         let b = Series::new(poly(&[-6, -1, 1, 0, 0, 0]));
         let c = Series::new(poly(&[-1, 3, 0, 0, 0, 0]));
