@@ -377,3 +377,46 @@ fn eps_from_a_material() {
     );
     assert_rejected(&[&base[..], &["--young", "7e10"]].concat(), "--poisson");
 }
+
+#[test]
+fn coefficients_and_pade() {
+    let text = stdout_of(&[
+        "cor",
+        "coefficients",
+        "--kind",
+        "h",
+        "--order",
+        "6",
+        "--digits",
+        "12",
+    ]);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "k,value");
+    assert_eq!(lines.len(), 8);
+    assert_eq!(lines[3], "2,-1.15344885810");
+    assert_eq!(lines[6], "5,0.266666666667");
+    let a = stdout_of(&["cor", "coefficients", "--kind", "a", "--order", "1"]);
+    assert!(a.contains("0,1.6090327298595215423"), "{a}");
+    let out = haff(&["cor", "pade", "--m", "4", "--n", "7", "--digits", "10"]);
+    assert!(out.status.success());
+    let csv = String::from_utf8_lossy(&out.stdout);
+    assert!(csv.starts_with("i,a,b\n0,1.000000000,1.000000000\n"), "{csv}");
+    assert_eq!(csv.lines().count(), 9);
+    // i > 4: no numerator coefficient.
+    assert!(csv.lines().nth(6).unwrap().starts_with("5,,"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("pole on the positive real axis at v* = 3.687"),
+        "{stderr}"
+    );
+    assert_rejected(
+        &["cor", "coefficients", "--kind", "z", "--order", "3"],
+        "--kind",
+    );
+    assert_rejected(
+        &["cor", "coefficients", "--kind", "h", "--order", "500"],
+        "--order",
+    );
+    assert_rejected(&["cor", "pade", "--m", "-1", "--n", "3"], "--m");
+    assert_rejected(&["cor", "pade", "--m", "1", "--n", "1"], "--m/--n");
+}

@@ -32,3 +32,14 @@ fn computed_series_20_is_exact_at_small_vstar() {
         assert!(d < 1e-14, "v* = {v}: {d}");
     }
 }
+
+/// tau_max^0 of the chain (root of the elastic series) equals the time of maximal
+/// compression of the numerically integrated elastic collision.
+#[test]
+fn elastic_turning_time_matches_the_integration() {
+    let chain = series::chain::compute(series::chain::Settings::for_order(4));
+    let tau0 = chain.tau_max0.to_f64().value();
+    let ode = solve_with_tolerance(0.0, Criterion::Improved, 1e-14).unwrap();
+    assert!((tau0 - ode.time_of_max_compression).abs() < 1e-13, "{tau0}");
+    assert!((chain.b[0].to_f64().value() - ode.max_compression).abs() < 1e-13);
+}

@@ -383,13 +383,28 @@ impl Coefficients {
     }
 }
 
-/// x as a decimal string with `digits` significant digits.
+/// x as a decimal string with exactly `digits` significant digits (trailing zeros kept).
 pub fn decimal(x: &Real, digits: usize) -> String {
     if *x == x.zero_like() {
         return "0".to_string();
     }
     let d = x.to_decimal().value();
-    d.with_precision(digits).value().to_string()
+    let mut text = d.with_precision(digits).value().to_string();
+    if text.contains(['e', 'E']) {
+        return text;
+    }
+    let significant = text
+        .chars()
+        .filter(char::is_ascii_digit)
+        .skip_while(|&c| c == '0')
+        .count();
+    if significant < digits {
+        if !text.contains('.') {
+            text.push('.');
+        }
+        text.extend(std::iter::repeat_n('0', digits - significant));
+    }
+    text
 }
 
 /// h_0 ..= h_k as f64 (for laws), computed with the default settings.
