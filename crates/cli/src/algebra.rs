@@ -3,7 +3,7 @@
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, write_csv};
 use crate::{CoefficientsArgs, PadeArgs};
-use series::chain::{compute, decimal, Kind, Settings};
+use series::chain::{compute, compute_naive, decimal, Kind, Settings};
 use std::io::Write;
 
 /// Largest index K accepted by `cor coefficients` (h_100 takes about a minute).
@@ -28,7 +28,12 @@ pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
     if let Some(text) = &args.bits {
         settings.bits = parse_count("--bits", text, 64, 8192)?;
     }
-    let chain = compute(settings);
+    // a, b and c do not need the premature end of contact (the costly part at high order).
+    let chain = if kind == Kind::H {
+        compute(settings)
+    } else {
+        compute_naive(settings)
+    };
     let values = chain.of(kind);
     if values.len() <= order {
         return Err(CliError::argument(

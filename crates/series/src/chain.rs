@@ -65,9 +65,19 @@ pub struct Coefficients {
 
 /// Runs the whole chain.
 pub fn compute(settings: Settings) -> Coefficients {
+    run(settings, true)
+}
+
+/// Runs the chain up to the naive coefficient of restitution only (a, b, c; `h` is left
+/// empty): what `settings.order` = 2K costs for c_0..c_K without the premature end.
+pub fn compute_naive(settings: Settings) -> Coefficients {
+    run(settings, false)
+}
+
+fn run(settings: Settings, with_delayed_recovery: bool) -> Coefficients {
     let k = settings.order;
     let degree = k.div_ceil(2).max(1);
-    let premature_len = k + 1;
+    let premature_len = if with_delayed_recovery { k + 1 } else { 0 };
     let order = settings.trajectory_order.max(premature_len + 2);
     let trajectory = Trajectory::new(order, degree.max(premature_len / 2 + 1));
     let bits = settings.bits;
@@ -75,9 +85,13 @@ pub fn compute(settings: Settings) -> Coefficients {
     let (a, b) = maximal_compression(&trajectory, &tau_max0, degree, bits);
     let e = naive_fifth_root(&b);
     let five_c = e.power(5, 1);
-    let one = Series::constant(real(&RBig::ONE, bits), premature_len);
-    let (_, g) = premature_end(&trajectory, &one.c[0], premature_len);
-    let h = delayed_recovery(&five_c, &e, &g, premature_len);
+    let h = if with_delayed_recovery {
+        let one = Series::constant(real(&RBig::ONE, bits), premature_len);
+        let (_, g) = premature_end(&trajectory, &one.c[0], premature_len);
+        delayed_recovery(&five_c, &e, &g, premature_len)
+    } else {
+        Series::constant(tau_max0.zero_like(), 1)
+    };
     let mut a_all = vec![tau_max0.clone()];
     a_all.extend(a.c.into_iter().skip(1));
     Coefficients {
@@ -86,7 +100,7 @@ pub fn compute(settings: Settings) -> Coefficients {
         a: a_all,
         b: b.c,
         c: five_c.c,
-        h: h.c,
+        h: if with_delayed_recovery { h.c } else { Vec::new() },
     }
 }
 
