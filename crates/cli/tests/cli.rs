@@ -400,7 +400,10 @@ fn coefficients_and_pade() {
     let out = haff(&["cor", "pade", "--m", "4", "--n", "7", "--digits", "10"]);
     assert!(out.status.success());
     let csv = String::from_utf8_lossy(&out.stdout);
-    assert!(csv.starts_with("i,a,b\n0,1.000000000,1.000000000\n"), "{csv}");
+    assert!(
+        csv.starts_with("i,a,b\n0,1.000000000,1.000000000\n"),
+        "{csv}"
+    );
     assert_eq!(csv.lines().count(), 9);
     // i > 4: no numerator coefficient.
     assert!(csv.lines().nth(6).unwrap().starts_with("5,,"));

@@ -6,7 +6,7 @@
 //! the Padé approximants of Table V of SP2008, [`Pade::from_series`]).
 
 use crate::error::{Error, Result};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 /// Largest numerator or denominator degree of [`Pade::computed`].
 pub const MAX_COMPUTED_DEGREE: usize = 60;
@@ -92,7 +92,7 @@ impl Pade {
                 "M, N <= 60",
             ));
         }
-        let h = computed_chain(m + n);
+        let h = crate::series::computed_chain(m + n);
         let approximant = series::pade::pade(&h, m, n)
             .map_err(|e| Error::Numerical(format!("Padé [{m}/{n}]: {e}")))?;
         let (a, b) = approximant.to_f64();
@@ -213,21 +213,4 @@ fn solve_dense(m: &mut [Vec<f64>], r: &mut [f64]) -> Option<Vec<f64>> {
         x[row] = (r[row] - tail) / m[row][row];
     }
     Some(x)
-}
-
-/// The high-precision h_k of order at least `order`, cached for the largest order so far.
-fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
-    static CACHE: Mutex<Option<Arc<[series::power::Real]>>> = Mutex::new(None);
-    let mut cache = CACHE
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    match cache.as_ref() {
-        Some(h) if h.len() > order => h.clone(),
-        _ => {
-            let settings = series::chain::Settings::for_order(order.max(2));
-            let h: Arc<[series::power::Real]> = series::chain::compute(settings).h.into();
-            *cache = Some(h.clone());
-            h
-        }
-    }
 }

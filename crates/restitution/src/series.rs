@@ -88,7 +88,11 @@ impl Series {
                 "0..=100 for computed coefficients",
             ));
         }
-        Series::new(&computed_coefficients(order)[..=order])
+        let h: Vec<f64> = computed_chain(order)[..=order]
+            .iter()
+            .map(|x| x.to_f64().value())
+            .collect();
+        Series::new(&h)
     }
 
     /// Whether the coefficients are those printed in Table V of SP2008.
@@ -115,16 +119,18 @@ impl Series {
     }
 }
 
-/// h_0 ..= h_K (at least) from the chain, cached for the largest order computed so far.
-pub(crate) fn computed_coefficients(order: usize) -> Arc<[f64]> {
-    static CACHE: Mutex<Option<Arc<[f64]>>> = Mutex::new(None);
+/// The high-precision h_0 ..= h_K (at least) from the chain, cached for the largest order
+/// computed so far (shared by the computed series and Padé approximants).
+pub(crate) fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
+    static CACHE: Mutex<Option<Arc<[series::power::Real]>>> = Mutex::new(None);
     let mut cache = CACHE
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner());
     match cache.as_ref() {
         Some(h) if h.len() > order => h.clone(),
         _ => {
-            let h: Arc<[f64]> = series::chain::restitution_coefficients_f64(order).into();
+            let settings = series::chain::Settings::for_order(order.max(2));
+            let h: Arc<[series::power::Real]> = series::chain::compute(settings).h.into();
             *cache = Some(h.clone());
             h
         }

@@ -100,7 +100,11 @@ fn run(settings: Settings, with_delayed_recovery: bool) -> Coefficients {
         a: a_all,
         b: b.c,
         c: five_c.c,
-        h: if with_delayed_recovery { h.c } else { Vec::new() },
+        h: if with_delayed_recovery {
+            h.c
+        } else {
+            Vec::new()
+        },
     }
 }
 

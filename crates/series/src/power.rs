@@ -23,6 +23,24 @@ pub trait Scalar: Clone + PartialEq + std::fmt::Debug {
     }
 }
 
+/// The four operations of `Scalar` through the operators of a type with `&a op &b`.
+macro_rules! operator_arithmetic {
+    () => {
+        fn add(&self, o: &Self) -> Self {
+            self + o
+        }
+        fn sub(&self, o: &Self) -> Self {
+            self - o
+        }
+        fn mul(&self, o: &Self) -> Self {
+            self * o
+        }
+        fn div(&self, o: &Self) -> Self {
+            self / o
+        }
+    };
+}
+
 impl Scalar for RBig {
     fn zero_like(&self) -> Self {
         RBig::ZERO
@@ -30,18 +48,7 @@ impl Scalar for RBig {
     fn ratio_like(&self, n: i64, d: u64) -> Self {
         RBig::from_parts(n.into(), d.into())
     }
-    fn add(&self, o: &Self) -> Self {
-        self + o
-    }
-    fn sub(&self, o: &Self) -> Self {
-        self - o
-    }
-    fn mul(&self, o: &Self) -> Self {
-        self * o
-    }
-    fn div(&self, o: &Self) -> Self {
-        self / o
-    }
+    operator_arithmetic!();
 }
 
 impl Scalar for Real {
@@ -52,18 +59,7 @@ impl Scalar for Real {
         let p = self.precision();
         Real::from(n).with_precision(p).value() / Real::from(d).with_precision(p).value()
     }
-    fn add(&self, o: &Self) -> Self {
-        self + o
-    }
-    fn sub(&self, o: &Self) -> Self {
-        self - o
-    }
-    fn mul(&self, o: &Self) -> Self {
-        self * o
-    }
-    fn div(&self, o: &Self) -> Self {
-        self / o
-    }
+    operator_arithmetic!();
 }
 
 /// A rational as a float of precision `bits`.
