@@ -43,3 +43,37 @@ fn elastic_turning_time_matches_the_integration() {
     assert!((tau0 - ode.time_of_max_compression).abs() < 1e-13, "{tau0}");
     assert!((chain.b[0].to_f64().value() - ode.max_compression).abs() < 1e-13);
 }
+
+/// MP2011: "We checked all orders up to [25/28] and could not find any significant
+/// improvement as compared to [3/6]". Measured max |P - eps| on [0, 100]: [3/6] 6.7e-4,
+/// [13/16] 2.8e-6, [23/26] 3.4e-7 (docs/series-algebra.md); [4/7] has a pole at 3.687.
+#[test]
+fn higher_pade_orders_do_improve_on_3_6() {
+    use restitution::pade::Pade;
+    let grid: Vec<(f64, f64)> = (0..=400)
+        .map(|i| 100.0 * (i as f64 / 400.0).powi(2))
+        .map(|v| {
+            (
+                v,
+                solve_with_tolerance(v, Criterion::Improved, 1e-12)
+                    .unwrap()
+                    .eps,
+            )
+        })
+        .collect();
+    let max_error = |p: &Pade| {
+        grid.iter()
+            .map(|&(v, e)| (p.eval(v) - e).abs())
+            .fold(0.0, f64::max)
+    };
+    let e36 = max_error(&Pade::computed(3, 6).unwrap());
+    let e1316 = max_error(&Pade::computed(13, 16).unwrap());
+    let e2326 = max_error(&Pade::computed(23, 26).unwrap());
+    assert!(e36 > 6e-4 && e36 < 7e-4, "{e36}");
+    assert!(e1316 < 5e-6, "{e1316}");
+    assert!(e2326 < 5e-7, "{e2326}");
+    let p47 = Pade::computed(4, 7).unwrap();
+    let poles = p47.positive_poles(100.0);
+    assert_eq!(poles.len(), 1);
+    assert!((poles[0] - 3.6874).abs() < 1e-3, "{poles:?}");
+}
