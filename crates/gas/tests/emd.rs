@@ -1,0 +1,72 @@
+//! The event-driven engine against conservation laws and kinetic theory.
+
+use gas::init::monodisperse;
+use gas::observe::{kinetic_energy, mean_velocity, temperature};
+use gas::system::dot;
+use gas::EventDriven;
+use restitution::Constant;
+
+fn engine<const D: usize>(n: usize, phi: f64, eps: f64, seed: u64) -> EventDriven<D> {
+    let system = monodisperse::<D>(n, phi, 1.0, 1.0, 1.0, seed).unwrap();
+    EventDriven::new(system, Box::new(Constant::new(eps).unwrap())).unwrap()
+}
+
+/// Elastic gas: energy and momentum conserved to round-off, no overlap created.
+#[test]
+fn elastic_gas_conserves_energy_and_momentum() {
+    for phi in [0.05, 0.3] {
+        let mut e = engine::<3>(500, phi, 1.0, 7);
+        let e0 = kinetic_energy(e.system());
+        e.run_collisions(100_000);
+        let s = e.system().clone();
+        let drift = (kinetic_energy(&s) - e0).abs() / e0;
+        assert!(drift < 1e-12, "phi = {phi}: energy drift {drift}");
+        let (_, p) = mean_velocity(&s);
+        assert!(p.iter().all(|x| x.abs() < 1e-10), "momentum {p:?}");
+        let mut closest = f64::INFINITY;
+        for i in 0..s.len() {
+            for j in i + 1..s.len() {
+                let d = s.separation(&s.positions[i], &s.positions[j]);
+                closest = closest.min(dot(&d, &d).sqrt());
+            }
+        }
+        assert!(
+            closest > 1.0 - 1e-9,
+            "phi = {phi}: overlap, closest pair at {closest}"
+        );
+        assert!(e.tally().events > e.tally().collisions);
+    }
+}
+
+/// Constant eps: each collision removes (1 - eps^2) T on average (Maxwellian impact speeds),
+/// so d ln T / d(collisions per particle) = -(1 - eps^2)/D, times (1 + a2/4) in the
+/// homogeneous cooling state (a2 = -0.0146 at eps = 0.9 in 3D, van Noije & Ernst 1998).
+#[test]
+fn cooling_per_collision_matches_kinetic_theory() {
+    let eps: f64 = 0.9;
+    let mut e = engine::<3>(4000, 0.05, eps, 11);
+    e.run_collisions(20_000); // let a2 relax to its HCS value
+    let (t0, c0) = (temperature(e.system()), e.collisions_per_particle());
+    e.run_collisions(40_000);
+    let (t1, c1) = (temperature(e.system()), e.collisions_per_particle());
+    let slope = (t1 / t0).ln() / (c1 - c0);
+    let theory = -(1.0 - eps * eps) / 3.0 * (1.0 - 0.0146 / 4.0);
+    eprintln!("d ln T / d(collisions per particle): {slope:.5}, theory {theory:.5}");
+    assert!(
+        (slope / theory - 1.0).abs() < 0.02,
+        "slope {slope}, theory {theory}"
+    );
+}
+
+/// The same code in one and two dimensions: elastic runs conserve energy.
+#[test]
+fn one_and_two_dimensions() {
+    let mut e1 = engine::<1>(200, 0.3, 1.0, 3);
+    let a = kinetic_energy(e1.system());
+    e1.run_collisions(20_000);
+    assert!((kinetic_energy(e1.system()) - a).abs() / a < 1e-12);
+    let mut e2 = engine::<2>(400, 0.2, 1.0, 3);
+    let b = kinetic_energy(e2.system());
+    e2.run_collisions(50_000);
+    assert!((kinetic_energy(e2.system()) - b).abs() / b < 1e-12);
+}
