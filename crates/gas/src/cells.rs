@@ -119,6 +119,33 @@ impl<const D: usize> CellGrid<D> {
         }
     }
 
+    /// Calls f for every particle in the layer of neighbor cells beyond cell c along
+    /// dimension k (the cells a particle that just entered c from the other side had not
+    /// seen); needs at least 3 cells per side.
+    pub fn for_each_in_layer(&self, c: &[u32; D], k: usize, up: bool, mut f: impl FnMut(usize)) {
+        debug_assert!(self.per_side >= 3);
+        let n = self.per_side as i64;
+        let layer = if up { 1 } else { -1 };
+        for combo in 0..3usize.pow(D as u32 - 1) {
+            let mut rest = combo;
+            let cell: [u32; D] = std::array::from_fn(|d| {
+                let offset = if d == k {
+                    layer
+                } else {
+                    let o = (rest % 3) as i64 - 1;
+                    rest /= 3;
+                    o
+                };
+                (c[d] as i64 + offset).rem_euclid(n) as u32
+            });
+            let mut j = self.head[self.index(&cell)];
+            while j != NONE {
+                f(j as usize);
+                j = self.next[j as usize];
+            }
+        }
+    }
+
     /// Time until a particle at p (in its cell c) moving with v leaves the cell, the
     /// dimension and the direction; None if it never does (one cell per side, or v = 0).
     pub fn exit(&self, c: &[u32; D], p: &Vector<D>, v: &Vector<D>) -> Option<(f64, usize, bool)> {

@@ -13,12 +13,32 @@ use crate::queue::EventQueue;
 use crate::system::{dot, wrap, System, Vector};
 use restitution::Restitution;
 
-/// The earliest predicted event of a particle.
+/// The predictions of a particle: its earliest collision (with the partner's collision
+/// count at prediction time) and the moment it leaves its cell. Keeping both lets a cell
+/// crossing look only at the newly adjacent layer of cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Next {
-    Collision { partner: u32, partner_count: u64 },
-    Cell { dim: u8, up: bool },
-    Nothing,
+struct Next {
+    collision: f64,
+    partner: u32,
+    partner_count: u64,
+    crossing: f64,
+    dim: u8,
+    up: bool,
+}
+
+impl Next {
+    const NONE: Next = Next {
+        collision: f64::INFINITY,
+        partner: u32::MAX,
+        partner_count: 0,
+        crossing: f64::INFINITY,
+        dim: 0,
+        up: false,
+    };
+
+    fn time(&self) -> f64 {
+        self.collision.min(self.crossing)
+    }
 }
 
 /// Counters and accumulators of a run.
@@ -68,7 +88,7 @@ impl<const D: usize> EventDriven<D> {
             time: 0.0,
             valid_at: vec![0.0; n],
             counts: vec![0; n],
-            next: vec![Next::Nothing; n],
+            next: vec![Next::NONE; n],
             queue: EventQueue::new(n),
             cells,
             tally: Tally::default(),
@@ -159,34 +179,67 @@ impl<const D: usize> EventDriven<D> {
         (disc >= 0.0).then(|| gap / (-b + disc.sqrt()))
     }
 
-    /// Predicts and schedules the earliest event of particle i (positions of i at now).
+    /// Predicts and schedules the events of particle i from scratch.
     fn predict(&mut self, i: usize) {
-        let now = self.time;
-        let p = self.position_at(i, now);
-        let mut best = (f64::INFINITY, Next::Nothing);
-        if let Some((dt, dim, up)) =
-            self.cells
-                .exit(&self.cells.coords[i], &p, &self.system.velocities[i])
-        {
-            best = (now + dt, Next::Cell { dim: dim as u8, up });
+        self.next[i].collision = f64::INFINITY;
+        self.predict_crossing(i);
+        let c = self.cells.coords[i];
+        let mut best = (f64::INFINITY, 0, 0);
+        self.cells
+            .for_each_neighbor(&c, |j| self.consider(i, j, &mut best));
+        self.keep_if_earlier(i, best);
+    }
+
+    /// After i entered a new cell: only the layer of cells beyond it is new to i.
+    fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
+        if self.cells.per_side < 3 {
+            return self.predict(i);
         }
-        let mut found = best;
-        self.cells.for_each_neighbor(&self.cells.coords[i], |j| {
-            if j != i {
-                if let Some(dt) = self.collision_delay(i, j) {
-                    if now + dt < found.0 {
-                        let event = Next::Collision {
-                            partner: j as u32,
-                            partner_count: self.counts[j],
-                        };
-                        found = (now + dt, event);
-                    }
+        self.predict_crossing(i);
+        let c = self.cells.coords[i];
+        let mut best = (f64::INFINITY, 0, 0);
+        self.cells
+            .for_each_in_layer(&c, dim, up, |j| self.consider(i, j, &mut best));
+        self.keep_if_earlier(i, best);
+    }
+
+    fn predict_crossing(&mut self, i: usize) {
+        let p = self.position_at(i, self.time);
+        let exit = self
+            .cells
+            .exit(&self.cells.coords[i], &p, &self.system.velocities[i]);
+        let next = &mut self.next[i];
+        match exit {
+            Some((dt, dim, up)) => {
+                next.crossing = self.time + dt;
+                next.dim = dim as u8;
+                next.up = up;
+            }
+            None => next.crossing = f64::INFINITY,
+        }
+    }
+
+    /// Updates `best` = (time, partner, partner count) with the collision of i and j.
+    fn consider(&self, i: usize, j: usize, best: &mut (f64, usize, u64)) {
+        if j != i {
+            if let Some(dt) = self.collision_delay(i, j) {
+                if self.time + dt < best.0 {
+                    *best = (self.time + dt, j, self.counts[j]);
                 }
             }
-        });
-        best = found;
-        self.next[i] = best.1;
-        self.queue.update(i, best.0);
+        }
+    }
+
+    /// Stores the collision `best` if it is earlier than the one i has, and reschedules i.
+    fn keep_if_earlier(&mut self, i: usize, best: (f64, usize, u64)) {
+        let next = &mut self.next[i];
+        if best.0 < next.collision {
+            next.collision = best.0;
+            next.partner = best.1 as u32;
+            next.partner_count = best.2;
+        }
+        let t = next.time();
+        self.queue.update(i, t);
     }
 
     /// Processes the next event; false if there is none (all particles at rest).
@@ -199,26 +252,20 @@ impl<const D: usize> EventDriven<D> {
         }
         self.time = t;
         self.tally.events += 1;
-        match self.next[i] {
-            Next::Cell { dim, up } => {
-                self.bring_to_now(i);
-                self.cells.shift(i, dim as usize, up);
+        let next = self.next[i];
+        if next.crossing <= next.collision {
+            self.bring_to_now(i);
+            self.cells.shift(i, next.dim as usize, next.up);
+            self.predict_after_crossing(i, next.dim as usize, next.up);
+        } else {
+            let j = next.partner as usize;
+            if self.counts[j] == next.partner_count {
+                self.collide(i, j);
+                self.predict(i);
+                self.predict(j);
+            } else {
                 self.predict(i);
             }
-            Next::Collision {
-                partner,
-                partner_count,
-            } => {
-                let j = partner as usize;
-                if self.counts[j] == partner_count {
-                    self.collide(i, j);
-                    self.predict(i);
-                    self.predict(j);
-                } else {
-                    self.predict(i);
-                }
-            }
-            Next::Nothing => self.queue.update(i, f64::INFINITY),
         }
         true
     }
