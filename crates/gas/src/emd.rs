@@ -68,14 +68,24 @@ pub struct EventDriven<const D: usize> {
 }
 
 impl<const D: usize> EventDriven<D> {
-    /// An engine at time 0; fails if spheres overlap.
-    pub fn new(mut system: System<D>, law: Box<dyn Restitution>) -> Result<Self, String> {
+    /// An engine at time 0 with cells one diameter wide; fails if spheres overlap.
+    pub fn new(system: System<D>, law: Box<dyn Restitution>) -> Result<Self, String> {
+        Self::with_cell_width(system, law, 0.0)
+    }
+
+    /// As [`EventDriven::new`] with cells at least `min_width` wide (and at least one
+    /// diameter); a width of the box or more makes one cell, i.e. all pairs are checked.
+    pub fn with_cell_width(
+        mut system: System<D>,
+        law: Box<dyn Restitution>,
+        min_width: f64,
+    ) -> Result<Self, String> {
         let n = system.len();
         let max_diameter = 2.0 * system.radii.iter().cloned().fold(0.0, f64::max);
         if max_diameter <= 0.0 || 2.0 * max_diameter > system.length {
             return Err("the box must be larger than two diameters".into());
         }
-        let mut cells = CellGrid::new(system.length, max_diameter, n);
+        let mut cells = CellGrid::new(system.length, max_diameter.max(min_width), n);
         for (i, p) in system.positions.iter_mut().enumerate() {
             for x in p.iter_mut() {
                 *x = wrap(*x, system.length);
