@@ -11,6 +11,7 @@ mod cor;
 mod demo;
 mod error;
 mod output;
+mod run;
 
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
@@ -36,6 +37,18 @@ enum Command {
     Bench(BenchCommand),
     /// eps(v) of ice spheres with every law side by side.
     Demo,
+    /// A granular-gas run described by a TOML file (event-driven MD).
+    Run(RunArgs),
+}
+
+/// Arguments of `haff run`.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The run file (schema: `haff run --help` and the README).
+    pub file: std::path::PathBuf,
+    /// Output directory [default: the run file's name without extension].
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]
@@ -238,6 +251,7 @@ fn run(command: Command) -> CliResult {
         Command::Cor(CorCommand::Pade(args)) => algebra::pade(&args),
         Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
         Command::Demo => demo::run(),
+        Command::Run(args) => run::run(&args),
     }
 }
 

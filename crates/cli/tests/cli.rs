@@ -423,3 +423,87 @@ fn coefficients_and_pade() {
     assert_rejected(&["cor", "pade", "--m", "-1", "--n", "3"], "--m");
     assert_rejected(&["cor", "pade", "--m", "1", "--n", "1"], "--m/--n");
 }
+
+/// `haff run`: the timeseries contract, the summary, and keys checked before the run.
+#[test]
+fn run_writes_timeseries_and_summary() {
+    let dir = std::env::temp_dir().join(format!("haff-run-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = "[system]\ndimension = 3\nparticles = 300\npacking_fraction = 0.05\nseed = 3\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+                [run]\ncollisions_per_particle = 10\nsamples = 12\n";
+    let file = dir.join("gas.toml");
+    std::fs::write(&file, good).unwrap();
+    let out = dir.join("out");
+    let result = haff(&[
+        "run",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
+    let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("time,collisions_per_particle,temperature,a2"),
+        "{header}"
+    );
+    assert_eq!(csv.lines().count(), 13);
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!((last[1] - 10.0).abs() < 0.01 && last[2] < 0.7, "{last:?}");
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["collisions"].as_u64(), Some(1500));
+    assert!(summary["events_per_second"].as_f64().unwrap() > 0.0);
+    for (bad, key) in [
+        ("restitution = 0.9", "restitution = 1.5"),
+        ("packing_fraction = 0.05", "packing_fraction = 0.6"),
+        ("seed = 3", "seed = 3\ncolour = 1"),
+        (
+            "collisions_per_particle = 10",
+            "end_time = 1\ncollisions_per_particle = 10",
+        ),
+    ]
+    .iter()
+    .map(|(from, to)| {
+        (
+            good.replace(from, to),
+            to.split(' ').next().unwrap().to_string(),
+        )
+    }) {
+        std::fs::write(&file, &bad).unwrap();
+        let key = if key.starts_with("end_time") {
+            "collisions_per_particle".into()
+        } else {
+            key
+        };
+        let key = if key.starts_with("seed") {
+            "colour".into()
+        } else {
+            key
+        };
+        let r = haff(&[
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains(&key) && stderr.lines().count() == 1,
+            "{key}: {stderr}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

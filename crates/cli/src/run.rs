@@ -1,0 +1,392 @@
+//! `haff run RUN.toml [--out DIR]`: a granular-gas run described by a TOML file.
+//!
+//! Schema (unknown keys and out-of-range values are rejected before the run, naming the key):
+//!
+//! ```toml
+//! [system]
+//! dimension = 3            # 1, 2 or 3
+//! particles = 4000         # >= 2
+//! packing_fraction = 0.05  # 0 < phi <= 0.45 (3D), 0.7 (2D), 0.9 (1D)
+//! diameter = 1.0
+//! mass = 1.0
+//! temperature = 1.0        # initial T = m <v^2> / d
+//! seed = 1
+//! [collision]
+//! law = "constant"         # constant | dashpot | viscoelastic
+//! restitution = 0.9        # constant: 0 <= eps <= 1
+//! # dashpot: damping_ratio = R, criterion = "improved" | "naive"
+//! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K"
+//! [run]
+//! engine = "event-driven"
+//! collisions_per_particle = 500   # or end_time = ...
+//! samples = 200
+//! spacing = "log"          # log | linear
+//! ```
+//!
+//! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`)
+//! and `DIR/summary.json`. Still to come (issue 4): temperature.png, a progress bar,
+//! check-points.
+
+use crate::error::{CliError, CliResult};
+use crate::RunArgs;
+use gas::observe::{sonine_a2, temperature};
+use gas::{init, EventDriven};
+use restitution::dashpot::DashpotCriterion;
+use restitution::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RunFile {
+    system: SystemSection,
+    collision: CollisionSection,
+    run: RunSection,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct SystemSection {
+    #[serde(default = "three")]
+    dimension: u32,
+    particles: usize,
+    packing_fraction: f64,
+    #[serde(default = "one")]
+    diameter: f64,
+    #[serde(default = "one")]
+    mass: f64,
+    #[serde(default = "one")]
+    temperature: f64,
+    #[serde(default = "seed")]
+    seed: u64,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct CollisionSection {
+    law: String,
+    restitution: Option<f64>,
+    damping_ratio: Option<f64>,
+    criterion: Option<String>,
+    beta: Option<f64>,
+    form: Option<String>,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct RunSection {
+    #[serde(default = "event_driven")]
+    engine: String,
+    collisions_per_particle: Option<f64>,
+    end_time: Option<f64>,
+    #[serde(default = "samples")]
+    samples: usize,
+    #[serde(default = "log")]
+    spacing: String,
+}
+
+fn three() -> u32 {
+    3
+}
+fn one() -> f64 {
+    1.0
+}
+fn seed() -> u64 {
+    1
+}
+fn event_driven() -> String {
+    "event-driven".into()
+}
+fn samples() -> usize {
+    200
+}
+fn log() -> String {
+    "log".into()
+}
+
+/// A bad key: `section.key = value: allowed ...`.
+fn bad_key(key: &str, value: impl std::fmt::Display, allowed: &str) -> CliError {
+    CliError::argument(key, format!("{value} is out of range; allowed: {allowed}"))
+}
+
+fn positive(key: &str, x: f64) -> CliResult<f64> {
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(bad_key(key, x, "a finite number > 0"))
+    }
+}
+
+/// How far the run goes.
+#[derive(Debug, Clone, Copy)]
+enum Stop {
+    Collisions(f64),
+    Time(f64),
+}
+
+/// Checks every key before anything runs.
+fn validate(file: &RunFile) -> CliResult<Stop> {
+    let s = &file.system;
+    if !(1..=3).contains(&s.dimension) {
+        return Err(bad_key("system.dimension", s.dimension, "1, 2 or 3"));
+    }
+    if s.particles < 2 || s.particles > 100_000_000 {
+        return Err(bad_key("system.particles", s.particles, "2 <= N <= 1e8"));
+    }
+    let max_phi = [0.9, 0.7, 0.45][s.dimension as usize - 1];
+    if !(s.packing_fraction > 0.0 && s.packing_fraction <= max_phi) {
+        let allowed = format!("0 < phi <= {max_phi} in {} dimensions", s.dimension);
+        return Err(bad_key(
+            "system.packing_fraction",
+            s.packing_fraction,
+            &allowed,
+        ));
+    }
+    positive("system.diameter", s.diameter)?;
+    positive("system.mass", s.mass)?;
+    positive("system.temperature", s.temperature)?;
+    let r = &file.run;
+    if r.engine != "event-driven" {
+        let allowed = "event-driven (dsmc comes with issue 5)";
+        return Err(CliError::argument(
+            "run.engine",
+            format!("'{}': allowed: {allowed}", r.engine),
+        ));
+    }
+    if !(2..=1_000_000).contains(&r.samples) {
+        return Err(bad_key("run.samples", r.samples, "2 <= samples <= 1e6"));
+    }
+    if r.spacing != "log" && r.spacing != "linear" {
+        return Err(CliError::argument(
+            "run.spacing",
+            format!("'{}': allowed: log, linear", r.spacing),
+        ));
+    }
+    match (r.collisions_per_particle, r.end_time) {
+        (Some(c), None) => Ok(Stop::Collisions(positive(
+            "run.collisions_per_particle",
+            c,
+        )?)),
+        (None, Some(t)) => Ok(Stop::Time(positive("run.end_time", t)?)),
+        _ => Err(CliError::argument(
+            "run.collisions_per_particle",
+            "give exactly one of run.collisions_per_particle and run.end_time",
+        )),
+    }
+}
+
+/// The collision law of the `[collision]` section.
+fn build_law(c: &CollisionSection) -> CliResult<Box<dyn Restitution>> {
+    fn lib(key: &'static str) -> impl Fn(restitution::Error) -> CliError {
+        move |e| CliError::library(key, e)
+    }
+    let need = |key: &str, x: Option<f64>| {
+        x.ok_or_else(|| CliError::argument(key, "missing for this law"))
+    };
+    let criterion = |text: &Option<String>| -> CliResult<DashpotCriterion> {
+        let c: restitution::Criterion = text
+            .as_deref()
+            .unwrap_or("improved")
+            .parse()
+            .map_err(lib("collision.criterion"))?;
+        Ok(c.into())
+    };
+    match c.law.as_str() {
+        "constant" => {
+            let eps = need("collision.restitution", c.restitution)?;
+            Ok(Box::new(
+                Constant::new(eps).map_err(lib("collision.restitution"))?,
+            ))
+        }
+        "dashpot" => {
+            let ratio = need("collision.damping_ratio", c.damping_ratio)?;
+            let law = Dashpot::new(ratio, criterion(&c.criterion)?, None)
+                .map_err(lib("collision.damping_ratio"))?;
+            Ok(Box::new(law))
+        }
+        "viscoelastic" => {
+            let beta = need("collision.beta", c.beta)?;
+            let form: ScaledForm = c
+                .form
+                .as_deref()
+                .unwrap_or("fast")
+                .parse()
+                .map_err(lib("collision.form"))?;
+            Ok(Box::new(
+                Viscoelastic::new(beta, form).map_err(lib("collision.beta"))?,
+            ))
+        }
+        "stochastic" => Err(CliError::argument(
+            "collision.law",
+            "'stochastic' comes with issue 6",
+        )),
+        other => Err(CliError::argument(
+            "collision.law",
+            format!("'{other}': allowed: constant, dashpot, viscoelastic"),
+        )),
+    }
+}
+
+/// One row of timeseries.csv.
+#[derive(Debug, Clone, Serialize)]
+struct Sample {
+    time: f64,
+    collisions_per_particle: f64,
+    temperature: f64,
+    a2: f64,
+    energy_lost: f64,
+    pressure: f64,
+    events: u64,
+}
+
+/// `haff run`.
+pub fn run(args: &RunArgs) -> CliResult {
+    let text = std::fs::read_to_string(&args.file)
+        .map_err(|e| CliError::argument("RUN.toml", format!("{}: {e}", args.file.display())))?;
+    let file: RunFile = toml::from_str(&text).map_err(|e| {
+        CliError::argument(&args.file.display().to_string(), one_line(&e.to_string()))
+    })?;
+    let stop = validate(&file)?;
+    let law = build_law(&file.collision)?;
+    let out = args.out.clone().unwrap_or_else(|| default_out(&args.file));
+    std::fs::create_dir_all(&out)
+        .map_err(|e| CliError::argument("--out", format!("{}: {e}", out.display())))?;
+    let start = Instant::now();
+    let (samples, tally) = match file.system.dimension {
+        1 => simulate::<1>(&file, law, stop)?,
+        2 => simulate::<2>(&file, law, stop)?,
+        _ => simulate::<3>(&file, law, stop)?,
+    };
+    let wall = start.elapsed().as_secs_f64();
+    write_timeseries(&out.join("timeseries.csv"), &samples)?;
+    let summary = serde_json::json!({
+        "parameters": file,
+        "collisions": tally.collisions,
+        "events": tally.events,
+        "wall_seconds": wall,
+        "events_per_second": tally.events as f64 / wall,
+        "collisions_per_second": tally.collisions as f64 / wall,
+        "final": samples.last(),
+    });
+    let mut f = std::fs::File::create(out.join("summary.json"))?;
+    serde_json::to_writer_pretty(&mut f, &summary)?;
+    writeln!(f)?;
+    eprintln!(
+        "haff run: {} collisions, {} events in {wall:.2} s ({:.3e} events/s); output in {}",
+        tally.collisions,
+        tally.events,
+        tally.events as f64 / wall,
+        out.display()
+    );
+    Ok(())
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// RUN.toml -> ./RUN (next to the current directory).
+fn default_out(file: &Path) -> PathBuf {
+    PathBuf::from(
+        file.file_stem()
+            .map_or("haff-run".into(), |s| s.to_os_string()),
+    )
+}
+
+/// Sample targets (collisions per particle or time) from 0 to `end`.
+fn targets(end: f64, count: usize, log: bool) -> Vec<f64> {
+    let first = end * 1e-3;
+    (0..count)
+        .map(|k| {
+            let x = k as f64 / (count - 1) as f64;
+            match (k, log) {
+                (0, _) => 0.0,
+                (_, true) => {
+                    first * (end / first).powf((k as f64 - 1.0) / (count - 2).max(1) as f64)
+                }
+                (_, false) => end * x,
+            }
+        })
+        .collect()
+}
+
+fn simulate<const D: usize>(
+    file: &RunFile,
+    law: Box<dyn Restitution>,
+    stop: Stop,
+) -> CliResult<(Vec<Sample>, gas::emd::Tally)> {
+    let s = &file.system;
+    let system = init::monodisperse::<D>(
+        s.particles,
+        s.packing_fraction,
+        s.diameter,
+        s.mass,
+        s.temperature,
+        s.seed,
+    )
+    .map_err(|e| CliError::argument("system", e))?;
+    let mut engine = EventDriven::new(system, law).map_err(|e| CliError::argument("system", e))?;
+    let n = s.particles as f64;
+    let log = file.run.spacing == "log";
+    let (end, by_time) = match stop {
+        Stop::Collisions(c) => (c, false),
+        Stop::Time(t) => (t, true),
+    };
+    let mut samples = Vec::new();
+    let mut last = (0.0, 0.0);
+    for target in targets(end, file.run.samples, log) {
+        if by_time {
+            engine.run_until(target);
+        } else {
+            let want = (target * n / 2.0).round() as u64;
+            let have = engine.tally().collisions;
+            engine.run_collisions(want.saturating_sub(have));
+        }
+        let tally = engine.tally();
+        let (time, cpp) = (engine.time(), engine.collisions_per_particle());
+        let system = engine.system();
+        let t = temperature(system);
+        let volume = system.volume();
+        let dt = time - last.0;
+        let virial = if dt > 0.0 {
+            (tally.virial - last.1) / (D as f64 * volume * dt)
+        } else {
+            0.0
+        };
+        samples.push(Sample {
+            time,
+            collisions_per_particle: cpp,
+            temperature: t,
+            a2: sonine_a2(system),
+            energy_lost: tally.energy_lost,
+            pressure: n / volume * t + virial,
+            events: tally.events,
+        });
+        last = (time, tally.virial);
+    }
+    Ok((samples, engine.tally()))
+}
+
+fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(
+        f,
+        "time,collisions_per_particle,temperature,a2,energy_lost,pressure,events"
+    )?;
+    for s in samples {
+        writeln!(
+            f,
+            "{},{},{},{},{},{},{}",
+            s.time,
+            s.collisions_per_particle,
+            s.temperature,
+            s.a2,
+            s.energy_lost,
+            s.pressure,
+            s.events
+        )?;
+    }
+    Ok(f.flush()?)
+}
