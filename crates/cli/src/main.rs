@@ -11,6 +11,7 @@ mod cor;
 mod demo;
 mod error;
 mod output;
+mod plot;
 mod run;
 
 use clap::error::ErrorKind;

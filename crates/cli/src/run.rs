@@ -23,9 +23,9 @@
 //! spacing = "log"          # log | linear
 //! ```
 //!
-//! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`)
-//! and `DIR/summary.json`. Still to come (issue 4): temperature.png, a progress bar,
-//! check-points.
+//! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`),
+//! `DIR/summary.json` and `DIR/temperature.png` (T(t), log-log, with Haff's law for a
+//! constant eps). Still to come (issue 4): a progress bar, check-points.
 
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
@@ -261,6 +261,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     };
     let wall = start.elapsed().as_secs_f64();
     write_timeseries(&out.join("timeseries.csv"), &samples)?;
+    plot_temperature(&out.join("temperature.png"), &file, &samples)?;
     let summary = serde_json::json!({
         "parameters": file,
         "collisions": tally.collisions,
@@ -389,4 +390,29 @@ fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
         )?;
     }
     Ok(f.flush()?)
+}
+
+/// temperature.png: T(t) and, for a constant eps, Haff's law T0 / (1 + zeta0 t / 2)^2 with
+/// zeta0 = (1 - eps^2) omega0 / d from the collision frequency omega0 measured over the first
+/// samples (Haff 1983; Brilliantov & Pöschel, Kinetic Theory of Granular Gases, Ch. 7).
+fn plot_temperature(path: &Path, file: &RunFile, samples: &[Sample]) -> CliResult {
+    let points: Vec<(f64, f64)> = samples.iter().map(|s| (s.time, s.temperature)).collect();
+    let early = samples.iter().find(|s| s.collisions_per_particle > 0.0);
+    let haff = match (
+        file.collision.law.as_str(),
+        file.collision.restitution,
+        early,
+    ) {
+        ("constant", Some(eps), Some(first)) if eps < 1.0 => {
+            let t0 = samples[0].temperature;
+            let omega0 = first.collisions_per_particle / first.time;
+            let zeta0 = (1.0 - eps * eps) * omega0 / file.system.dimension as f64;
+            Some(move |t: f64| t0 / (1.0 + 0.5 * zeta0 * t).powi(2))
+        }
+        _ => None,
+    };
+    match &haff {
+        Some(f) => crate::plot::temperature(path, &points, Some(("Haff's law", f))),
+        None => crate::plot::temperature(path, &points, None),
+    }
 }

@@ -464,6 +464,8 @@ fn run_writes_timeseries_and_summary() {
     let summary: Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["collisions"].as_u64(), Some(1500));
+    let png = std::fs::read(out.join("temperature.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
     assert!(summary["events_per_second"].as_f64().unwrap() > 0.0);
     for (bad, key) in [
         ("restitution = 0.9", "restitution = 1.5"),
