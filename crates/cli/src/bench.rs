@@ -228,3 +228,62 @@ fn write_report_table(
     )?;
     Ok(())
 }
+
+/// `haff bench emd`: collisions and events per second of an elastic 3D gas (one core),
+/// medians of repeats, and the engine's memory per particle.
+pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
+    use gas::{init, EventDriven};
+    let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
+    let phi = crate::output::parse_number(
+        "--packing-fraction",
+        &args.packing_fraction,
+        crate::output::Allowed::between("phi", 1e-6, 0.45),
+    )?;
+    let events = parse_count("--events", &args.events, 1, 1_000_000_000_000)? as u64;
+    let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
+    let (mut collision_rates, mut event_rates, mut bytes) = (vec![], vec![], 0);
+    for repeat in 0..repeats {
+        let system = init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1 + repeat as u64)
+            .map_err(|e| CliError::argument("--particles", e))?;
+        let law =
+            Box::new(restitution::Constant::new(1.0).map_err(|e| CliError::library("law", e))?);
+        let mut engine =
+            EventDriven::new(system, law).map_err(|e| CliError::argument("--particles", e))?;
+        for _ in 0..events {
+            engine.step();
+        }
+        let before = engine.tally();
+        let start = std::time::Instant::now();
+        for _ in 0..events {
+            engine.step();
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        let after = engine.tally();
+        collision_rates.push((after.collisions - before.collisions) as f64 / seconds);
+        event_rates.push((after.events - before.events) as f64 / seconds);
+        bytes = engine.memory_bytes();
+    }
+    let [collisions, collisions_min, collisions_max] = median_min_max(collision_rates);
+    let [events_s, _, _] = median_min_max(event_rates);
+    let report = serde_json::json!({
+        "particles": n,
+        "packing_fraction": phi,
+        "events_per_repeat": events,
+        "repeats": repeats,
+        "collisions_per_second": collisions,
+        "collisions_per_second_min": collisions_min,
+        "collisions_per_second_max": collisions_max,
+        "events_per_second": events_s,
+        "bytes_per_particle": bytes as f64 / n as f64,
+    });
+    let mut out = stdout();
+    match args.format {
+        ReportFormat::Json => crate::output::write_json(&mut out, &report)?,
+        ReportFormat::Table => writeln!(
+            out,
+            "N = {n}, phi = {phi}: {collisions:.3e} collisions/s (min {collisions_min:.3e}, max {collisions_max:.3e}), {events_s:.3e} events/s, {:.0} bytes/particle (median of {repeats})",
+            bytes as f64 / n as f64
+        )?,
+    }
+    Ok(out.flush()?)
+}

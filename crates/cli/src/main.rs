@@ -106,6 +106,28 @@ pub struct PadeArgs {
 enum BenchCommand {
     /// Nanoseconds per evaluation of each coefficient-of-restitution law.
     Cor(BenchCorArgs),
+    /// Throughput of event-driven MD of an elastic gas in 3D.
+    Emd(BenchEmdArgs),
+}
+
+/// Arguments of `haff bench emd`.
+#[derive(Debug, Args)]
+pub struct BenchEmdArgs {
+    /// Number of particles, 2 <= N <= 1e8.
+    #[arg(long, default_value = "100000", allow_hyphen_values = true)]
+    pub particles: String,
+    /// Packing fraction, 0 < phi <= 0.45.
+    #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
+    pub packing_fraction: String,
+    /// Events timed per repeat (after as many events of warm-up).
+    #[arg(long, default_value = "2000000", allow_hyphen_values = true)]
+    pub events: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 /// Arguments of `haff cor eps`.
@@ -251,6 +273,7 @@ fn run(command: Command) -> CliResult {
         Command::Cor(CorCommand::Coefficients(args)) => algebra::coefficients(&args),
         Command::Cor(CorCommand::Pade(args)) => algebra::pade(&args),
         Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
+        Command::Bench(BenchCommand::Emd(args)) => bench::emd(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
     }

@@ -25,7 +25,8 @@
 //!
 //! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`),
 //! `DIR/summary.json` and `DIR/temperature.png` (T(t), log-log, with Haff's law for a
-//! constant eps). Still to come (issue 4): a progress bar, check-points.
+//! constant eps), with a progress bar (events/s) on a terminal. Still to come (issue 4):
+//! check-points.
 
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
@@ -337,6 +338,12 @@ fn simulate<const D: usize>(
     };
     let mut samples = Vec::new();
     let mut last = (0.0, 0.0);
+    let progress = indicatif::ProgressBar::new(file.run.samples as u64);
+    progress.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let started = Instant::now();
     for target in targets(end, file.run.samples, log) {
         if by_time {
             engine.run_until(target);
@@ -366,7 +373,11 @@ fn simulate<const D: usize>(
             events: tally.events,
         });
         last = (time, tally.virial);
+        let rate = tally.events as f64 / started.elapsed().as_secs_f64().max(1e-9);
+        progress.set_message(format!("{rate:.3e} events/s, T = {t:.4e}"));
+        progress.inc(1);
     }
+    progress.finish_and_clear();
     Ok((samples, engine.tally()))
 }
 

@@ -509,3 +509,29 @@ fn run_writes_timeseries_and_summary() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bench_emd_reports_rates_and_memory() {
+    let report = json_of(&[
+        "bench",
+        "emd",
+        "--particles",
+        "2000",
+        "--packing-fraction",
+        "0.1",
+        "--events",
+        "20000",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert!(number(&report["collisions_per_second"]) > 0.0);
+    assert!(number(&report["events_per_second"]) >= number(&report["collisions_per_second"]));
+    let bytes = number(&report["bytes_per_particle"]);
+    assert!(bytes > 50.0 && bytes < 400.0, "{bytes}");
+    assert_rejected(
+        &["bench", "emd", "--packing-fraction", "0.9"],
+        "--packing-fraction",
+    );
+}

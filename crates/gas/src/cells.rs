@@ -33,6 +33,12 @@ impl<const D: usize> CellGrid<D> {
         }
     }
 
+    /// Bytes held by the lists.
+    pub fn memory_bytes(&self) -> usize {
+        (self.head.capacity() + self.next.capacity() + self.prev.capacity()) * 4
+            + self.coords.capacity() * std::mem::size_of::<[u32; D]>()
+    }
+
     /// The cell coordinates of a position in [0, L).
     pub fn coords_of(&self, p: &Vector<D>) -> [u32; D] {
         let length = self.width * self.per_side as f64;

@@ -135,6 +135,20 @@ impl<const D: usize> EventDriven<D> {
         self.time
     }
 
+    /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
+    /// calendar, cell lists).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let s = &self.system;
+        let state = s.positions.capacity() * size_of::<Vector<D>>()
+            + s.velocities.capacity() * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity() + self.valid_at.capacity())
+                * size_of::<f64>()
+            + self.counts.capacity() * size_of::<u64>()
+            + self.next.capacity() * size_of::<Next>();
+        state + self.queue.memory_bytes() + self.cells.memory_bytes()
+    }
+
     pub fn tally(&self) -> Tally {
         self.tally
     }

@@ -28,6 +28,11 @@ impl EventQueue {
             .map(|&i| (i as usize, self.time[i as usize]))
     }
 
+    /// Bytes held by the heap.
+    pub fn memory_bytes(&self) -> usize {
+        (self.heap.capacity() + self.slot.capacity()) * 4 + self.time.capacity() * 8
+    }
+
     pub fn time_of(&self, i: usize) -> f64 {
         self.time[i]
     }
