@@ -45,11 +45,26 @@ enum Command {
 /// Arguments of `haff run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The run file (schema: `haff run --help` and the README).
-    pub file: std::path::PathBuf,
-    /// Output directory [default: the run file's name without extension].
+    /// The run file (schema in the README); not with --resume.
+    pub file: Option<std::path::PathBuf>,
+    /// Output directory [default: the run file's name without extension; with --resume
+    /// the check-point's directory].
     #[arg(long)]
     pub out: Option<std::path::PathBuf>,
+    /// Save the state every K samples to DIR/checkpoint.json.
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub checkpoint_every: Option<String>,
+    /// Continue the run saved in DIR/checkpoint.json.
+    #[arg(long, value_name = "DIR", conflicts_with = "file")]
+    pub resume: Option<std::path::PathBuf>,
+    /// End after this many samples (a run in chunks; continue with --resume).
+    #[arg(
+        long,
+        value_name = "K",
+        allow_hyphen_values = true,
+        requires = "checkpoint_every"
+    )]
+    pub stop_after_samples: Option<String>,
 }
 
 #[derive(Debug, Subcommand)]

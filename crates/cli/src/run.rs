@@ -25,8 +25,11 @@
 //!
 //! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`),
 //! `DIR/summary.json` and `DIR/temperature.png` (T(t), log-log, with Haff's law for a
-//! constant eps), with a progress bar (events/s) on a terminal. Still to come (issue 4):
-//! check-points.
+//! constant eps), with a progress bar (events/s) on a terminal. With
+//! `--checkpoint-every K` the state is saved every K samples to `DIR/checkpoint.json`, and
+//! `haff run --resume DIR` continues from it: the engine is synchronized at every check-point
+//! (all particles brought to the same time, every event predicted afresh), so a resumed
+//! run repeats the uninterrupted one with the same settings bit for bit.
 
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
@@ -231,7 +234,7 @@ fn build_law(c: &CollisionSection) -> CliResult<Box<dyn Restitution>> {
 }
 
 /// One row of timeseries.csv.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 struct Sample {
     time: f64,
     collisions_per_particle: f64,
@@ -242,23 +245,92 @@ struct Sample {
     events: u64,
 }
 
+/// The state of a run at a sample boundary (`DIR/checkpoint.json`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct Checkpoint {
+    file: RunFile,
+    /// Samples written so far (the next target is `samples.len()`).
+    samples: Vec<Sample>,
+    time: f64,
+    positions: Vec<Vec<f64>>,
+    velocities: Vec<Vec<f64>>,
+    radii: Vec<f64>,
+    masses: Vec<f64>,
+    counts: Vec<u64>,
+    collisions: u64,
+    events: u64,
+    energy_lost: f64,
+    virial: f64,
+    last_virial: (f64, f64),
+    /// Check-point interval of the run (reused on resume).
+    every: Option<usize>,
+}
+
 /// `haff run`.
 pub fn run(args: &RunArgs) -> CliResult {
-    let text = std::fs::read_to_string(&args.file)
-        .map_err(|e| CliError::argument("RUN.toml", format!("{}: {e}", args.file.display())))?;
-    let file: RunFile = toml::from_str(&text).map_err(|e| {
-        CliError::argument(&args.file.display().to_string(), one_line(&e.to_string()))
-    })?;
+    let (file, out, resume) = match (&args.file, &args.resume) {
+        (Some(path), None) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::argument("RUN.toml", format!("{}: {e}", path.display())))?;
+            let file: RunFile = toml::from_str(&text).map_err(|e| {
+                CliError::argument(&path.display().to_string(), one_line(&e.to_string()))
+            })?;
+            let out = args.out.clone().unwrap_or_else(|| default_out(path));
+            (file, out, None)
+        }
+        (None, Some(dir)) => {
+            let path = dir.join("checkpoint.json");
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| CliError::argument("--resume", format!("{}: {e}", path.display())))?;
+            let checkpoint: Checkpoint = serde_json::from_str(&text)
+                .map_err(|e| CliError::argument("--resume", format!("{}: {e}", path.display())))?;
+            (
+                checkpoint.file.clone(),
+                args.out.clone().unwrap_or(dir.clone()),
+                Some(checkpoint),
+            )
+        }
+        _ => {
+            return Err(CliError::argument(
+                "RUN.toml",
+                "give a run file or --resume DIR (exactly one)",
+            ))
+        }
+    };
     let stop = validate(&file)?;
     let law = build_law(&file.collision)?;
-    let out = args.out.clone().unwrap_or_else(|| default_out(&args.file));
+    let every = match &args.checkpoint_every {
+        Some(text) => Some(crate::output::parse_count(
+            "--checkpoint-every",
+            text,
+            1,
+            1_000_000,
+        )?),
+        None => resume.as_ref().and_then(|c| c.every),
+    };
+    let stop_after = match &args.stop_after_samples {
+        Some(text) => Some(crate::output::parse_count(
+            "--stop-after-samples",
+            text,
+            1,
+            1_000_000,
+        )?),
+        None => None,
+    };
     std::fs::create_dir_all(&out)
         .map_err(|e| CliError::argument("--out", format!("{}: {e}", out.display())))?;
     let start = Instant::now();
+    let context = RunContext {
+        file: &file,
+        stop,
+        every,
+        stop_after,
+        out: &out,
+    };
     let (samples, tally) = match file.system.dimension {
-        1 => simulate::<1>(&file, law, stop)?,
-        2 => simulate::<2>(&file, law, stop)?,
-        _ => simulate::<3>(&file, law, stop)?,
+        1 => simulate::<1>(&context, law, resume)?,
+        2 => simulate::<2>(&context, law, resume)?,
+        _ => simulate::<3>(&context, law, resume)?,
     };
     let wall = start.elapsed().as_secs_f64();
     write_timeseries(&out.join("timeseries.csv"), &samples)?;
@@ -314,37 +386,128 @@ fn targets(end: f64, count: usize, log: bool) -> Vec<f64> {
         .collect()
 }
 
-fn simulate<const D: usize>(
+/// What the sampling loop needs besides the engine.
+struct RunContext<'a> {
+    file: &'a RunFile,
+    stop: Stop,
+    /// Write a check-point every this many samples.
+    every: Option<usize>,
+    /// End the run (after its check-point) once this many samples exist.
+    stop_after: Option<usize>,
+    out: &'a Path,
+}
+
+/// A fresh engine from the `[system]` section, or one restored from a check-point.
+fn start_engine<const D: usize>(
     file: &RunFile,
     law: Box<dyn Restitution>,
-    stop: Stop,
-) -> CliResult<(Vec<Sample>, gas::emd::Tally)> {
+    resume: &Option<Checkpoint>,
+) -> CliResult<EventDriven<D>> {
     let s = &file.system;
-    let system = init::monodisperse::<D>(
-        s.particles,
-        s.packing_fraction,
-        s.diameter,
-        s.mass,
-        s.temperature,
-        s.seed,
-    )
-    .map_err(|e| CliError::argument("system", e))?;
-    let mut engine = EventDriven::new(system, law).map_err(|e| CliError::argument("system", e))?;
-    let n = s.particles as f64;
+    let fail = |e: String| CliError::argument("system", e);
+    match resume {
+        None => {
+            let system = init::monodisperse::<D>(
+                s.particles,
+                s.packing_fraction,
+                s.diameter,
+                s.mass,
+                s.temperature,
+                s.seed,
+            )
+            .map_err(fail)?;
+            EventDriven::new(system, law).map_err(fail)
+        }
+        Some(c) => {
+            let vector = |v: &Vec<f64>| -> CliResult<[f64; D]> {
+                v.as_slice()
+                    .try_into()
+                    .map_err(|_| CliError::argument("--resume", "check-point of another dimension"))
+            };
+            let system = gas::System {
+                length: (s.particles as f64 * gas::system::ball_volume::<D>(0.5 * s.diameter)
+                    / s.packing_fraction)
+                    .powf(1.0 / D as f64),
+                positions: c.positions.iter().map(vector).collect::<CliResult<_>>()?,
+                velocities: c.velocities.iter().map(vector).collect::<CliResult<_>>()?,
+                radii: c.radii.clone(),
+                masses: c.masses.clone(),
+            };
+            let tally = gas::emd::Tally {
+                collisions: c.collisions,
+                events: c.events,
+                energy_lost: c.energy_lost,
+                virial: c.virial,
+            };
+            EventDriven::restore(system, law, c.time, c.counts.clone(), tally).map_err(fail)
+        }
+    }
+}
+
+fn write_checkpoint<const D: usize>(
+    context: &RunContext,
+    engine: &mut EventDriven<D>,
+    samples: &[Sample],
+    last_virial: (f64, f64),
+) -> CliResult {
+    engine.synchronize();
+    let (time, tally, counts) = (engine.time(), engine.tally(), engine.counts().to_vec());
+    let system = engine.system();
+    let checkpoint = Checkpoint {
+        file: context.file.clone(),
+        samples: samples.to_vec(),
+        time,
+        positions: system.positions.iter().map(|p| p.to_vec()).collect(),
+        velocities: system.velocities.iter().map(|v| v.to_vec()).collect(),
+        radii: system.radii.clone(),
+        masses: system.masses.clone(),
+        counts,
+        collisions: tally.collisions,
+        events: tally.events,
+        energy_lost: tally.energy_lost,
+        virial: tally.virial,
+        last_virial,
+        every: context.every,
+    };
+    // Write then rename, so that an interrupted write never destroys the last check-point.
+    let path = context.out.join("checkpoint.json");
+    let partial = context.out.join("checkpoint.json.partial");
+    let mut f = std::io::BufWriter::new(std::fs::File::create(&partial)?);
+    serde_json::to_writer(&mut f, &checkpoint)?;
+    f.flush()?;
+    drop(f);
+    std::fs::rename(&partial, &path)?;
+    Ok(())
+}
+
+fn simulate<const D: usize>(
+    context: &RunContext,
+    law: Box<dyn Restitution>,
+    resume: Option<Checkpoint>,
+) -> CliResult<(Vec<Sample>, gas::emd::Tally)> {
+    let file = context.file;
+    let mut engine = start_engine::<D>(file, law, &resume)?;
+    let n = file.system.particles as f64;
     let log = file.run.spacing == "log";
-    let (end, by_time) = match stop {
+    let (end, by_time) = match context.stop {
         Stop::Collisions(c) => (c, false),
         Stop::Time(t) => (t, true),
     };
-    let mut samples = Vec::new();
-    let mut last = (0.0, 0.0);
+    let (mut samples, mut last) = match resume {
+        Some(c) => (c.samples, c.last_virial),
+        None => (Vec::new(), (0.0, 0.0)),
+    };
     let progress = indicatif::ProgressBar::new(file.run.samples as u64);
     progress.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples {msg}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
+    progress.set_position(samples.len() as u64);
     let started = Instant::now();
-    for target in targets(end, file.run.samples, log) {
+    for target in targets(end, file.run.samples, log)
+        .into_iter()
+        .skip(samples.len())
+    {
         if by_time {
             engine.run_until(target);
         } else {
@@ -373,9 +536,15 @@ fn simulate<const D: usize>(
             events: tally.events,
         });
         last = (time, tally.virial);
+        if context.every.is_some_and(|k| samples.len() % k == 0) {
+            write_checkpoint(context, &mut engine, &samples, last)?;
+        }
         let rate = tally.events as f64 / started.elapsed().as_secs_f64().max(1e-9);
         progress.set_message(format!("{rate:.3e} events/s, T = {t:.4e}"));
         progress.inc(1);
+        if context.stop_after.is_some_and(|k| samples.len() >= k) {
+            break;
+        }
     }
     progress.finish_and_clear();
     Ok((samples, engine.tally()))

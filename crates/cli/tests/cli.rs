@@ -535,3 +535,59 @@ fn bench_emd_reports_rates_and_memory() {
         "--packing-fraction",
     );
 }
+
+/// Check-points: a run stopped after 6 of 12 samples and resumed repeats the uninterrupted
+/// run (same check-point interval) bit for bit.
+#[test]
+fn resumed_run_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-resume-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("ck.toml");
+    std::fs::write(
+        &file,
+        "[system]\nparticles = 400\npacking_fraction = 0.1\nseed = 9\n\
+         [collision]\nlaw = \"constant\"\nrestitution = 0.8\n\
+         [run]\ncollisions_per_particle = 20\nsamples = 12\n",
+    )
+    .unwrap();
+    let (full, chunked) = (dir.join("full"), dir.join("chunked"));
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run"];
+        args.extend_from_slice(extra);
+        let out = haff(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let f = file.to_str().unwrap();
+    run(&[
+        f,
+        "--out",
+        full.to_str().unwrap(),
+        "--checkpoint-every",
+        "3",
+    ]);
+    run(&[
+        f,
+        "--out",
+        chunked.to_str().unwrap(),
+        "--checkpoint-every",
+        "3",
+        "--stop-after-samples",
+        "6",
+    ]);
+    let partial = std::fs::read_to_string(chunked.join("timeseries.csv")).unwrap();
+    assert_eq!(partial.lines().count(), 7);
+    run(&["--resume", chunked.to_str().unwrap()]);
+    let a = std::fs::read_to_string(full.join("timeseries.csv")).unwrap();
+    let b = std::fs::read_to_string(chunked.join("timeseries.csv")).unwrap();
+    assert_eq!(a.lines().count(), 13);
+    assert_eq!(a, b);
+    assert_rejected(
+        &["run", "--resume", dir.join("nothing").to_str().unwrap()],
+        "--resume",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

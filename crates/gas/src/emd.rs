@@ -276,6 +276,50 @@ impl<const D: usize> EventDriven<D> {
         self.queue.update(i, t);
     }
 
+    /// Brings every particle to the current time, rebuilds the cell lists and predicts
+    /// every event afresh: the state is then a function of (positions, velocities, time)
+    /// alone, so a run restored from a snapshot taken here continues bit for bit.
+    pub fn synchronize(&mut self) {
+        let n = self.system.len();
+        for i in 0..n {
+            self.bring_to_now(i);
+            self.cells.remove(i);
+        }
+        for i in 0..n {
+            let c = self.cells.coords_of(&self.system.positions[i]);
+            self.cells.insert(i, c);
+            self.next[i] = Next::NONE;
+        }
+        for i in 0..n {
+            self.predict(i);
+        }
+    }
+
+    /// A synchronized engine from a snapshot: state at `time`, collision counts, tally.
+    pub fn restore(
+        system: System<D>,
+        law: Box<dyn Restitution>,
+        time: f64,
+        counts: Vec<u64>,
+        tally: Tally,
+    ) -> Result<Self, String> {
+        if counts.len() != system.len() {
+            return Err("snapshot: counts and particles differ in number".into());
+        }
+        let mut engine = Self::new(system, law)?;
+        engine.time = time;
+        engine.valid_at.iter_mut().for_each(|t| *t = time);
+        engine.counts = counts;
+        engine.tally = tally;
+        engine.synchronize();
+        Ok(engine)
+    }
+
+    /// Collision counts per particle (for snapshots).
+    pub fn counts(&self) -> &[u64] {
+        &self.counts
+    }
+
     /// A pair whose next collision is earlier than both particles' scheduled events
     /// (which the calendar must never allow), with that collision time. O(N^2): for tests.
     pub fn missed_collision(&self) -> Option<(usize, usize, f64)> {
