@@ -147,3 +147,21 @@ fn enskog_and_carnahan_starling_one_percent() {
         enskog_check(phi, 20_000, 100, 0.01);
     }
 }
+
+/// Viscoelastic spheres (fast law, beta = 1): T(t) approaches t^(-5/3) at late times
+/// (Brilliantov & Pöschel, Kinetic Theory of Granular Gases, Ch. 8). Measured with
+/// `haff run` (N = 2000, 3000 collisions per particle): local exponent -1.671.
+#[test]
+fn viscoelastic_gas_cools_as_t_to_minus_five_thirds() {
+    use restitution::{ScaledForm, Viscoelastic};
+    let system = monodisperse::<3>(1000, 0.05, 1.0, 1.0, 1.0, 4).unwrap();
+    let law = Viscoelastic::new(1.0, "fast".parse::<ScaledForm>().unwrap()).unwrap();
+    let mut e = EventDriven::new(system, Box::new(law)).unwrap();
+    e.run_collisions(1000 * 500 / 2); // 500 collisions per particle
+    let (t0, temp0) = (e.time(), temperature(e.system()));
+    e.run_collisions(1000 * 1000 / 2); // to 1500 per particle
+    let (t1, temp1) = (e.time(), temperature(e.system()));
+    let exponent = (temp1 / temp0).ln() / (t1 / t0).ln();
+    eprintln!("local exponent of T(t): {exponent:.4}");
+    assert!((exponent + 5.0 / 3.0).abs() < 0.05, "{exponent}");
+}
