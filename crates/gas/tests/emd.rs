@@ -165,3 +165,28 @@ fn viscoelastic_gas_cools_as_t_to_minus_five_thirds() {
     eprintln!("local exponent of T(t): {exponent:.4}");
     assert!((exponent + 5.0 / 3.0).abs() < 0.05, "{exponent}");
 }
+
+/// Haff's law in time: T(t) = T0 / (1 + t / t0)^2, 1/t0 = zeta0 / 2 with the cooling rate
+/// zeta0 = (1 - eps^2)/3 omega_E (1 + a2/4), omega_E the Enskog collision frequency at T0
+/// (Carnahan–Starling chi) and a2 = -0.0146 of the homogeneous cooling state (eps = 0.9).
+/// No parameter is fitted; measured T/T_Haff = 1.0003, 1.0048, 1.0160, 1.0091 at t/t0 =
+/// 0.5, 1, 2, 4.
+#[test]
+fn haff_law_in_time() {
+    let (n, phi, eps) = (4000, 0.05, 0.9f64);
+    let mut e = engine::<3>(n, phi, eps, 17);
+    let density = n as f64 / e.system().volume();
+    let chi = (1.0 - phi / 2.0) / (1.0 - phi).powi(3);
+    let omega = 4.0 * std::f64::consts::PI.sqrt() * density * chi;
+    let zeta0 = (1.0 - eps * eps) / 3.0 * omega * (1.0 - 0.0146 / 4.0);
+    let t0 = 2.0 / zeta0;
+    let mut worst: f64 = 0.0;
+    for t in [0.5 * t0, t0, 2.0 * t0, 4.0 * t0] {
+        e.run_until(t);
+        let haff = 1.0 / (1.0 + t / t0).powi(2);
+        let ratio = temperature(e.system()) / haff;
+        eprintln!("t/t0 = {:.1}: T/T_Haff = {ratio:.4}", t / t0);
+        worst = worst.max((ratio - 1.0).abs());
+    }
+    assert!(worst < 0.03, "{worst}");
+}
