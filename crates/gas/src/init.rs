@@ -8,7 +8,7 @@ use rand_distr::StandardNormal;
 use rand_pcg::Pcg64;
 
 /// Packing fraction up to which positions are placed by random sequential addition; above
-/// it on a lattice (to be melted by elastic collisions).
+/// it on a lattice, melted by elastic collisions ([`melt`]).
 pub const RANDOM_ADDITION_LIMIT: f64 = 0.3;
 
 /// A monodisperse gas: `n` spheres of diameter `diameter` and mass `mass` at packing
@@ -39,13 +39,32 @@ pub fn monodisperse<const D: usize>(
     };
     sort_by_space(&mut positions, length, diameter);
     let velocities = maxwellian::<D>(n, mass, temperature, &mut rng);
-    Ok(System {
+    let system = System {
         length,
         positions,
         velocities,
         radii: vec![0.5 * diameter; n],
         masses: vec![mass; n],
-    })
+    };
+    if phi <= RANDOM_ADDITION_LIMIT {
+        Ok(system)
+    } else {
+        melt(system, MELTING_COLLISIONS_PER_PARTICLE)
+    }
+}
+
+/// Elastic collisions per particle that melt the lattice of a dense initial state.
+pub const MELTING_COLLISIONS_PER_PARTICLE: u64 = 10;
+
+/// Runs elastic event-driven MD for `per_particle` collisions per particle (energy and
+/// momentum are conserved exactly up to round-off, so T stays the initial temperature)
+/// and returns the state: the lattice order is gone, the velocities are Maxwellian.
+pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<System<D>, String> {
+    let n = system.len() as u64;
+    let elastic = restitution::Constant::new(1.0).map_err(|e| e.to_string())?;
+    let mut engine = crate::EventDriven::new(system, Box::new(elastic))?;
+    engine.run_collisions(per_particle * n / 2);
+    Ok(engine.system().clone())
 }
 
 /// Packing fractions the initializer accepts.

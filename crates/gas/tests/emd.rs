@@ -225,3 +225,24 @@ fn sonine_a2_of_the_homogeneous_cooling_state() {
         );
     }
 }
+
+/// Dense initial states are melted: no particle is left on its lattice site, the
+/// temperature is the requested one, and the state is fixed by the seed.
+#[test]
+fn dense_states_are_melted_lattices() {
+    let a = monodisperse::<3>(1000, 0.4, 1.0, 1.0, 2.0, 8).unwrap();
+    let b = monodisperse::<3>(1000, 0.4, 1.0, 1.0, 2.0, 8).unwrap();
+    assert_eq!(a, b);
+    assert!((temperature(&a) - 2.0).abs() < 1e-10);
+    let side = 10.0;
+    let spacing = a.length / side;
+    let on_site = a
+        .positions
+        .iter()
+        .filter(|p| {
+            p.iter()
+                .all(|x| ((x / spacing - 0.5) - (x / spacing - 0.5).round()).abs() < 1e-6)
+        })
+        .count();
+    assert_eq!(on_site, 0);
+}
