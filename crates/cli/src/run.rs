@@ -252,6 +252,8 @@ struct Checkpoint {
     /// Samples written so far (the next target is `samples.len()`).
     samples: Vec<Sample>,
     time: f64,
+    /// Side of the periodic box.
+    length: f64,
     positions: Vec<Vec<f64>>,
     velocities: Vec<Vec<f64>>,
     radii: Vec<f64>,
@@ -425,9 +427,7 @@ fn start_engine<const D: usize>(
                     .map_err(|_| CliError::argument("--resume", "check-point of another dimension"))
             };
             let system = gas::System {
-                length: (s.particles as f64 * gas::system::ball_volume::<D>(0.5 * s.diameter)
-                    / s.packing_fraction)
-                    .powf(1.0 / D as f64),
+                length: c.length,
                 positions: c.positions.iter().map(vector).collect::<CliResult<_>>()?,
                 velocities: c.velocities.iter().map(vector).collect::<CliResult<_>>()?,
                 radii: c.radii.clone(),
@@ -457,6 +457,7 @@ fn write_checkpoint<const D: usize>(
         file: context.file.clone(),
         samples: samples.to_vec(),
         time,
+        length: system.length,
         positions: system.positions.iter().map(|p| p.to_vec()).collect(),
         velocities: system.velocities.iter().map(|v| v.to_vec()).collect(),
         radii: system.radii.clone(),
