@@ -1,45 +1,41 @@
 //! Cell lists: the periodic box cut into cells at least one interaction range wide, so
 //! that a particle can only collide with particles in its own and the adjacent cells.
+//!
+//! [`Grid`] is the geometry (which cells neighbour which, when a particle leaves its cell);
+//! [`CellGrid`] adds doubly linked lists of particles per cell. The event-driven engine
+//! keeps its list links inside its particle records instead (one cache line per
+//! neighbour visited) and uses [`Grid`] alone.
 
 use crate::system::{minimum_image, wrap, Vector};
 
-const NONE: u32 = u32::MAX;
+/// The end of a cell list.
+pub const NONE: u32 = u32::MAX;
 
-/// Doubly linked cell lists over a grid of n^D cells.
-#[derive(Debug, Clone)]
-pub struct CellGrid<const D: usize> {
+/// A periodic grid of `per_side`^D cubic cells.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grid<const D: usize> {
     /// Cells per dimension.
     pub per_side: usize,
     /// Width of a cell.
     pub width: f64,
-    head: Vec<u32>,
-    next: Vec<u32>,
-    prev: Vec<u32>,
-    /// Cell coordinates of each particle.
-    pub coords: Vec<[u32; D]>,
 }
 
-impl<const D: usize> CellGrid<D> {
-    /// A grid for `n` particles in a box of side `length`, cells at least `min_width` wide.
-    pub fn new(length: f64, min_width: f64, n: usize) -> Self {
+impl<const D: usize> Grid<D> {
+    /// The grid of a box of side `length` with cells at least `min_width` wide.
+    pub fn new(length: f64, min_width: f64) -> Self {
         let per_side = ((length / min_width).floor() as usize).max(1);
-        CellGrid {
+        Grid {
             per_side,
             width: length / per_side as f64,
-            head: vec![NONE; per_side.pow(D as u32)],
-            next: vec![NONE; n],
-            prev: vec![NONE; n],
-            coords: vec![[0; D]; n],
         }
     }
 
-    /// Bytes held by the lists.
-    pub fn memory_bytes(&self) -> usize {
-        (self.head.capacity() + self.next.capacity() + self.prev.capacity()) * 4
-            + self.coords.capacity() * std::mem::size_of::<[u32; D]>()
+    /// Number of cells.
+    pub fn cells(&self) -> usize {
+        self.per_side.pow(D as u32)
     }
 
-    /// The cell coordinates of a position in [0, L).
+    /// The cell coordinates of a position (wrapped into the box first).
     pub fn coords_of(&self, p: &Vector<D>) -> [u32; D] {
         let length = self.width * self.per_side as f64;
         std::array::from_fn(|k| {
@@ -48,108 +44,90 @@ impl<const D: usize> CellGrid<D> {
         })
     }
 
-    fn index(&self, c: &[u32; D]) -> usize {
+    /// The linear index of the cell with coordinates c.
+    #[inline]
+    pub fn index(&self, c: &[u32; D]) -> usize {
         c.iter()
             .rev()
             .fold(0, |acc, &x| acc * self.per_side + x as usize)
     }
 
-    /// Puts particle i into the cell with coordinates c.
-    pub fn insert(&mut self, i: usize, c: [u32; D]) {
-        let cell = self.index(&c);
-        let old = self.head[cell];
-        self.next[i] = old;
-        self.prev[i] = NONE;
-        if old != NONE {
-            self.prev[old as usize] = i as u32;
-        }
-        self.head[cell] = i as u32;
-        self.coords[i] = c;
-    }
-
-    /// Takes particle i out of its cell.
-    pub fn remove(&mut self, i: usize) {
-        let (p, n) = (self.prev[i], self.next[i]);
-        if p != NONE {
-            self.next[p as usize] = n;
-        } else {
-            let cell = self.index(&self.coords[i]);
-            self.head[cell] = n;
-        }
-        if n != NONE {
-            self.prev[n as usize] = p;
-        }
-    }
-
-    /// Moves particle i one cell along dimension k (periodically).
-    pub fn shift(&mut self, i: usize, k: usize, up: bool) {
-        let mut c = self.coords[i];
+    /// The coordinates of the cell one step from c along dimension k (periodically).
+    #[inline]
+    pub fn shifted(&self, c: &[u32; D], k: usize, up: bool) -> [u32; D] {
+        let mut c = *c;
         let n = self.per_side as u32;
         c[k] = if up {
             (c[k] + 1) % n
         } else {
             (c[k] + n - 1) % n
         };
-        self.remove(i);
-        self.insert(i, c);
+        c
     }
 
-    /// Calls f for every particle in the cells adjacent to (and including) cell c.
-    pub fn for_each_neighbor(&self, c: &[u32; D], mut f: impl FnMut(usize)) {
-        let n = self.per_side as i64;
-        let span: i64 = if n >= 3 { 1 } else { 0 };
-        let reach: Vec<i64> = if n >= 3 {
-            vec![-1, 0, 1]
+    /// Linear indices of cell c and its adjacent cells, each once (also with fewer than 3
+    /// cells per side); the first `count` entries are valid.
+    #[inline]
+    pub fn neighbor_cells(&self, c: &[u32; D]) -> ([usize; 27], usize) {
+        let n = self.per_side;
+        let (reach, offsets) = if n >= 3 {
+            (3, [n - 1, 0, 1])
         } else {
-            (0..n).collect()
+            (n, [0, 1, 2])
         };
-        let total = reach.len().pow(D as u32);
-        for combo in 0..total {
+        // Linear-index contributions of the reachable coordinates along each dimension.
+        let mut stride = 1;
+        let parts: [[usize; 3]; D] = std::array::from_fn(|k| {
+            let base = if n >= 3 { c[k] as usize } else { 0 };
+            let part = offsets.map(|o| (base + o) % n * stride);
+            stride *= n;
+            part
+        });
+        let mut cells = [0; 27];
+        let count = reach.pow(D as u32);
+        for (combo, cell) in cells.iter_mut().enumerate().take(count) {
             let mut rest = combo;
-            let mut cell = [0u32; D];
-            for k in 0..D {
-                let offset = reach[rest % reach.len()];
-                rest /= reach.len();
-                let base = if span == 1 {
-                    c[k] as i64 + offset
-                } else {
-                    offset
-                };
-                cell[k] = base.rem_euclid(n) as u32;
-            }
-            let mut j = self.head[self.index(&cell)];
-            while j != NONE {
-                f(j as usize);
-                j = self.next[j as usize];
+            for part in &parts {
+                *cell += part[rest % reach];
+                rest /= reach;
             }
         }
+        (cells, count)
     }
 
-    /// Calls f for every particle in the layer of neighbor cells beyond cell c along
-    /// dimension k (the cells a particle that just entered c from the other side had not
-    /// seen); needs at least 3 cells per side.
-    pub fn for_each_in_layer(&self, c: &[u32; D], k: usize, up: bool, mut f: impl FnMut(usize)) {
+    /// Linear indices of the layer of neighbour cells beyond cell c along dimension k (the
+    /// cells a particle that just entered c from the other side had not seen); needs at
+    /// least 3 cells per side. The first `count` entries are valid.
+    #[inline]
+    pub fn layer_cells(&self, c: &[u32; D], k: usize, up: bool) -> ([usize; 9], usize) {
         debug_assert!(self.per_side >= 3);
-        let n = self.per_side as i64;
-        let layer = if up { 1 } else { -1 };
-        for combo in 0..3usize.pow(D as u32 - 1) {
+        let n = self.per_side;
+        let layer = if up { 1 } else { n - 1 };
+        let mut stride = 1;
+        let parts: [[usize; 3]; D] = std::array::from_fn(|d| {
+            let base = c[d] as usize;
+            let part = if d == k {
+                [(base + layer) % n * stride; 3]
+            } else {
+                [n - 1, 0, 1].map(|o| (base + o) % n * stride)
+            };
+            stride *= n;
+            part
+        });
+        let mut cells = [0; 9];
+        let count = 3usize.pow(D as u32 - 1);
+        for (combo, cell) in cells.iter_mut().enumerate().take(count) {
             let mut rest = combo;
-            let cell: [u32; D] = std::array::from_fn(|d| {
-                let offset = if d == k {
-                    layer
+            for (d, part) in parts.iter().enumerate() {
+                if d == k {
+                    *cell += part[0];
                 } else {
-                    let o = (rest % 3) as i64 - 1;
+                    *cell += part[rest % 3];
                     rest /= 3;
-                    o
-                };
-                (c[d] as i64 + offset).rem_euclid(n) as u32
-            });
-            let mut j = self.head[self.index(&cell)];
-            while j != NONE {
-                f(j as usize);
-                j = self.next[j as usize];
+                }
             }
         }
+        (cells, count)
     }
 
     /// Time until a particle at p (in its cell c) moving with v leaves the cell, the
@@ -178,5 +156,146 @@ impl<const D: usize> CellGrid<D> {
             }
         }
         best
+    }
+}
+
+/// Doubly linked cell lists over a [`Grid`].
+#[derive(Debug, Clone)]
+pub struct CellGrid<const D: usize> {
+    pub grid: Grid<D>,
+    head: Vec<u32>,
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    /// Cell coordinates of each particle.
+    pub coords: Vec<[u32; D]>,
+}
+
+impl<const D: usize> CellGrid<D> {
+    /// A grid for `n` particles in a box of side `length`, cells at least `min_width` wide.
+    pub fn new(length: f64, min_width: f64, n: usize) -> Self {
+        let grid = Grid::new(length, min_width);
+        CellGrid {
+            grid,
+            head: vec![NONE; grid.cells()],
+            next: vec![NONE; n],
+            prev: vec![NONE; n],
+            coords: vec![[0; D]; n],
+        }
+    }
+
+    /// Bytes held by the lists.
+    pub fn memory_bytes(&self) -> usize {
+        (self.head.capacity() + self.next.capacity() + self.prev.capacity()) * 4
+            + self.coords.capacity() * std::mem::size_of::<[u32; D]>()
+    }
+
+    /// The cell coordinates of a position.
+    pub fn coords_of(&self, p: &Vector<D>) -> [u32; D] {
+        self.grid.coords_of(p)
+    }
+
+    /// Puts particle i into the cell with coordinates c.
+    pub fn insert(&mut self, i: usize, c: [u32; D]) {
+        let cell = self.grid.index(&c);
+        let old = self.head[cell];
+        self.next[i] = old;
+        self.prev[i] = NONE;
+        if old != NONE {
+            self.prev[old as usize] = i as u32;
+        }
+        self.head[cell] = i as u32;
+        self.coords[i] = c;
+    }
+
+    /// Takes particle i out of its cell.
+    pub fn remove(&mut self, i: usize) {
+        let (p, n) = (self.prev[i], self.next[i]);
+        if p != NONE {
+            self.next[p as usize] = n;
+        } else {
+            let cell = self.grid.index(&self.coords[i]);
+            self.head[cell] = n;
+        }
+        if n != NONE {
+            self.prev[n as usize] = p;
+        }
+    }
+
+    /// Moves particle i one cell along dimension k (periodically).
+    pub fn shift(&mut self, i: usize, k: usize, up: bool) {
+        let c = self.grid.shifted(&self.coords[i], k, up);
+        self.remove(i);
+        self.insert(i, c);
+    }
+
+    /// Calls f for every particle in the cells adjacent to (and including) cell c.
+    pub fn for_each_neighbor(&self, c: &[u32; D], mut f: impl FnMut(usize)) {
+        let (cells, count) = self.grid.neighbor_cells(c);
+        for &cell in &cells[..count] {
+            let mut j = self.head[cell];
+            while j != NONE {
+                f(j as usize);
+                j = self.next[j as usize];
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Neighbour and layer cells agree with a brute-force periodic distance test.
+    #[test]
+    fn neighbour_cells_are_the_adjacent_ones() {
+        for per_side in [1usize, 2, 3, 4, 7] {
+            let grid = Grid::<3> {
+                per_side,
+                width: 1.0,
+            };
+            let n = per_side as i64;
+            let adjacent = |a: &[u32; 3], b: &[u32; 3]| {
+                (0..3).all(|k| {
+                    let d = (a[k] as i64 - b[k] as i64).rem_euclid(n);
+                    d <= 1 || d == n - 1
+                })
+            };
+            let all: Vec<[u32; 3]> = (0..grid.cells())
+                .map(|i| {
+                    let i = i as u32;
+                    let p = per_side as u32;
+                    [i % p, i / p % p, i / (p * p)]
+                })
+                .collect();
+            for c in &all {
+                let (cells, count) = grid.neighbor_cells(c);
+                let mut got: Vec<usize> = cells[..count].to_vec();
+                got.sort();
+                let mut want: Vec<usize> = all
+                    .iter()
+                    .filter(|b| adjacent(c, b))
+                    .map(|b| grid.index(b))
+                    .collect();
+                want.sort();
+                assert_eq!(got, want, "per_side {per_side}, cell {c:?}");
+                if per_side >= 3 {
+                    for k in 0..3 {
+                        for up in [false, true] {
+                            let (layer, count) = grid.layer_cells(c, k, up);
+                            let beyond = grid.shifted(c, k, up);
+                            let mut got: Vec<usize> = layer[..count].to_vec();
+                            got.sort();
+                            let mut want: Vec<usize> = all
+                                .iter()
+                                .filter(|b| b[k] == beyond[k] && adjacent(c, b))
+                                .map(|b| grid.index(b))
+                                .collect();
+                            want.sort();
+                            assert_eq!(got, want);
+                        }
+                    }
+                }
+            }
+        }
     }
 }

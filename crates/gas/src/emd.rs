@@ -8,35 +8,48 @@
 //! 1993). At each collision eps comes from the `Restitution` law with the normal impact
 //! speed.
 
-use crate::cells::CellGrid;
+use crate::cells::{Grid, NONE};
 use crate::queue::EventQueue;
 use crate::system::{dot, wrap, System, Vector};
 use restitution::Restitution;
 
-/// The predictions of a particle: its earliest collision (with the partner's collision
-/// count at prediction time) and the moment it leaves its cell. Keeping both lets a cell
-/// crossing look only at the newly adjacent layer of cells.
+/// Everything the engine keeps per particle, in two cache lines (D = 3). The first line
+/// is all a neighbour scan reads about a neighbour: position at `valid_at`, velocity,
+/// collision count and the link to the next particle of its cell. The second holds the
+/// particle's own predictions (earliest collision, with the partner's collision count at
+/// prediction time; the moment it leaves its cell) and its place in the cell lists.
+/// Keeping both predictions lets a cell crossing look only at the new layer of cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Next {
+#[repr(C, align(128))]
+struct Particle<const D: usize> {
+    /// Position in [0, L)^D at time `valid_at`.
+    position: Vector<D>,
+    velocity: Vector<D>,
+    valid_at: f64,
+    /// Collisions so far, modulo 2^32 (a prediction is stale once the partner's changes).
+    count: u32,
+    /// Next particle in the same cell ([`NONE`] at the end).
+    next_in_cell: u32,
     collision: f64,
-    partner: u32,
-    partner_count: u64,
     crossing: f64,
-    dim: u8,
-    up: bool,
+    partner: u32,
+    partner_count: u32,
+    prev_in_cell: u32,
+    cell: [u32; D],
+    /// Dimension and direction of the predicted cell crossing.
+    exit_dim: u8,
+    exit_up: bool,
 }
 
-impl Next {
-    const NONE: Next = Next {
-        collision: f64::INFINITY,
-        partner: u32::MAX,
-        partner_count: 0,
-        crossing: f64::INFINITY,
-        dim: 0,
-        up: false,
-    };
+impl<const D: usize> Particle<D> {
+    #[inline]
+    fn position_at(&self, t: f64) -> Vector<D> {
+        let dt = t - self.valid_at;
+        std::array::from_fn(|k| self.position[k] + self.velocity[k] * dt)
+    }
 
-    fn time(&self) -> f64 {
+    #[inline]
+    fn next_event(&self) -> f64 {
         self.collision.min(self.crossing)
     }
 }
@@ -56,15 +69,31 @@ pub struct Tally {
 
 /// The event-driven engine.
 pub struct EventDriven<const D: usize> {
+    /// Box, radii and masses; positions and velocities live in `particles` and are copied
+    /// here only when [`EventDriven::system`] is called.
     system: System<D>,
+    particles: Vec<Particle<D>>,
+    /// The contact distance if all spheres have the same radius (no radius lookups).
+    uniform_sigma: Option<f64>,
     law: Box<dyn Restitution>,
     time: f64,
-    valid_at: Vec<f64>,
-    counts: Vec<u64>,
-    next: Vec<Next>,
     queue: EventQueue,
-    cells: CellGrid<D>,
+    grid: Grid<D>,
+    /// First particle of each cell.
+    heads: Vec<u32>,
     tally: Tally,
+    tc: Option<TcModel>,
+}
+
+/// The TC model of Luding & McNamara (Granular Matter 1, 113 (1998)) against inelastic
+/// collapse: a collision is elastic if either partner has collided less than `duration`
+/// ago (a contact still "in progress"), so that no finite-time singularity of infinitely
+/// many collisions can form.
+#[derive(Debug, Clone)]
+struct TcModel {
+    duration: f64,
+    /// Time of each particle's last collision (-inf before the first).
+    last: Vec<f64>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -84,35 +113,67 @@ impl<const D: usize> EventDriven<D> {
         min_width: f64,
     ) -> Result<Self, String> {
         let n = system.len();
+        if system.velocities.len() != n || system.radii.len() != n || system.masses.len() != n {
+            return Err("positions, velocities, radii and masses differ in number".into());
+        }
         let max_diameter = 2.0 * system.radii.iter().cloned().fold(0.0, f64::max);
         if max_diameter <= 0.0 {
             return Err("particles need a positive radius".into());
         }
-        let mut cells = CellGrid::new(system.length, max_diameter.max(min_width), n);
-        if cells.per_side < 4 {
+        let grid = Grid::new(system.length, max_diameter.max(min_width));
+        if grid.per_side < 4 {
             return Err(format!(
                 "the box (side {}) must hold at least 4 cells of width {} per side",
                 system.length,
                 max_diameter.max(min_width)
             ));
         }
-        for (i, p) in system.positions.iter_mut().enumerate() {
-            for x in p.iter_mut() {
-                *x = wrap(*x, system.length);
-            }
-            cells.insert(i, cells.coords_of(p));
-        }
+        let length = system.length;
+        let particles: Vec<Particle<D>> = system
+            .positions
+            .iter()
+            .zip(&system.velocities)
+            .map(|(p, v)| Particle {
+                position: std::array::from_fn(|k| wrap(p[k], length)),
+                velocity: *v,
+                valid_at: 0.0,
+                count: 0,
+                next_in_cell: NONE,
+                collision: f64::INFINITY,
+                crossing: f64::INFINITY,
+                partner: NONE,
+                partner_count: 0,
+                prev_in_cell: NONE,
+                cell: [0; D],
+                exit_dim: 0,
+                exit_up: false,
+            })
+            .collect();
+        // The engine's copy is the only one while it runs (see `system()`).
+        system.positions = Vec::new();
+        system.velocities = Vec::new();
+        let radius = system.radii[0];
+        let uniform_sigma = system
+            .radii
+            .iter()
+            .all(|&r| r == radius)
+            .then_some(2.0 * radius);
         let mut engine = EventDriven {
             system,
+            particles,
+            uniform_sigma,
             law,
             time: 0.0,
-            valid_at: vec![0.0; n],
-            counts: vec![0; n],
-            next: vec![Next::NONE; n],
             queue: EventQueue::new(n),
-            cells,
+            grid,
+            heads: vec![NONE; grid.cells()],
             tally: Tally::default(),
+            tc: None,
         };
+        for i in 0..n {
+            let c = grid.coords_of(&engine.particles[i].position);
+            engine.insert(i, c);
+        }
         engine.check_overlaps()?;
         for i in 0..n {
             engine.predict(i);
@@ -121,15 +182,14 @@ impl<const D: usize> EventDriven<D> {
     }
 
     fn check_overlaps(&self) -> Result<(), String> {
-        for i in 0..self.system.len() {
+        for i in 0..self.particles.len() {
             let mut overlap = None;
-            self.cells.for_each_neighbor(&self.cells.coords[i], |j| {
+            let pi = self.particles[i].position_at(self.time);
+            self.for_each_neighbor(i, |j| {
                 if j > i {
-                    let d = self
-                        .system
-                        .separation(&self.system.positions[i], &self.system.positions[j]);
-                    let sigma = self.system.radii[i] + self.system.radii[j];
-                    if dot(&d, &d) < sigma * sigma * (1.0 - 1e-12) {
+                    let r = self.separation(&pi, &self.particles[j].position_at(self.time));
+                    let sigma = self.sigma(i, j);
+                    if dot(&r, &r) < sigma * sigma * (1.0 - 1e-12) {
                         overlap = Some(j);
                     }
                 }
@@ -145,18 +205,42 @@ impl<const D: usize> EventDriven<D> {
         self.time
     }
 
+    /// Switches on the TC model with contact duration `duration` (0 switches it off).
+    /// `last_collisions` restores each particle's last collision time from a snapshot;
+    /// None starts with no recent collision.
+    pub fn set_tc_model(
+        &mut self,
+        duration: f64,
+        last_collisions: Option<Vec<f64>>,
+    ) -> Result<(), String> {
+        if !(duration.is_finite() && duration >= 0.0) {
+            return Err(format!("tc = {duration}: allowed a finite number >= 0"));
+        }
+        let n = self.particles.len();
+        let last = last_collisions.unwrap_or_else(|| vec![f64::NEG_INFINITY; n]);
+        if last.len() != n {
+            return Err("snapshot: last collision times and particles differ in number".into());
+        }
+        self.tc = (duration > 0.0).then_some(TcModel { duration, last });
+        Ok(())
+    }
+
+    /// The TC model's contact duration and last collision times, if it is on.
+    pub fn tc_model(&self) -> Option<(f64, &[f64])> {
+        self.tc.as_ref().map(|tc| (tc.duration, tc.last.as_slice()))
+    }
+
     /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
-    /// calendar, cell lists).
+    /// calendar, cell lists, and the snapshot of [`EventDriven::system`] once taken).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let s = &self.system;
-        let state = s.positions.capacity() * size_of::<Vector<D>>()
-            + s.velocities.capacity() * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity() + self.valid_at.capacity())
-                * size_of::<f64>()
-            + self.counts.capacity() * size_of::<u64>()
-            + self.next.capacity() * size_of::<Next>();
-        state + self.queue.memory_bytes() + self.cells.memory_bytes()
+        let snapshot = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>();
+        let state = self.particles.capacity() * size_of::<Particle<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
+            + self.heads.capacity() * size_of::<u32>()
+            + self.tc.as_ref().map_or(0, |tc| tc.last.capacity() * 8);
+        snapshot + state + self.queue.memory_bytes()
     }
 
     pub fn tally(&self) -> Tally {
@@ -165,44 +249,69 @@ impl<const D: usize> EventDriven<D> {
 
     /// Collisions per particle so far (each collision counts for two particles).
     pub fn collisions_per_particle(&self) -> f64 {
-        2.0 * self.tally.collisions as f64 / self.system.len() as f64
+        2.0 * self.tally.collisions as f64 / self.particles.len() as f64
     }
 
-    /// The state with every position brought to the current time.
+    /// The state with every position at the current time (wrapped into the box).
     pub fn system(&mut self) -> &System<D> {
-        for i in 0..self.system.len() {
-            self.bring_to_now(i);
+        let (time, length) = (self.time, self.system.length);
+        let s = &mut self.system;
+        s.positions.clear();
+        s.velocities.clear();
+        for p in &self.particles {
+            let x = p.position_at(time);
+            s.positions.push(std::array::from_fn(|k| wrap(x[k], length)));
+            s.velocities.push(p.velocity);
         }
         &self.system
     }
 
-    fn position_at(&self, i: usize, t: f64) -> Vector<D> {
-        let dt = t - self.valid_at[i];
-        let (p, v) = (&self.system.positions[i], &self.system.velocities[i]);
-        std::array::from_fn(|k| p[k] + v[k] * dt)
+    /// The contact distance of i and j.
+    #[inline]
+    fn sigma(&self, i: usize, j: usize) -> f64 {
+        match self.uniform_sigma {
+            Some(sigma) => sigma,
+            None => self.system.radii[i] + self.system.radii[j],
+        }
+    }
+
+    /// Minimum-image separation b - a of two positions less than 1.5 L apart per
+    /// component (stored positions are in [0, L) and streamed less than a cell beyond).
+    #[inline]
+    fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+        let length = self.system.length;
+        let half = 0.5 * length;
+        std::array::from_fn(|k| {
+            let d = b[k] - a[k];
+            if d > half {
+                d - length
+            } else if d < -half {
+                d + length
+            } else {
+                d
+            }
+        })
     }
 
     fn bring_to_now(&mut self, i: usize) {
-        let p = self.position_at(i, self.time);
         let length = self.system.length;
-        self.system.positions[i] = std::array::from_fn(|k| wrap(p[k], length));
-        self.valid_at[i] = self.time;
+        let p = &mut self.particles[i];
+        let x = p.position_at(self.time);
+        p.position = std::array::from_fn(|k| wrap(x[k], length));
+        p.valid_at = self.time;
     }
 
-    /// Time from now until i and j touch, if they approach.
-    fn collision_delay(&self, i: usize, j: usize) -> Option<f64> {
-        let (pi, pj) = (
-            self.position_at(i, self.time),
-            self.position_at(j, self.time),
-        );
-        let r = self.system.separation(&pi, &pj);
-        let (vi, vj) = (&self.system.velocities[i], &self.system.velocities[j]);
-        let v: Vector<D> = std::array::from_fn(|k| vj[k] - vi[k]);
+    /// Time from now until a sphere at `pi` with velocity `vi` touches j (contact
+    /// distance `sigma`), if they approach.
+    #[inline]
+    fn collision_delay(&self, pi: &Vector<D>, vi: &Vector<D>, j: usize, sigma: f64) -> Option<f64> {
+        let pj = &self.particles[j];
+        let r = self.separation(pi, &pj.position_at(self.time));
+        let v: Vector<D> = std::array::from_fn(|k| pj.velocity[k] - vi[k]);
         let b = dot(&r, &v);
         if b >= 0.0 {
             return None;
         }
-        let sigma = self.system.radii[i] + self.system.radii[j];
         let gap = dot(&r, &r) - sigma * sigma;
         if gap <= 0.0 {
             return Some(0.0);
@@ -215,64 +324,123 @@ impl<const D: usize> EventDriven<D> {
 
     /// Predicts and schedules the events of particle i from scratch.
     fn predict(&mut self, i: usize) {
-        self.next[i].collision = f64::INFINITY;
+        self.particles[i].collision = f64::INFINITY;
         self.predict_crossing(i);
-        let c = self.cells.coords[i];
-        let mut best = (f64::INFINITY, 0, 0);
-        self.cells
-            .for_each_neighbor(&c, |j| self.consider(i, j, &mut best));
+        let mut best = Best::NONE;
+        let (pi, vi) = self.now(i);
+        self.for_each_neighbor(i, |j| self.consider(i, &pi, &vi, j, &mut best));
         self.keep_if_earlier(i, best);
     }
 
     /// After i entered a new cell: only the layer of cells beyond it is new to i.
     fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
-        if self.cells.per_side < 3 {
-            return self.predict(i);
-        }
         self.predict_crossing(i);
-        let c = self.cells.coords[i];
-        let mut best = (f64::INFINITY, 0, 0);
-        self.cells
-            .for_each_in_layer(&c, dim, up, |j| self.consider(i, j, &mut best));
+        let mut best = Best::NONE;
+        let (pi, vi) = self.now(i);
+        let (cells, count) = self.grid.layer_cells(&self.particles[i].cell, dim, up);
+        for &cell in &cells[..count] {
+            self.for_each_in_cell(cell, |j| self.consider(i, &pi, &vi, j, &mut best));
+        }
         self.keep_if_earlier(i, best);
     }
 
+    /// Calls f for every particle in the cell with linear index `cell`.
+    #[inline]
+    fn for_each_in_cell(&self, cell: usize, mut f: impl FnMut(usize)) {
+        let mut j = self.heads[cell];
+        while j != NONE {
+            f(j as usize);
+            j = self.particles[j as usize].next_in_cell;
+        }
+    }
+
+    /// Calls f for every particle in the cell of i and the adjacent cells (i included).
+    #[inline]
+    fn for_each_neighbor(&self, i: usize, mut f: impl FnMut(usize)) {
+        let (cells, count) = self.grid.neighbor_cells(&self.particles[i].cell);
+        for &cell in &cells[..count] {
+            self.for_each_in_cell(cell, &mut f);
+        }
+    }
+
+    /// Puts particle i into the cell with coordinates c.
+    fn insert(&mut self, i: usize, c: [u32; D]) {
+        let cell = self.grid.index(&c);
+        let old = self.heads[cell];
+        if old != NONE {
+            self.particles[old as usize].prev_in_cell = i as u32;
+        }
+        let p = &mut self.particles[i];
+        p.next_in_cell = old;
+        p.prev_in_cell = NONE;
+        p.cell = c;
+        self.heads[cell] = i as u32;
+    }
+
+    /// Takes particle i out of its cell.
+    fn remove(&mut self, i: usize) {
+        let Particle {
+            prev_in_cell: prev,
+            next_in_cell: next,
+            cell,
+            ..
+        } = self.particles[i];
+        if prev != NONE {
+            self.particles[prev as usize].next_in_cell = next;
+        } else {
+            self.heads[self.grid.index(&cell)] = next;
+        }
+        if next != NONE {
+            self.particles[next as usize].prev_in_cell = prev;
+        }
+    }
+
+    /// Position and velocity of i now.
+    #[inline]
+    fn now(&self, i: usize) -> (Vector<D>, Vector<D>) {
+        let p = &self.particles[i];
+        (p.position_at(self.time), p.velocity)
+    }
+
     fn predict_crossing(&mut self, i: usize) {
-        let p = self.position_at(i, self.time);
-        let exit = self
-            .cells
-            .exit(&self.cells.coords[i], &p, &self.system.velocities[i]);
-        let next = &mut self.next[i];
+        let (p, v) = self.now(i);
+        let exit = self.grid.exit(&self.particles[i].cell, &p, &v);
+        let next = &mut self.particles[i];
         match exit {
             Some((dt, dim, up)) => {
                 next.crossing = self.time + dt;
-                next.dim = dim as u8;
-                next.up = up;
+                next.exit_dim = dim as u8;
+                next.exit_up = up;
             }
             None => next.crossing = f64::INFINITY,
         }
     }
 
-    /// Updates `best` = (time, partner, partner count) with the collision of i and j.
-    fn consider(&self, i: usize, j: usize, best: &mut (f64, usize, u64)) {
+    /// Updates `best` with the collision of i (now at `pi` with velocity `vi`) and j.
+    #[inline]
+    fn consider(&self, i: usize, pi: &Vector<D>, vi: &Vector<D>, j: usize, best: &mut Best) {
         if j != i {
-            if let Some(dt) = self.collision_delay(i, j) {
-                if self.time + dt < best.0 {
-                    *best = (self.time + dt, j, self.counts[j]);
+            if let Some(dt) = self.collision_delay(pi, vi, j, self.sigma(i, j)) {
+                if self.time + dt < best.time {
+                    *best = Best {
+                        time: self.time + dt,
+                        partner: j as u32,
+                        partner_count: self.particles[j].count,
+                    };
                 }
             }
         }
     }
 
     /// Stores the collision `best` if it is earlier than the one i has, and reschedules i.
-    fn keep_if_earlier(&mut self, i: usize, best: (f64, usize, u64)) {
-        let next = &mut self.next[i];
-        if best.0 < next.collision {
-            next.collision = best.0;
-            next.partner = best.1 as u32;
-            next.partner_count = best.2;
+    fn keep_if_earlier(&mut self, i: usize, best: Best) {
+        let next = &mut self.particles[i];
+        if best.time < next.collision {
+            next.collision = best.time;
+            next.partner = best.partner;
+            next.partner_count = best.partner_count;
         }
-        let t = next.time();
+        let t = next.next_event();
         self.queue.update(i, t);
     }
 
@@ -280,15 +448,16 @@ impl<const D: usize> EventDriven<D> {
     /// every event afresh: the state is then a function of (positions, velocities, time)
     /// alone, so a run restored from a snapshot taken here continues bit for bit.
     pub fn synchronize(&mut self) {
-        let n = self.system.len();
+        let n = self.particles.len();
+        self.heads.iter_mut().for_each(|h| *h = NONE);
         for i in 0..n {
             self.bring_to_now(i);
-            self.cells.remove(i);
-        }
-        for i in 0..n {
-            let c = self.cells.coords_of(&self.system.positions[i]);
-            self.cells.insert(i, c);
-            self.next[i] = Next::NONE;
+            let p = &mut self.particles[i];
+            p.collision = f64::INFINITY;
+            p.crossing = f64::INFINITY;
+            p.partner = NONE;
+            let c = self.grid.coords_of(&p.position);
+            self.insert(i, c);
         }
         for i in 0..n {
             self.predict(i);
@@ -308,25 +477,29 @@ impl<const D: usize> EventDriven<D> {
         }
         let mut engine = Self::new(system, law)?;
         engine.time = time;
-        engine.valid_at.iter_mut().for_each(|t| *t = time);
-        engine.counts = counts;
+        for (p, count) in engine.particles.iter_mut().zip(counts) {
+            p.valid_at = time;
+            // Counts are kept modulo 2^32 (see `Particle::count`).
+            p.count = count as u32;
+        }
         engine.tally = tally;
         engine.synchronize();
         Ok(engine)
     }
 
-    /// Collision counts per particle (for snapshots).
-    pub fn counts(&self) -> &[u64] {
-        &self.counts
+    /// Collision counts per particle modulo 2^32 (for snapshots).
+    pub fn counts(&self) -> Vec<u64> {
+        self.particles.iter().map(|p| p.count as u64).collect()
     }
 
     /// A pair whose next collision is earlier than both particles' scheduled events
     /// (which the calendar must never allow), with that collision time. O(N^2): for tests.
     pub fn missed_collision(&self) -> Option<(usize, usize, f64)> {
-        let n = self.system.len();
+        let n = self.particles.len();
         for i in 0..n {
+            let (pi, vi) = self.now(i);
             for j in i + 1..n {
-                if let Some(dt) = self.collision_delay(i, j) {
+                if let Some(dt) = self.collision_delay(&pi, &vi, j, self.sigma(i, j)) {
                     let t = self.time + dt;
                     let scheduled = self.queue.time_of(i).min(self.queue.time_of(j));
                     if t < scheduled * (1.0 - 1e-12) - 1e-12 {
@@ -348,14 +521,16 @@ impl<const D: usize> EventDriven<D> {
         }
         self.time = t;
         self.tally.events += 1;
-        let next = self.next[i];
+        let next = self.particles[i];
         if next.crossing <= next.collision {
+            let (dim, up) = (next.exit_dim as usize, next.exit_up);
             self.bring_to_now(i);
-            self.cells.shift(i, next.dim as usize, next.up);
-            self.predict_after_crossing(i, next.dim as usize, next.up);
+            self.remove(i);
+            self.insert(i, self.grid.shifted(&next.cell, dim, up));
+            self.predict_after_crossing(i, dim, up);
         } else {
             let j = next.partner as usize;
-            if self.counts[j] == next.partner_count {
+            if self.particles[j].count == next.partner_count {
                 self.collide(i, j);
                 self.predict(i);
                 self.predict(j);
@@ -370,22 +545,34 @@ impl<const D: usize> EventDriven<D> {
     fn collide(&mut self, i: usize, j: usize) {
         self.bring_to_now(i);
         self.bring_to_now(j);
-        let s = &mut self.system;
-        let r = s.separation(&s.positions[i], &s.positions[j]);
+        let (a, b) = (self.particles[i], self.particles[j]);
+        let r = self.separation(&a.position, &b.position);
         let distance = dot(&r, &r).sqrt();
         let n: Vector<D> = std::array::from_fn(|k| r[k] / distance);
-        let (vi, vj) = (s.velocities[i], s.velocities[j]);
-        let approach = -(0..D).map(|k| (vj[k] - vi[k]) * n[k]).sum::<f64>();
-        let eps = self.law.eps(approach.max(0.0));
-        let (mi, mj) = (s.masses[i], s.masses[j]);
+        let approach = -(0..D)
+            .map(|k| (b.velocity[k] - a.velocity[k]) * n[k])
+            .sum::<f64>();
+        let mut eps = self.law.eps(approach.max(0.0));
+        if let Some(tc) = &mut self.tc {
+            if self.time - tc.last[i] < tc.duration || self.time - tc.last[j] < tc.duration {
+                eps = 1.0;
+            }
+            tc.last[i] = self.time;
+            tc.last[j] = self.time;
+        }
+        let (mi, mj) = (self.system.masses[i], self.system.masses[j]);
         let reduced = mi * mj / (mi + mj);
         let impulse = (1.0 + eps) * reduced * approach;
+        let (pa, pb) = (&mut self.particles[i], impulse / mi);
         for (k, nk) in n.iter().enumerate() {
-            s.velocities[i][k] -= impulse / mi * nk;
-            s.velocities[j][k] += impulse / mj * nk;
+            pa.velocity[k] -= pb * nk;
         }
-        self.counts[i] += 1;
-        self.counts[j] += 1;
+        pa.count = pa.count.wrapping_add(1);
+        let pj = &mut self.particles[j];
+        for (k, nk) in n.iter().enumerate() {
+            pj.velocity[k] += impulse / mj * nk;
+        }
+        pj.count = pj.count.wrapping_add(1);
         self.tally.collisions += 1;
         self.tally.energy_lost += 0.5 * reduced * (1.0 - eps * eps) * approach * approach;
         self.tally.virial += impulse * distance;
@@ -406,4 +593,20 @@ impl<const D: usize> EventDriven<D> {
         }
         self.time = self.time.max(t);
     }
+}
+
+/// The earliest collision found so far while scanning neighbours.
+#[derive(Debug, Clone, Copy)]
+struct Best {
+    time: f64,
+    partner: u32,
+    partner_count: u32,
+}
+
+impl Best {
+    const NONE: Best = Best {
+        time: f64::INFINITY,
+        partner: u32::MAX,
+        partner_count: 0,
+    };
 }

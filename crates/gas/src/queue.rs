@@ -1,92 +1,118 @@
-//! The event calendar: an indexed binary min-heap with one entry per particle (its earliest
+//! The event calendar: an indexed min-heap with one entry per particle (its earliest
 //! predicted event), as in Marín, Risso & Cordero, J. Comput. Phys. 109, 306 (1993).
 //! Memory is O(N) whatever the number of predictions; an update moves one entry.
+//!
+//! The heap is 4-ary and stores each key beside its particle: the four children of a node
+//! share one cache line, and the tree is half as deep as a binary one. Measured against
+//! the binary heap with keys in a side array (`haff bench emd`, N = 1e5), see
+//! docs/event-driven.md.
+
+/// A heap entry: event time and particle.
+#[derive(Debug, Clone, Copy)]
+struct Entry {
+    time: f64,
+    particle: u32,
+}
+
+const ARITY: usize = 4;
 
 /// Min-heap of (time, particle) with O(log N) update of any particle's time.
 #[derive(Debug, Clone)]
 pub struct EventQueue {
-    heap: Vec<u32>,
+    heap: Vec<Entry>,
     slot: Vec<u32>,
-    time: Vec<f64>,
 }
 
 impl EventQueue {
     /// All `n` particles at time +infinity.
     pub fn new(n: usize) -> Self {
         EventQueue {
-            heap: (0..n as u32).collect(),
+            heap: (0..n as u32)
+                .map(|particle| Entry {
+                    time: f64::INFINITY,
+                    particle,
+                })
+                .collect(),
             slot: (0..n as u32).collect(),
-            time: vec![f64::INFINITY; n],
         }
     }
 
     /// The particle with the earliest event and its time.
     #[inline]
     pub fn peek(&self) -> Option<(usize, f64)> {
-        self.heap
-            .first()
-            .map(|&i| (i as usize, self.time[i as usize]))
+        self.heap.first().map(|e| (e.particle as usize, e.time))
     }
 
     /// Bytes held by the heap.
     pub fn memory_bytes(&self) -> usize {
-        (self.heap.capacity() + self.slot.capacity()) * 4 + self.time.capacity() * 8
+        self.heap.capacity() * std::mem::size_of::<Entry>() + self.slot.capacity() * 4
     }
 
     pub fn time_of(&self, i: usize) -> f64 {
-        self.time[i]
+        self.heap[self.slot[i] as usize].time
     }
 
     /// Sets the event time of particle i.
+    #[inline]
     pub fn update(&mut self, i: usize, t: f64) {
-        let old = self.time[i];
-        self.time[i] = t;
         let s = self.slot[i] as usize;
+        let old = self.heap[s].time;
+        let entry = Entry {
+            time: t,
+            particle: i as u32,
+        };
         if t < old {
-            self.sift_up(s);
+            self.sift_up(s, entry);
         } else {
-            self.sift_down(s);
+            self.sift_down(s, entry);
         }
     }
 
-    fn key(&self, s: usize) -> f64 {
-        self.time[self.heap[s] as usize]
-    }
-
-    fn swap(&mut self, a: usize, b: usize) {
-        self.heap.swap(a, b);
-        self.slot[self.heap[a] as usize] = a as u32;
-        self.slot[self.heap[b] as usize] = b as u32;
-    }
-
-    fn sift_up(&mut self, mut s: usize) {
+    /// Moves the hole at s up until `entry` fits, then fills it.
+    fn sift_up(&mut self, mut s: usize, entry: Entry) {
         while s > 0 {
-            let parent = (s - 1) / 2;
-            if self.key(s) >= self.key(parent) {
+            let parent = (s - 1) / ARITY;
+            let p = self.heap[parent];
+            if entry.time >= p.time {
                 break;
             }
-            self.swap(s, parent);
+            self.place(s, p);
             s = parent;
         }
+        self.place(s, entry);
     }
 
-    fn sift_down(&mut self, mut s: usize) {
+    /// Moves the hole at s down until `entry` fits, then fills it.
+    fn sift_down(&mut self, mut s: usize, entry: Entry) {
         let n = self.heap.len();
         loop {
-            let (l, r) = (2 * s + 1, 2 * s + 2);
-            let mut smallest = s;
-            if l < n && self.key(l) < self.key(smallest) {
-                smallest = l;
-            }
-            if r < n && self.key(r) < self.key(smallest) {
-                smallest = r;
-            }
-            if smallest == s {
+            let first = ARITY * s + 1;
+            if first >= n {
                 break;
             }
-            self.swap(s, smallest);
-            s = smallest;
+            let last = (first + ARITY).min(n);
+            let mut child = first;
+            let mut time = self.heap[first].time;
+            for c in first + 1..last {
+                let t = self.heap[c].time;
+                if t < time {
+                    child = c;
+                    time = t;
+                }
+            }
+            if time >= entry.time {
+                break;
+            }
+            self.place(s, self.heap[child]);
+            s = child;
         }
+        self.place(s, entry);
+    }
+
+    #[inline]
+    fn place(&mut self, s: usize, entry: Entry) {
+        self.heap[s] = entry;
+        self.slot[entry.particle as usize] = s as u32;
     }
 }
 
@@ -96,19 +122,22 @@ mod tests {
 
     #[test]
     fn orders_random_updates() {
-        let mut q = EventQueue::new(100);
-        let mut x = 12345u64;
-        let mut times = vec![f64::INFINITY; 100];
-        for _ in 0..2000 {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let i = (x >> 33) as usize % 100;
-            let t = (x >> 11) as f64 / (1u64 << 53) as f64;
-            q.update(i, t);
-            times[i] = t;
-            let min = times.iter().cloned().fold(f64::INFINITY, f64::min);
-            assert_eq!(q.peek().unwrap().1, min);
+        for n in [1, 2, 5, 100] {
+            let mut q = EventQueue::new(n);
+            let mut x = 12345u64;
+            let mut times = vec![f64::INFINITY; n];
+            for _ in 0..3000 {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let i = (x >> 33) as usize % n;
+                let t = (x >> 11) as f64 / (1u64 << 53) as f64;
+                q.update(i, t);
+                times[i] = t;
+                let min = times.iter().cloned().fold(f64::INFINITY, f64::min);
+                assert_eq!(q.peek().unwrap().1, min);
+                assert!((0..n).all(|k| q.time_of(k) == times[k]));
+            }
         }
     }
 }
