@@ -140,6 +140,12 @@ pub struct BenchEmdArgs {
     /// Timed repetitions; the median is reported.
     #[arg(long, default_value = "3", allow_hyphen_values = true)]
     pub repeats: String,
+    /// Event calendar: heap, buckets, or both (repeats interleaved, for a fair comparison).
+    #[arg(long, default_value = "heap")]
+    pub calendar: String,
+    /// Minimum cell width in diameters (>= 1).
+    #[arg(long, default_value = "1", allow_hyphen_values = true)]
+    pub cell_width: String,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,

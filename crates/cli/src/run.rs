@@ -9,6 +9,9 @@
 //! packing_fraction = 0.05  # 0 < phi <= 0.45 (3D), 0.7 (2D), 0.9 (1D)
 //! diameter = 1.0
 //! mass = 1.0
+//! # or, instead of diameter and mass, a mixture (number fractions, normalized):
+//! # species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 },
+//! #            { diameter = 1.4, mass = 2.744, fraction = 0.5 }]
 //! temperature = 1.0        # initial T = m <v^2> / d
 //! seed = 1
 //! [collision]
@@ -16,24 +19,45 @@
 //! restitution = 0.9        # constant: 0 <= eps <= 1
 //! # dashpot: damping_ratio = R, criterion = "improved" | "naive"
 //! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K"
+//! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
 //! [run]
 //! engine = "event-driven"
 //! collisions_per_particle = 500   # or end_time = ...
 //! samples = 200
 //! spacing = "log"          # log | linear
+//! histogram_at = [0.0, 50.0, 500.0]  # velocity histograms (unit of the stop criterion)
+//! histogram_bins = 60      # 4 ..= 10000
 //! ```
 //!
-//! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`),
-//! `DIR/summary.json` and `DIR/temperature.png` (T(t), log-log, with Haff's law for a
-//! constant eps), with a progress bar (events/s) on a terminal. With
-//! `--checkpoint-every K` the state is saved every K samples to `DIR/checkpoint.json`, and
+//! `system.species` replaces `diameter` and `mass` (giving both is an error): each species
+//! has a diameter and a mass (finite, > 0) and a fraction (> 0) of the particles; the
+//! counts are the normalized fractions times N, rounded so that they sum to N (every
+//! species needs at least one particle). The box holds the total sphere volume at the
+//! packing fraction; every species starts Maxwellian at `temperature` (the total exactly);
+//! above phi = 0.3 the initial lattice needs a spacing of at least the largest diameter.
+//! `collision.tc` (finite, >= 0) is the contact duration of the TC model of Luding &
+//! McNamara against inelastic collapse. `run.histogram_at` lists values in [0, end] of
+//! the stop criterion (collisions per particle or time); the run stops exactly there as at
+//! a sample target.
+//!
+//! Writes `DIR/timeseries.csv` (header `time,collisions_per_particle,temperature,a2,...`;
+//! for a mixture a2 weights c^2 by the mass), `DIR/summary.json` and
+//! `DIR/temperature.png` (T(t), log-log, with Haff's law for a constant eps), with a
+//! progress bar (events/s) on a terminal. With `run.histogram_at`, also
+//! `DIR/velocity_histograms.csv` (header
+//! `target,time,collisions_per_particle,c,density,maxwellian`, one row per bin): the
+//! histogram of the scaled peculiar velocity components c = (v_k - <v>_k) / sqrt(2 T / m_i)
+//! on [-5, 5], normalized by the number of components N d (so it integrates to the fraction
+//! inside the range), next to the Maxwellian exp(-c^2) / sqrt(pi). With
+//! `--checkpoint-every K` the state is saved every K samples to `DIR/checkpoint.json` (with
+//! the TC model's last collision times and the histograms so far), and
 //! `haff run --resume DIR` continues from it: the engine is synchronized at every check-point
 //! (all particles brought to the same time, every event predicted afresh), so a resumed
 //! run repeats the uninterrupted one with the same settings bit for bit.
 
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
-use gas::observe::{sonine_a2, temperature};
+use gas::observe::{sonine_a2, temperature, velocity_histogram};
 use gas::{init, EventDriven};
 use restitution::dashpot::DashpotCriterion;
 use restitution::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
@@ -57,14 +81,28 @@ struct SystemSection {
     dimension: u32,
     particles: usize,
     packing_fraction: f64,
-    #[serde(default = "one")]
-    diameter: f64,
-    #[serde(default = "one")]
-    mass: f64,
+    /// 1.0 unless `species` is given (filled in by [`normalize`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    diameter: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
+    /// A mixture instead of `diameter` and `mass`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    species: Option<Vec<SpeciesEntry>>,
     #[serde(default = "one")]
     temperature: f64,
     #[serde(default = "seed")]
     seed: u64,
+}
+
+/// One entry of `system.species`.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct SpeciesEntry {
+    diameter: f64,
+    mass: f64,
+    /// Number fraction (normalized over the species).
+    fraction: f64,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -76,6 +114,9 @@ struct CollisionSection {
     criterion: Option<String>,
     beta: Option<f64>,
     form: Option<String>,
+    /// Contact duration of the TC model (0 or absent: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tc: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -89,6 +130,27 @@ struct RunSection {
     samples: usize,
     #[serde(default = "log")]
     spacing: String,
+    /// Where to write velocity histograms (unit of the stop criterion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    histogram_at: Option<Vec<f64>>,
+    /// Bins of the velocity histograms (default [`HISTOGRAM_BINS`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    histogram_bins: Option<usize>,
+}
+
+/// Default number of bins of a velocity histogram.
+const HISTOGRAM_BINS: usize = 60;
+/// Velocity histograms cover the scaled components -C_MAX <= c < C_MAX.
+const C_MAX: f64 = 5.0;
+
+/// The defaults that depend on other keys: diameter = mass = 1 without species (so that the
+/// parameters in summary.json name them as before).
+fn normalize(file: &mut RunFile) {
+    let s = &mut file.system;
+    if s.species.is_none() {
+        s.diameter.get_or_insert(1.0);
+        s.mass.get_or_insert(1.0);
+    }
 }
 
 fn three() -> u32 {
@@ -148,9 +210,39 @@ fn validate(file: &RunFile) -> CliResult<Stop> {
             &allowed,
         ));
     }
-    positive("system.diameter", s.diameter)?;
-    positive("system.mass", s.mass)?;
+    match &s.species {
+        None => {
+            positive("system.diameter", s.diameter.unwrap_or(1.0))?;
+            positive("system.mass", s.mass.unwrap_or(1.0))?;
+        }
+        Some(_) if s.diameter.is_some() || s.mass.is_some() => {
+            return Err(CliError::argument(
+                "system.species",
+                "give either system.species or system.diameter/system.mass, not both",
+            ));
+        }
+        Some(species) => {
+            if species.is_empty() {
+                return Err(CliError::argument(
+                    "system.species",
+                    "give at least one species",
+                ));
+            }
+            for (k, x) in species.iter().enumerate() {
+                positive(&format!("system.species[{k}].diameter"), x.diameter)?;
+                positive(&format!("system.species[{k}].mass"), x.mass)?;
+                positive(&format!("system.species[{k}].fraction"), x.fraction)?;
+            }
+            init::species_counts(s.particles, &to_species(species))
+                .map_err(|e| CliError::argument("system.species", e))?;
+        }
+    }
     positive("system.temperature", s.temperature)?;
+    if let Some(tc) = file.collision.tc {
+        if !(tc.is_finite() && tc >= 0.0) {
+            return Err(bad_key("collision.tc", tc, "a finite number >= 0 (0: off)"));
+        }
+    }
     let r = &file.run;
     if r.engine != "event-driven" {
         let allowed = "event-driven (dsmc comes with issue 5)";
@@ -168,17 +260,60 @@ fn validate(file: &RunFile) -> CliResult<Stop> {
             format!("'{}': allowed: log, linear", r.spacing),
         ));
     }
-    match (r.collisions_per_particle, r.end_time) {
-        (Some(c), None) => Ok(Stop::Collisions(positive(
-            "run.collisions_per_particle",
-            c,
-        )?)),
-        (None, Some(t)) => Ok(Stop::Time(positive("run.end_time", t)?)),
-        _ => Err(CliError::argument(
-            "run.collisions_per_particle",
-            "give exactly one of run.collisions_per_particle and run.end_time",
-        )),
+    let stop = match (r.collisions_per_particle, r.end_time) {
+        (Some(c), None) => Stop::Collisions(positive("run.collisions_per_particle", c)?),
+        (None, Some(t)) => Stop::Time(positive("run.end_time", t)?),
+        _ => {
+            return Err(CliError::argument(
+                "run.collisions_per_particle",
+                "give exactly one of run.collisions_per_particle and run.end_time",
+            ))
+        }
+    };
+    if let Some(bins) = r.histogram_bins {
+        if !(4..=10_000).contains(&bins) {
+            return Err(bad_key("run.histogram_bins", bins, "4 <= bins <= 10000"));
+        }
     }
+    if let Some(at) = &r.histogram_at {
+        let (end, unit) = match stop {
+            Stop::Collisions(c) => (c, "run.collisions_per_particle"),
+            Stop::Time(t) => (t, "run.end_time"),
+        };
+        if at.len() > 10_000 {
+            return Err(bad_key(
+                "run.histogram_at",
+                format!("a list of {}", at.len()),
+                "at most 10000 values",
+            ));
+        }
+        for &x in at {
+            if !(0.0..=end).contains(&x) {
+                let allowed = format!("0 <= value <= {end} (the end of the run, {unit})");
+                return Err(bad_key("run.histogram_at", x, &allowed));
+            }
+        }
+        let mut sorted = at.clone();
+        sorted.sort_by(f64::total_cmp);
+        if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+            return Err(CliError::argument(
+                "run.histogram_at",
+                format!("{} appears twice", w[0]),
+            ));
+        }
+    }
+    Ok(stop)
+}
+
+fn to_species(entries: &[SpeciesEntry]) -> Vec<init::Species> {
+    entries
+        .iter()
+        .map(|x| init::Species {
+            diameter: x.diameter,
+            mass: x.mass,
+            fraction: x.fraction,
+        })
+        .collect()
 }
 
 /// The collision law of the `[collision]` section.
@@ -245,6 +380,16 @@ struct Sample {
     events: u64,
 }
 
+/// A velocity histogram taken at one of `run.histogram_at`.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct Histogram {
+    target: f64,
+    time: f64,
+    collisions_per_particle: f64,
+    /// (bin centre, density).
+    bins: Vec<(f64, f64)>,
+}
+
 /// The state of a run at a sample boundary (`DIR/checkpoint.json`).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct Checkpoint {
@@ -266,6 +411,13 @@ struct Checkpoint {
     last_virial: (f64, f64),
     /// Check-point interval of the run (reused on resume).
     every: Option<usize>,
+    /// TC model: each particle's last collision time (null before its first); absent
+    /// without the TC model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tc_last: Option<Vec<Option<f64>>>,
+    /// Velocity histograms taken so far.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    histograms: Vec<Histogram>,
 }
 
 /// `haff run`.
@@ -299,7 +451,9 @@ pub fn run(args: &RunArgs) -> CliResult {
             ))
         }
     };
+    let mut file = file;
     let stop = validate(&file)?;
+    normalize(&mut file);
     let law = build_law(&file.collision)?;
     let every = match &args.checkpoint_every {
         Some(text) => Some(crate::output::parse_count(
@@ -329,13 +483,21 @@ pub fn run(args: &RunArgs) -> CliResult {
         stop_after,
         out: &out,
     };
-    let (samples, tally) = match file.system.dimension {
+    let (samples, histograms, tally) = match file.system.dimension {
         1 => simulate::<1>(&context, law, resume)?,
         2 => simulate::<2>(&context, law, resume)?,
         _ => simulate::<3>(&context, law, resume)?,
     };
     let wall = start.elapsed().as_secs_f64();
     write_timeseries(&out.join("timeseries.csv"), &samples)?;
+    if file
+        .run
+        .histogram_at
+        .as_ref()
+        .is_some_and(|at| !at.is_empty())
+    {
+        write_histograms(&out.join("velocity_histograms.csv"), &histograms)?;
+    }
     plot_temperature(&out.join("temperature.png"), &file, &samples)?;
     let summary = serde_json::json!({
         "parameters": file,
@@ -379,6 +541,7 @@ fn targets(end: f64, count: usize, log: bool) -> Vec<f64> {
             let x = k as f64 / (count - 1) as f64;
             match (k, log) {
                 (0, _) => 0.0,
+                (_, true) if k == count - 1 => end,
                 (_, true) => {
                     first * (end / first).powf((k as f64 - 1.0) / (count - 2).max(1) as f64)
                 }
@@ -386,6 +549,47 @@ fn targets(end: f64, count: usize, log: bool) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+/// A point where the run stops to observe: a row of timeseries.csv, a velocity histogram
+/// or both.
+#[derive(Debug, Clone, Copy)]
+struct Target {
+    /// Collisions per particle or time.
+    value: f64,
+    /// Index of the sample taken here.
+    sample: Option<usize>,
+    /// Whether a velocity histogram is taken here.
+    histogram: bool,
+}
+
+/// The sample targets and the histogram targets merged in order (a histogram at a sample
+/// target is taken at that stop).
+fn schedule(samples: &[f64], histograms: &[f64]) -> Vec<Target> {
+    let mut histograms = histograms.to_vec();
+    histograms.sort_by(f64::total_cmp);
+    let mut h = histograms.into_iter().peekable();
+    let mut out = Vec::with_capacity(samples.len() + h.len());
+    for (k, &value) in samples.iter().enumerate() {
+        while let Some(x) = h.next_if(|&x| x < value) {
+            out.push(Target {
+                value: x,
+                sample: None,
+                histogram: true,
+            });
+        }
+        out.push(Target {
+            value,
+            sample: Some(k),
+            histogram: h.next_if(|&x| x == value).is_some(),
+        });
+    }
+    out.extend(h.map(|value| Target {
+        value,
+        sample: None,
+        histogram: true,
+    }));
+    out
 }
 
 /// What the sampling loop needs besides the engine.
@@ -407,18 +611,27 @@ fn start_engine<const D: usize>(
 ) -> CliResult<EventDriven<D>> {
     let s = &file.system;
     let fail = |e: String| CliError::argument("system", e);
-    match resume {
+    let mut engine = match resume {
         None => {
-            let system = init::monodisperse::<D>(
-                s.particles,
-                s.packing_fraction,
-                s.diameter,
-                s.mass,
-                s.temperature,
-                s.seed,
-            )
+            let system = match &s.species {
+                None => init::monodisperse::<D>(
+                    s.particles,
+                    s.packing_fraction,
+                    s.diameter.unwrap_or(1.0),
+                    s.mass.unwrap_or(1.0),
+                    s.temperature,
+                    s.seed,
+                ),
+                Some(species) => init::polydisperse::<D>(
+                    s.particles,
+                    s.packing_fraction,
+                    &to_species(species),
+                    s.temperature,
+                    s.seed,
+                ),
+            }
             .map_err(fail)?;
-            EventDriven::new(system, law).map_err(fail)
+            EventDriven::new(system, law).map_err(fail)?
         }
         Some(c) => {
             let vector = |v: &Vec<f64>| -> CliResult<[f64; D]> {
@@ -439,19 +652,38 @@ fn start_engine<const D: usize>(
                 energy_lost: c.energy_lost,
                 virial: c.virial,
             };
-            EventDriven::restore(system, law, c.time, c.counts.clone(), tally).map_err(fail)
+            EventDriven::restore(system, law, c.time, c.counts.clone(), tally).map_err(fail)?
         }
+    };
+    if let Some(tc) = file.collision.tc {
+        // -inf (no collision yet) is stored as null: JSON has no infinities.
+        let last = resume
+            .as_ref()
+            .and_then(|c| c.tc_last.as_ref())
+            .map(|last| {
+                last.iter()
+                    .map(|t| t.unwrap_or(f64::NEG_INFINITY))
+                    .collect()
+            });
+        engine
+            .set_tc_model(tc, last)
+            .map_err(|e| CliError::argument("collision.tc", e))?;
     }
+    Ok(engine)
 }
 
 fn write_checkpoint<const D: usize>(
     context: &RunContext,
     engine: &mut EventDriven<D>,
     samples: &[Sample],
+    histograms: &[Histogram],
     last_virial: (f64, f64),
 ) -> CliResult {
     engine.synchronize();
     let (time, tally, counts) = (engine.time(), engine.tally(), engine.counts().to_vec());
+    let tc_last = engine
+        .tc_model()
+        .map(|(_, last)| last.iter().map(|&t| t.is_finite().then_some(t)).collect());
     let system = engine.system();
     let checkpoint = Checkpoint {
         file: context.file.clone(),
@@ -469,6 +701,8 @@ fn write_checkpoint<const D: usize>(
         virial: tally.virial,
         last_virial,
         every: context.every,
+        tc_last,
+        histograms: histograms.to_vec(),
     };
     // Write then rename, so that an interrupted write never destroys the last check-point.
     let path = context.out.join("checkpoint.json");
@@ -485,7 +719,7 @@ fn simulate<const D: usize>(
     context: &RunContext,
     law: Box<dyn Restitution>,
     resume: Option<Checkpoint>,
-) -> CliResult<(Vec<Sample>, gas::emd::Tally)> {
+) -> CliResult<(Vec<Sample>, Vec<Histogram>, gas::emd::Tally)> {
     let file = context.file;
     let mut engine = start_engine::<D>(file, law, &resume)?;
     let n = file.system.particles as f64;
@@ -494,10 +728,29 @@ fn simulate<const D: usize>(
         Stop::Collisions(c) => (c, false),
         Stop::Time(t) => (t, true),
     };
-    let (mut samples, mut last) = match resume {
-        Some(c) => (c.samples, c.last_virial),
-        None => (Vec::new(), (0.0, 0.0)),
+    let bins = file.run.histogram_bins.unwrap_or(HISTOGRAM_BINS);
+    let plan = schedule(
+        &targets(end, file.run.samples, log),
+        file.run.histogram_at.as_deref().unwrap_or(&[]),
+    );
+    let (mut samples, mut histograms, mut last) = match resume {
+        Some(c) => (c.samples, c.histograms, c.last_virial),
+        None => (Vec::new(), Vec::new(), (0.0, 0.0)),
     };
+    // A check-point is written right after a sample: continue after that sample's stop.
+    let done = match samples.len() {
+        0 => 0,
+        k => plan
+            .iter()
+            .position(|target| target.sample == Some(k - 1))
+            .map_or(plan.len(), |i| i + 1),
+    };
+    if plan[..done].iter().filter(|t| t.histogram).count() != histograms.len() {
+        return Err(CliError::argument(
+            "--resume",
+            "the check-point's histograms do not match run.histogram_at",
+        ));
+    }
     let progress = indicatif::ProgressBar::new(file.run.samples as u64);
     progress.set_style(
         indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples {msg}")
@@ -505,19 +758,27 @@ fn simulate<const D: usize>(
     );
     progress.set_position(samples.len() as u64);
     let started = Instant::now();
-    for target in targets(end, file.run.samples, log)
-        .into_iter()
-        .skip(samples.len())
-    {
+    for target in &plan[done..] {
         if by_time {
-            engine.run_until(target);
+            engine.run_until(target.value);
         } else {
-            let want = (target * n / 2.0).round() as u64;
+            let want = (target.value * n / 2.0).round() as u64;
             let have = engine.tally().collisions;
             engine.run_collisions(want.saturating_sub(have));
         }
         let tally = engine.tally();
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());
+        if target.histogram {
+            histograms.push(Histogram {
+                target: target.value,
+                time,
+                collisions_per_particle: cpp,
+                bins: velocity_histogram(engine.system(), bins, C_MAX),
+            });
+        }
+        if target.sample.is_none() {
+            continue;
+        }
         let system = engine.system();
         let t = temperature(system);
         let volume = system.volume();
@@ -538,7 +799,7 @@ fn simulate<const D: usize>(
         });
         last = (time, tally.virial);
         if context.every.is_some_and(|k| samples.len() % k == 0) {
-            write_checkpoint(context, &mut engine, &samples, last)?;
+            write_checkpoint(context, &mut engine, &samples, &histograms, last)?;
         }
         let rate = tally.events as f64 / started.elapsed().as_secs_f64().max(1e-9);
         progress.set_message(format!("{rate:.3e} events/s, T = {t:.4e}"));
@@ -548,7 +809,7 @@ fn simulate<const D: usize>(
         }
     }
     progress.finish_and_clear();
-    Ok((samples, engine.tally()))
+    Ok((samples, histograms, engine.tally()))
 }
 
 fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
@@ -569,6 +830,27 @@ fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
             s.pressure,
             s.events
         )?;
+    }
+    Ok(f.flush()?)
+}
+
+/// velocity_histograms.csv: one row per bin of every histogram, with the Maxwellian
+/// exp(-c^2) / sqrt(pi) at the bin centre.
+fn write_histograms(path: &Path, histograms: &[Histogram]) -> CliResult {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(
+        f,
+        "target,time,collisions_per_particle,c,density,maxwellian"
+    )?;
+    for h in histograms {
+        for &(c, density) in &h.bins {
+            let maxwellian = (-c * c).exp() / std::f64::consts::PI.sqrt();
+            writeln!(
+                f,
+                "{},{},{},{c},{density},{maxwellian}",
+                h.target, h.time, h.collisions_per_particle
+            )?;
+        }
     }
     Ok(f.flush()?)
 }
@@ -595,5 +877,42 @@ fn plot_temperature(path: &Path, file: &RunFile, samples: &[Sample]) -> CliResul
     match &haff {
         Some(f) => crate::plot::temperature(path, &points, Some(("Haff's law", f))),
         None => crate::plot::temperature(path, &points, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_targets_end_exactly_at_the_end() {
+        for count in [2, 3, 12, 200] {
+            for log in [true, false] {
+                let t = targets(7.3, count, log);
+                assert_eq!(t.len(), count);
+                assert_eq!((t[0], t[count - 1]), (0.0, 7.3), "{count} {log}");
+                assert!(t.windows(2).all(|w| w[0] < w[1]), "{t:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn histogram_targets_merge_into_the_samples() {
+        let plan = schedule(&[0.0, 1.0, 2.0], &[2.0, 0.5, 0.0, 1.5]);
+        let got: Vec<(f64, Option<usize>, bool)> = plan
+            .iter()
+            .map(|t| (t.value, t.sample, t.histogram))
+            .collect();
+        assert_eq!(
+            got,
+            [
+                (0.0, Some(0), true),
+                (0.5, None, true),
+                (1.0, Some(1), false),
+                (1.5, None, true),
+                (2.0, Some(2), true),
+            ]
+        );
+        assert_eq!(schedule(&[0.0, 1.0], &[]).len(), 2);
     }
 }

@@ -2,6 +2,7 @@
 //! and the handling of bad input.
 
 use serde_json::Value;
+use std::path::PathBuf;
 use std::process::{Command, Output};
 
 /// Runs `haff` with `args`.
@@ -536,40 +537,34 @@ fn bench_emd_reports_rates_and_memory() {
     );
 }
 
-/// Check-points: a run stopped after 6 of 12 samples and resumed repeats the uninterrupted
-/// run (same check-point interval) bit for bit.
-#[test]
-fn resumed_run_repeats_the_uninterrupted_one() {
-    let dir = std::env::temp_dir().join(format!("haff-resume-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+/// Runs `haff run` with `args` and checks that it succeeded.
+fn run_ok(args: &[&str]) {
+    let mut all = vec!["run"];
+    all.extend_from_slice(args);
+    let out = haff(&all);
+    assert!(
+        out.status.success(),
+        "haff {all:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Runs `toml` uninterrupted and in two chunks (stopped after 6 of 12 samples, resumed),
+/// both with check-points every 3 samples, and returns both output directories.
+fn run_full_and_chunked(dir: &std::path::Path, toml: &str) -> (PathBuf, PathBuf) {
+    std::fs::create_dir_all(dir).unwrap();
     let file = dir.join("ck.toml");
-    std::fs::write(
-        &file,
-        "[system]\nparticles = 400\npacking_fraction = 0.1\nseed = 9\n\
-         [collision]\nlaw = \"constant\"\nrestitution = 0.8\n\
-         [run]\ncollisions_per_particle = 20\nsamples = 12\n",
-    )
-    .unwrap();
+    std::fs::write(&file, toml).unwrap();
     let (full, chunked) = (dir.join("full"), dir.join("chunked"));
-    let run = |extra: &[&str]| {
-        let mut args = vec!["run"];
-        args.extend_from_slice(extra);
-        let out = haff(&args);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    };
     let f = file.to_str().unwrap();
-    run(&[
+    run_ok(&[
         f,
         "--out",
         full.to_str().unwrap(),
         "--checkpoint-every",
         "3",
     ]);
-    run(&[
+    run_ok(&[
         f,
         "--out",
         chunked.to_str().unwrap(),
@@ -580,14 +575,249 @@ fn resumed_run_repeats_the_uninterrupted_one() {
     ]);
     let partial = std::fs::read_to_string(chunked.join("timeseries.csv")).unwrap();
     assert_eq!(partial.lines().count(), 7);
-    run(&["--resume", chunked.to_str().unwrap()]);
-    let a = std::fs::read_to_string(full.join("timeseries.csv")).unwrap();
-    let b = std::fs::read_to_string(chunked.join("timeseries.csv")).unwrap();
+    run_ok(&["--resume", chunked.to_str().unwrap()]);
+    (full, chunked)
+}
+
+fn read(dir: &std::path::Path, name: &str) -> String {
+    std::fs::read_to_string(dir.join(name)).unwrap()
+}
+
+/// Check-points: a run stopped after 6 of 12 samples and resumed repeats the uninterrupted
+/// run (same check-point interval) bit for bit.
+#[test]
+fn resumed_run_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-resume-test-{}", std::process::id()));
+    let (full, chunked) = run_full_and_chunked(
+        &dir,
+        "[system]\nparticles = 400\npacking_fraction = 0.1\nseed = 9\n\
+         [collision]\nlaw = \"constant\"\nrestitution = 0.8\n\
+         [run]\ncollisions_per_particle = 20\nsamples = 12\n",
+    );
+    let a = read(&full, "timeseries.csv");
     assert_eq!(a.lines().count(), 13);
-    assert_eq!(a, b);
+    assert_eq!(a, read(&chunked, "timeseries.csv"));
+    assert!(!full.join("velocity_histograms.csv").exists());
     assert_rejected(
         &["run", "--resume", dir.join("nothing").to_str().unwrap()],
         "--resume",
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The TC model (eps = 0.5, collisions within tc of the last one are elastic): the last
+/// collision times go into the check-point, so the resumed run is still bit-identical (with
+/// tc = 0.01 it is not if they are dropped on resume);
+/// velocity histograms before and after the interruption are the same too.
+#[test]
+fn resumed_tc_run_with_histograms_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-resume-tc-{}", std::process::id()));
+    // Sample targets 0, 0.02, 0.04, ..., 0.32 | 0.63, ... 20; the run stops after 0.32.
+    let toml = "[system]\nparticles = 400\npacking_fraction = 0.1\nseed = 9\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.5\ntc = 1e-2\n\
+                [run]\ncollisions_per_particle = 20\nsamples = 12\n\
+                histogram_at = [20.0, 0.1, 0.0, 3.0]\nhistogram_bins = 30\n";
+    let (full, chunked) = run_full_and_chunked(&dir, toml);
+    let a = read(&full, "timeseries.csv");
+    assert_eq!(a.lines().count(), 13);
+    assert_eq!(a, read(&chunked, "timeseries.csv"));
+    let h = read(&full, "velocity_histograms.csv");
+    assert_eq!(h, read(&chunked, "velocity_histograms.csv"));
+    let (header, rows) = parse_csv(&h);
+    assert_eq!(
+        header,
+        "target,time,collisions_per_particle,c,density,maxwellian"
+    );
+    assert_eq!(rows.len(), 4 * 30);
+    let targets: Vec<f64> = rows.iter().step_by(30).map(|r| r[0]).collect();
+    assert_eq!(targets, [0.0, 0.1, 3.0, 20.0]);
+    for block in rows.chunks(30) {
+        assert!((block[0][2] - block[0][0]).abs() < 0.01, "{:?}", block[0]);
+        let integral: f64 = block.iter().map(|r| r[4] * 10.0 / 30.0).sum();
+        assert!(integral > 0.99 && integral <= 1.0 + 1e-12, "{integral}");
+    }
+    // The TC model is on: the same run without it differs.
+    let plain = dir.join("plain");
+    let file = dir.join("plain.toml");
+    std::fs::write(&file, toml.replace("tc = 1e-2", "tc = 0")).unwrap();
+    run_ok(&[file.to_str().unwrap(), "--out", plain.to_str().unwrap()]);
+    assert_ne!(a, read(&plain, "timeseries.csv"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A binary mixture stopped by time, with histograms between the samples.
+#[test]
+fn resumed_mixture_run_by_time_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-resume-mix-{}", std::process::id()));
+    let (full, chunked) = run_full_and_chunked(
+        &dir,
+        "[system]\nparticles = 500\npacking_fraction = 0.1\nseed = 4\n\
+         species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                    { diameter = 1.4, mass = 2.744, fraction = 0.5 }]\n\
+         [collision]\nlaw = \"constant\"\nrestitution = 0.7\ntc = 1e-2\n\
+         [run]\nend_time = 10.0\nsamples = 12\nspacing = \"linear\"\n\
+         histogram_at = [0.3, 5.0, 7.7]\n",
+    );
+    let a = read(&full, "timeseries.csv");
+    assert_eq!(a.lines().count(), 13);
+    assert_eq!(a, read(&chunked, "timeseries.csv"));
+    let h = read(&full, "velocity_histograms.csv");
+    assert_eq!(h, read(&chunked, "velocity_histograms.csv"));
+    let (_, rows) = parse_csv(&h);
+    assert_eq!(rows.len(), 3 * 60);
+    for block in rows.chunks(60) {
+        assert_eq!(block[0][0], block[0][1], "time = target: {:?}", block[0]);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A binary mixture: the initial state and the outputs (timeseries, summary parameters,
+/// histograms close to the Maxwellian at t = 0).
+#[test]
+fn binary_mixture_run() {
+    let dir = std::env::temp_dir().join(format!("haff-mixture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("mix.toml");
+    std::fs::write(
+        &file,
+        "[system]\ndimension = 2\nparticles = 2000\npacking_fraction = 0.2\n\
+         temperature = 2.0\nseed = 5\n\
+         species = [{ diameter = 1.0, mass = 1.0, fraction = 3 }, \
+                    { diameter = 2.0, mass = 4.0, fraction = 1 }]\n\
+         [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+         [run]\ncollisions_per_particle = 5\nsamples = 6\nhistogram_at = [0.0, 5.0]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    run_ok(&[file.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let (header, rows) = parse_csv(&read(&out, "timeseries.csv"));
+    assert!(header.starts_with("time,collisions_per_particle,temperature,a2"));
+    assert_eq!(rows.len(), 6);
+    assert!((rows[0][2] - 2.0).abs() < 1e-12, "T(0) = {}", rows[0][2]);
+    assert!(rows[0][3].abs() < 0.1, "a2(0) = {}", rows[0][3]);
+    assert!((rows[5][1] - 5.0).abs() < 1e-9 && rows[5][2] < 2.0);
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    let system = &summary["parameters"]["system"];
+    assert_eq!(system["species"][1]["mass"].as_f64(), Some(4.0));
+    assert!(system.get("diameter").is_none(), "{system}");
+    assert_eq!(summary["collisions"].as_u64(), Some(5000));
+    let (header, rows) = parse_csv(&read(&out, "velocity_histograms.csv"));
+    assert_eq!(
+        header,
+        "target,time,collisions_per_particle,c,density,maxwellian"
+    );
+    assert_eq!(rows.len(), 2 * 60);
+    let width = 10.0 / 60.0;
+    let integral: f64 = rows[..60].iter().map(|r| r[4] * width).sum();
+    assert!((integral - 1.0).abs() < 1e-12, "{integral}");
+    for r in &rows[..60] {
+        assert!((r[5] - (-r[3] * r[3]).exp() / std::f64::consts::PI.sqrt()).abs() < 1e-15);
+        // About 160 of the 4000 components per bin near c = 0.
+        if r[3].abs() < 1.0 {
+            assert!((r[4] - r[5]).abs() < 0.3 * r[5], "{r:?}");
+        }
+    }
+    // Fraction with |c| < 1 (bins -1..1 exactly): erf(1) = 0.8427 for a Maxwellian.
+    let inner: f64 = rows[..60]
+        .iter()
+        .filter(|r| r[3].abs() < 1.0)
+        .map(|r| r[4] * width)
+        .sum();
+    assert!((inner - 0.8427).abs() < 0.02, "{inner}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `haff run` with a bad file: exit code 2, one line naming `key`.
+fn assert_run_rejected(toml: &str, key: &str) {
+    let dir = std::env::temp_dir().join(format!("haff-bad-run-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad.toml");
+    std::fs::write(&file, toml).unwrap();
+    let out = dir.join("out");
+    assert_rejected(
+        &[
+            "run",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        key,
+    );
+    assert!(!out.join("timeseries.csv").exists(), "{toml}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_species_tc_and_histograms_are_rejected() {
+    let good = "[system]\nparticles = 300\npacking_fraction = 0.05\n\
+                species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                           { diameter = 1.4, mass = 2.744, fraction = 0.5 }]\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\ntc = 1e-4\n\
+                [run]\ncollisions_per_particle = 10\nsamples = 4\n\
+                histogram_at = [0.0, 10.0]\nhistogram_bins = 40\n";
+    let cases = [
+        (
+            "packing_fraction = 0.05",
+            "packing_fraction = 0.05\ndiameter = 1.0",
+            "system.species",
+        ),
+        (
+            "packing_fraction = 0.05",
+            "packing_fraction = 0.05\nmass = 2.0",
+            "system.diameter/system.mass",
+        ),
+        ("mass = 2.744", "mass = -1", "system.species[1].mass"),
+        ("mass = 2.744", "mass = inf", "system.species[1].mass"),
+        (
+            "{ diameter = 1.0,",
+            "{ diameter = 0.0,",
+            "system.species[0].diameter",
+        ),
+        (
+            "fraction = 0.5 }]",
+            "fraction = 0 }]",
+            "system.species[1].fraction",
+        ),
+        ("fraction = 0.5 }]", "fraction = 1e-6 }]", "system.species"),
+        (
+            "fraction = 0.5 }]",
+            "fraction = 0.5, radius = 1 }]",
+            "radius",
+        ),
+        ("fraction = 0.5 }, ", "}, ", "fraction"),
+        (
+            "packing_fraction = 0.05",
+            "packing_fraction = 0.4",
+            "packing_fraction",
+        ),
+        ("tc = 1e-4", "tc = -1e-4", "collision.tc"),
+        ("tc = 1e-4", "tc = nan", "collision.tc"),
+        ("tc = 1e-4", "tc = inf", "collision.tc"),
+        ("[0.0, 10.0]", "[0.0, 10.5]", "run.histogram_at"),
+        ("[0.0, 10.0]", "[-1.0]", "run.histogram_at"),
+        ("[0.0, 10.0]", "[nan]", "run.histogram_at"),
+        ("[0.0, 10.0]", "[2.0, 1.0, 2.0]", "run.histogram_at"),
+        (
+            "histogram_bins = 40",
+            "histogram_bins = 3",
+            "run.histogram_bins",
+        ),
+        (
+            "histogram_bins = 40",
+            "histogram_bins = 10001",
+            "run.histogram_bins",
+        ),
+    ];
+    for (from, to, key) in cases {
+        assert!(good.contains(from), "{from}");
+        assert_run_rejected(&good.replacen(from, to, 1), key);
+    }
+    let species = "species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                   { diameter = 1.4, mass = 2.744, fraction = 0.5 }]";
+    assert_run_rejected(&good.replace(species, "species = []"), "system.species");
+    // In time units when the run stops by time.
+    assert_run_rejected(
+        &good.replace("collisions_per_particle = 10", "end_time = 5.0"),
+        "run.histogram_at",
+    );
 }

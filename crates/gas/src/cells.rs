@@ -70,27 +70,35 @@ impl<const D: usize> Grid<D> {
     #[inline]
     pub fn neighbor_cells(&self, c: &[u32; D]) -> ([usize; 27], usize) {
         let n = self.per_side;
-        let (reach, offsets) = if n >= 3 {
-            (3, [n - 1, 0, 1])
-        } else {
-            (n, [0, 1, 2])
-        };
-        // Linear-index contributions of the reachable coordinates along each dimension.
+        let mut cells = [0; 27];
+        if n < 3 {
+            // Every cell along a dimension is adjacent: list each once.
+            let count = n.pow(D as u32);
+            for (i, cell) in cells.iter_mut().enumerate().take(count) {
+                *cell = i;
+            }
+            return (cells, count);
+        }
+        // Linear-index contributions of coordinates c-1, c, c+1 along each dimension.
         let mut stride = 1;
         let parts: [[usize; 3]; D] = std::array::from_fn(|k| {
-            let base = if n >= 3 { c[k] as usize } else { 0 };
-            let part = offsets.map(|o| (base + o) % n * stride);
+            let x = c[k] as usize;
+            let below = if x == 0 { n - 1 } else { x - 1 };
+            let above = if x + 1 == n { 0 } else { x + 1 };
+            let part = [below * stride, x * stride, above * stride];
             stride *= n;
             part
         });
-        let mut cells = [0; 27];
-        let count = reach.pow(D as u32);
-        for (combo, cell) in cells.iter_mut().enumerate().take(count) {
-            let mut rest = combo;
-            for part in &parts {
-                *cell += part[rest % reach];
-                rest /= reach;
+        let mut count = 1;
+        for part in &parts {
+            // Each existing entry spawns three: (entry + part[0], + part[1], + part[2]).
+            for e in (0..count).rev() {
+                let base = cells[e];
+                cells[3 * e] = base + part[0];
+                cells[3 * e + 1] = base + part[1];
+                cells[3 * e + 2] = base + part[2];
             }
+            count *= 3;
         }
         (cells, count)
     }

@@ -1,8 +1,10 @@
 //! Initial states: non-overlapping random positions at a given packing fraction and
-//! Maxwellian velocities at a given temperature with zero total momentum.
+//! Maxwellian velocities at a given temperature with zero total momentum, for one kind of
+//! sphere ([`monodisperse`]) or a mixture of several ([`polydisperse`]).
 
 use crate::cells::CellGrid;
 use crate::system::{ball_volume, dot, System, Vector};
+use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
 use rand_pcg::Pcg64;
@@ -32,12 +34,15 @@ pub fn monodisperse<const D: usize>(
     }
     let length = (n as f64 * ball_volume::<D>(0.5 * diameter) / phi).powf(1.0 / D as f64);
     let mut rng = Pcg64::seed_from_u64(seed);
-    let mut positions = if phi <= RANDOM_ADDITION_LIMIT {
-        random_addition::<D>(n, length, diameter, &mut rng)?
+    let positions = if phi <= RANDOM_ADDITION_LIMIT {
+        random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?
     } else {
         lattice::<D>(n, length, diameter)?
     };
-    sort_by_space(&mut positions, length, diameter);
+    let positions = space_order(&positions, length, diameter)
+        .into_iter()
+        .map(|i| positions[i])
+        .collect();
     let velocities = maxwellian::<D>(n, mass, temperature, &mut rng);
     let system = System {
         length,
@@ -50,6 +55,203 @@ pub fn monodisperse<const D: usize>(
         Ok(system)
     } else {
         melt(system, MELTING_COLLISIONS_PER_PARTICLE)
+    }
+}
+
+/// One kind of sphere in a mixture: diameter, mass and number fraction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Species {
+    pub diameter: f64,
+    pub mass: f64,
+    /// Fraction of the particles (normalized over all species).
+    pub fraction: f64,
+}
+
+/// Particles of each species among `n`: the normalized fractions times `n`, rounded down,
+/// and the particles left over given to the largest remainders (the earlier species on a
+/// tie), so that the counts sum to `n`. Fails for a bad fraction or a species without a
+/// particle.
+pub fn species_counts(n: usize, species: &[Species]) -> Result<Vec<usize>, String> {
+    if species.is_empty() {
+        return Err("species: need at least one".into());
+    }
+    for (s, x) in species.iter().enumerate() {
+        if !(x.fraction.is_finite() && x.fraction > 0.0) {
+            return Err(format!(
+                "species[{s}].fraction = {}: allowed a finite number > 0",
+                x.fraction
+            ));
+        }
+    }
+    let total: f64 = species.iter().map(|x| x.fraction).sum();
+    if !total.is_finite() {
+        return Err("species: the fractions sum to infinity".into());
+    }
+    let exact: Vec<f64> = species
+        .iter()
+        .map(|x| x.fraction / total * n as f64)
+        .collect();
+    let mut counts: Vec<usize> = exact.iter().map(|x| x.floor() as usize).collect();
+    let assigned: usize = counts.iter().sum();
+    let mut by_remainder: Vec<usize> = (0..species.len()).collect();
+    by_remainder.sort_by(|&a, &b| {
+        let (ra, rb) = (exact[a] - exact[a].floor(), exact[b] - exact[b].floor());
+        rb.total_cmp(&ra).then(a.cmp(&b))
+    });
+    for &s in by_remainder.iter().cycle().take(n.saturating_sub(assigned)) {
+        counts[s] += 1;
+    }
+    // Round-off could (in principle) push a floor over an integer: keep the sum at n.
+    for _ in n..assigned {
+        let largest = (0..counts.len()).max_by_key(|&s| counts[s]).unwrap_or(0);
+        counts[largest] -= 1;
+    }
+    if let Some(s) = counts.iter().position(|&c| c == 0) {
+        return Err(format!(
+            "species[{s}].fraction = {}: no particle of {n} (fractions are normalized)",
+            species[s].fraction
+        ));
+    }
+    Ok(counts)
+}
+
+/// A mixture: `n` spheres of the given species (counts from [`species_counts`]) at packing
+/// fraction `phi` (the volume of all spheres over the box volume) and temperature
+/// `temperature`, all fixed by `seed`.
+///
+/// Velocities are Gaussian with variance T / m_i per component, so that every species has
+/// the temperature T = m <v^2> / D in expectation; the total momentum is then removed and
+/// all velocities rescaled so that the temperature of the whole system, sum m v^2 / (N D),
+/// is `temperature` (both up to round-off). Up to [`RANDOM_ADDITION_LIMIT`] the spheres are
+/// placed by random sequential addition (largest first, contact distance
+/// (d_i + d_j) / 2); above it on a simple lattice with spacing at least the largest
+/// diameter (species on random sites), melted by elastic collisions ([`melt`]). Particles
+/// are ordered in space, so the species are mixed in memory.
+pub fn polydisperse<const D: usize>(
+    n: usize,
+    phi: f64,
+    species: &[Species],
+    temperature: f64,
+    seed: u64,
+) -> Result<System<D>, String> {
+    if n < 2 {
+        return Err(format!("particles = {n}: need at least 2"));
+    }
+    if !(phi > 0.0 && phi <= max_packing::<D>()) {
+        return Err(format!(
+            "packing_fraction = {phi}: allowed 0 < phi <= {}",
+            max_packing::<D>()
+        ));
+    }
+    if !(temperature.is_finite() && temperature > 0.0) {
+        return Err(format!(
+            "temperature = {temperature}: allowed a finite number > 0"
+        ));
+    }
+    for (s, x) in species.iter().enumerate() {
+        for (name, value) in [("diameter", x.diameter), ("mass", x.mass)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(format!(
+                    "species[{s}].{name} = {value}: allowed a finite number > 0"
+                ));
+            }
+        }
+    }
+    let counts = species_counts(n, species)?;
+    // Blocks of species, largest diameter first (random addition places big spheres best
+    // into an empty box).
+    let mut by_size: Vec<usize> = (0..species.len()).collect();
+    by_size.sort_by(|&a, &b| species[b].diameter.total_cmp(&species[a].diameter));
+    let mut kind: Vec<usize> = Vec::with_capacity(n);
+    for &s in &by_size {
+        kind.resize(kind.len() + counts[s], s);
+    }
+    let max_diameter = species[by_size[0]].diameter;
+    let volume: f64 = kind
+        .iter()
+        .map(|&s| ball_volume::<D>(0.5 * species[s].diameter))
+        .sum();
+    let length = (volume / phi).powf(1.0 / D as f64);
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let dense = phi > RANDOM_ADDITION_LIMIT;
+    let positions = if dense {
+        let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
+        let spacing = length / side as f64;
+        if spacing < max_diameter {
+            return Err(format!(
+                "packing_fraction = {phi} is too high for a simple lattice of the largest \
+                 diameter {max_diameter} (spacing {spacing}); lower it to at most {} or \
+                 reduce the size ratio",
+                RANDOM_ADDITION_LIMIT
+                    .max((phi * (spacing / max_diameter).powi(D as i32) * 1e4).floor() / 1e4)
+            ));
+        }
+        kind.shuffle(&mut rng);
+        lattice::<D>(n, length, max_diameter)?
+    } else {
+        let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
+        random_addition::<D>(length, &diameters, max_diameter, &mut rng)?
+    };
+    let order = space_order(&positions, length, max_diameter);
+    let positions: Vec<Vector<D>> = order.iter().map(|&i| positions[i]).collect();
+    let kind: Vec<usize> = order.iter().map(|&i| kind[i]).collect();
+    let masses: Vec<f64> = kind.iter().map(|&s| species[s].mass).collect();
+    let mut velocities: Vec<Vector<D>> = masses
+        .iter()
+        .map(|&m| {
+            let width = (temperature / m).sqrt();
+            std::array::from_fn(|_| width * rng.sample::<f64, _>(StandardNormal))
+        })
+        .collect();
+    set_momentum_and_temperature(&mut velocities, &masses, temperature);
+    let system = System {
+        length,
+        positions,
+        velocities,
+        radii: kind.iter().map(|&s| 0.5 * species[s].diameter).collect(),
+        masses,
+    };
+    if !dense {
+        return Ok(system);
+    }
+    let mut system = melt(system, MELTING_COLLISIONS_PER_PARTICLE)?;
+    // Melting conserves both up to round-off; restore them exactly.
+    set_momentum_and_temperature(&mut system.velocities, &system.masses, temperature);
+    Ok(system)
+}
+
+/// Removes the total momentum, then rescales the velocities so that
+/// sum m v^2 / (N D) = temperature.
+fn set_momentum_and_temperature<const D: usize>(
+    velocities: &mut [Vector<D>],
+    masses: &[f64],
+    temperature: f64,
+) {
+    let total: f64 = masses.iter().sum();
+    let mean: Vector<D> = std::array::from_fn(|k| {
+        velocities
+            .iter()
+            .zip(masses)
+            .map(|(v, m)| m * v[k])
+            .sum::<f64>()
+            / total
+    });
+    for v in velocities.iter_mut() {
+        for k in 0..D {
+            v[k] -= mean[k];
+        }
+    }
+    let current = velocities
+        .iter()
+        .zip(masses)
+        .map(|(v, m)| m * dot(v, v))
+        .sum::<f64>()
+        / (velocities.len() * D) as f64;
+    let scale = (temperature / current).sqrt();
+    for v in velocities.iter_mut() {
+        for c in v.iter_mut() {
+            *c *= scale;
+        }
     }
 }
 
@@ -76,13 +278,16 @@ pub fn max_packing<const D: usize>() -> f64 {
     }
 }
 
+/// Places spheres of the given diameters one after the other at random positions where
+/// they overlap no sphere placed before (cells at least `max_diameter` wide).
 fn random_addition<const D: usize>(
-    n: usize,
     length: f64,
-    diameter: f64,
+    diameters: &[f64],
+    max_diameter: f64,
     rng: &mut Pcg64,
 ) -> Result<Vec<Vector<D>>, String> {
-    let mut grid = CellGrid::<D>::new(length, diameter, n);
+    let n = diameters.len();
+    let mut grid = CellGrid::<D>::new(length, max_diameter, n);
     let mut positions: Vec<Vector<D>> = Vec::with_capacity(n);
     let system = System::<D> {
         length,
@@ -91,7 +296,7 @@ fn random_addition<const D: usize>(
         radii: vec![],
         masses: vec![],
     };
-    for i in 0..n {
+    for (i, &di) in diameters.iter().enumerate() {
         let mut placed = false;
         for _ in 0..100_000 {
             let p: Vector<D> = std::array::from_fn(|_| rng.random::<f64>() * length);
@@ -99,7 +304,8 @@ fn random_addition<const D: usize>(
             let mut free = true;
             grid.for_each_neighbor(&c, |j| {
                 let d = system.separation(&p, &positions[j]);
-                free &= dot(&d, &d) >= diameter * diameter;
+                let sigma = contact(di, diameters[j]);
+                free &= dot(&d, &d) >= sigma * sigma;
             });
             if free {
                 positions.push(p);
@@ -113,6 +319,16 @@ fn random_addition<const D: usize>(
         }
     }
     Ok(positions)
+}
+
+/// Contact distance (d_i + d_j) / 2 (exactly d for equal diameters).
+#[inline]
+fn contact(di: f64, dj: f64) -> f64 {
+    if di == dj {
+        di
+    } else {
+        0.5 * (di + dj)
+    }
 }
 
 fn lattice<const D: usize>(n: usize, length: f64, diameter: f64) -> Result<Vec<Vector<D>>, String> {
@@ -159,10 +375,11 @@ fn maxwellian<const D: usize>(
     v
 }
 
-/// Orders particles along a Morton (Z-order) curve of cells one diameter wide, so that
+/// The order of `positions` along a Morton (Z-order) curve of cells `width` wide, so that
 /// neighbours in space are neighbours in memory (fewer cache misses in large systems).
-fn sort_by_space<const D: usize>(positions: &mut [Vector<D>], length: f64, diameter: f64) {
-    let cells = (length / diameter).floor().max(1.0);
+/// Stable: particles in the same cell keep their order.
+fn space_order<const D: usize>(positions: &[Vector<D>], length: f64, width: f64) -> Vec<usize> {
+    let cells = (length / width).floor().max(1.0);
     let key = |p: &Vector<D>| -> u64 {
         let c: [u64; D] =
             std::array::from_fn(|k| ((p[k] / length * cells) as u64).min(cells as u64 - 1));
@@ -172,5 +389,7 @@ fn sort_by_space<const D: usize>(positions: &mut [Vector<D>], length: f64, diame
             })
         })
     };
-    positions.sort_by_cached_key(key);
+    let mut order: Vec<usize> = (0..positions.len()).collect();
+    order.sort_by_cached_key(|&i| key(&positions[i]));
+    order
 }

@@ -8,6 +8,7 @@
 //! Status: the event-driven core (issue 4) — engine, cells, calendar, observables. The TOML
 //! runs, outputs, check-points and benchmarks of that issue are still to come.
 
+pub mod calendar;
 pub mod cells;
 pub mod emd;
 pub mod init;
@@ -15,5 +16,5 @@ pub mod observe;
 pub mod queue;
 pub mod system;
 
-pub use emd::EventDriven;
+pub use emd::{Calendar, EventDriven};
 pub use system::System;

@@ -18,17 +18,64 @@ pub fn temperature<const D: usize>(s: &System<D>) -> f64 {
 }
 
 /// The Sonine coefficient a2 = D/(D+2) <c^4>/<c^2>^2 - 1 of the peculiar velocities.
+///
+/// For a mixture (unequal masses) c^2 is weighted by the mass, m c^2 (twice the kinetic
+/// energy of the peculiar motion), so that a2 vanishes for Maxwellians of one temperature
+/// whatever the masses; for equal masses the two definitions coincide.
 pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
     let (mean, _) = mean_velocity(s);
+    let equal_masses = s.masses.iter().all(|&m| m == s.masses[0]);
     let (mut c2, mut c4) = (0.0, 0.0);
-    for v in &s.velocities {
+    for (v, &m) in s.velocities.iter().zip(&s.masses) {
         let c: [f64; D] = std::array::from_fn(|k| v[k] - mean[k]);
-        let x = dot(&c, &c);
+        let x = if equal_masses {
+            dot(&c, &c)
+        } else {
+            m * dot(&c, &c)
+        };
         c2 += x;
         c4 += x * x;
     }
     let n = s.len() as f64;
     D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
+}
+
+/// Histogram of the scaled peculiar velocity components c = (v_k - <v>_k) / sqrt(2 T / m_i)
+/// (all D components of all N particles pooled, each particle scaled with its own mass)
+/// in `bins` equal bins on [-c_max, c_max]: (bin centre, density). The density is the count
+/// over N D times the bin width, so it integrates to the fraction of components inside the
+/// range (components outside are counted nowhere); for a Maxwellian it approaches
+/// exp(-c^2) / sqrt(pi). All zero if the gas is at rest.
+pub fn velocity_histogram<const D: usize>(
+    s: &System<D>,
+    bins: usize,
+    c_max: f64,
+) -> Vec<(f64, f64)> {
+    let width = 2.0 * c_max / bins as f64;
+    let mut counts = vec![0u64; bins];
+    let t = temperature(s);
+    if t > 0.0 && t.is_finite() && bins > 0 {
+        let (mean, _) = mean_velocity(s);
+        for (v, &m) in s.velocities.iter().zip(&s.masses) {
+            let scale = (m / (2.0 * t)).sqrt();
+            for k in 0..D {
+                let c = (v[k] - mean[k]) * scale;
+                if c >= -c_max && c < c_max {
+                    let bin = ((c + c_max) / width) as usize;
+                    counts[bin.min(bins - 1)] += 1;
+                }
+            }
+        }
+    }
+    let total = (s.len() * D) as f64 * width;
+    counts
+        .iter()
+        .enumerate()
+        .map(|(b, &count)| {
+            let centre = -c_max + (b as f64 + 0.5) * width;
+            (centre, count as f64 / total)
+        })
+        .collect()
 }
 
 /// Kinetic energy.
@@ -51,4 +98,73 @@ pub fn mean_velocity<const D: usize>(s: &System<D>) -> ([f64; D], [f64; D]) {
             .sum()
     });
     (std::array::from_fn(|k| p[k] / total), p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+
+    /// A gas of two masses with Gaussian velocities of one temperature (positions unused).
+    fn maxwellian_mixture(n: usize, temperature: f64, seed: u64) -> System<3> {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+        let masses: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 1.0 } else { 3.0 }).collect();
+        let velocities = masses
+            .iter()
+            .map(|&m| {
+                let w = (temperature / m).sqrt();
+                std::array::from_fn(|_| {
+                    0.25 + w * Distribution::<f64>::sample(&StandardNormal, &mut rng)
+                })
+            })
+            .collect();
+        System {
+            length: 10.0,
+            positions: vec![[0.0; 3]; n],
+            velocities,
+            radii: vec![0.5; n],
+            masses,
+        }
+    }
+
+    #[test]
+    fn histogram_of_a_maxwellian_integrates_to_one() {
+        let s = maxwellian_mixture(20_000, 2.0, 7);
+        let bins = 60;
+        let h = velocity_histogram(&s, bins, 5.0);
+        assert_eq!(h.len(), bins);
+        let width = 10.0 / bins as f64;
+        assert!((h[0].0 + 5.0 - 0.5 * width).abs() < 1e-12, "{:?}", h[0]);
+        assert!((h[bins - 1].0 - 5.0 + 0.5 * width).abs() < 1e-12);
+        let integral: f64 = h.iter().map(|(_, d)| d * width).sum();
+        assert!((integral - 1.0).abs() < 1e-12, "{integral}");
+        // Close to exp(-c^2)/sqrt(pi) near the centre (60 000 components).
+        for &(c, d) in &h {
+            let maxwell = (-c * c).exp() / std::f64::consts::PI.sqrt();
+            if c.abs() < 1.0 {
+                assert!(
+                    (d - maxwell).abs() < 0.05 * maxwell,
+                    "{c}: {d} vs {maxwell}"
+                );
+            }
+        }
+        // One temperature for both masses: a2 near zero.
+        assert!(sonine_a2(&s).abs() < 0.03, "{}", sonine_a2(&s));
+    }
+
+    #[test]
+    fn histogram_ignores_components_out_of_range_and_a_gas_at_rest() {
+        let mut s = maxwellian_mixture(1000, 1.0, 3);
+        let h = velocity_histogram(&s, 10, 0.5);
+        let integral: f64 = h.iter().map(|(_, d)| d * 0.1).sum();
+        // c is Gaussian with variance 1/2: P(|c| < 0.5) = erf(0.5) = 0.5205.
+        assert!((integral - 0.5205).abs() < 0.05, "{integral}");
+        for v in &mut s.velocities {
+            *v = [1.0, 2.0, 3.0];
+        }
+        assert!(velocity_histogram(&s, 10, 5.0)
+            .iter()
+            .all(|&(_, d)| d == 0.0));
+    }
 }
