@@ -246,3 +246,42 @@ fn dense_states_are_melted_lattices() {
         .count();
     assert_eq!(on_site, 0);
 }
+
+/// The a2 study of issue 4: eps = 0.3 ... 0.9, N = 20000, phi = 0.05, a2 averaged from 10
+/// to 50 collisions per particle (80 snapshots), the error from 8 batch means (batches
+/// 5 collisions per particle long, longer than the correlation time of a2). Printed
+/// beside van Noije & Ernst (1998); asserted within 3 errors for eps >= 0.7 where the
+/// first Sonine approximation is accurate (Brilliantov & Pöschel 2006), reported below.
+/// `cargo test --release -p haff-gas --test emd sonine_a2_study -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn sonine_a2_study() {
+    let n = 20_000;
+    for (eps, seed) in [(0.3f64, 41), (0.5, 42), (0.7, 43), (0.8, 44), (0.9, 45)] {
+        let mut e = engine::<3>(n, 0.05, eps, seed);
+        e.run_collisions(10 * n as u64 / 2);
+        let batches: Vec<f64> = (0..8)
+            .map(|_| {
+                (0..10)
+                    .map(|_| {
+                        e.run_collisions(n as u64 / 4);
+                        gas::observe::sonine_a2(e.system())
+                    })
+                    .sum::<f64>()
+                    / 10.0
+            })
+            .collect();
+        let a2 = batches.iter().sum::<f64>() / 8.0;
+        let var = batches.iter().map(|b| (b - a2).powi(2)).sum::<f64>() / 7.0;
+        let error = (var / 8.0).sqrt();
+        let theory = 16.0 * (1.0 - eps) * (1.0 - 2.0 * eps * eps)
+            / (81.0 - 17.0 * eps + 30.0 * eps * eps * (1.0 - eps));
+        eprintln!(
+            "eps = {eps}: a2 = {a2:.5} +- {error:.5}, van Noije-Ernst {theory:.5}, (a2 - vNE)/error = {:.2}",
+            (a2 - theory) / error
+        );
+        if eps >= 0.7 {
+            assert!((a2 - theory).abs() < 3.0 * error, "eps = {eps}: a2 = {a2}");
+        }
+    }
+}
