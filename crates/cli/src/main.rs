@@ -9,6 +9,7 @@ mod algebra;
 mod bench;
 mod cor;
 mod demo;
+mod engine;
 mod error;
 mod output;
 mod plot;
@@ -123,6 +124,8 @@ enum BenchCommand {
     Cor(BenchCorArgs),
     /// Throughput of event-driven MD of an elastic gas in 3D.
     Emd(BenchEmdArgs),
+    /// Throughput of homogeneous DSMC in 3D (all cores).
+    Dsmc(BenchDsmcArgs),
 }
 
 /// Arguments of `haff bench emd`.
@@ -146,6 +149,38 @@ pub struct BenchEmdArgs {
     /// Minimum cell width in diameters (>= 1).
     #[arg(long, default_value = "1", allow_hyphen_values = true)]
     pub cell_width: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
+}
+
+/// Arguments of `haff bench dsmc`.
+#[derive(Debug, Args)]
+pub struct BenchDsmcArgs {
+    /// Number of particles, 2 <= N <= 1e9.
+    #[arg(long, default_value = "10000000", allow_hyphen_values = true)]
+    pub particles: String,
+    /// Packing fraction (sets the Enskog factor and the time scale), 0 < phi <= 0.45.
+    #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
+    pub packing_fraction: String,
+    /// Collisions per particle timed per repeat (after 1 of warm-up).
+    #[arg(long, default_value = "2", allow_hyphen_values = true)]
+    pub collisions: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Scheme: blocks (parallel) or exact (serial).
+    #[arg(long, default_value = "blocks")]
+    pub scheme: String,
+    /// The law: `fast` (viscoelastic, with --beta) or a constant eps in [0, 1].
+    #[arg(long, default_value = "fast", allow_hyphen_values = true)]
+    pub law: String,
+    /// beta of the viscoelastic law in simulation units (T = m = sigma = 1).
+    #[arg(long, default_value = "0.3", allow_hyphen_values = true)]
+    pub beta: String,
+    /// Worker threads (default: all cores).
+    #[arg(long, allow_hyphen_values = true)]
+    pub threads: Option<String>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,
@@ -295,6 +330,7 @@ fn run(command: Command) -> CliResult {
         Command::Cor(CorCommand::Pade(args)) => algebra::pade(&args),
         Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
         Command::Bench(BenchCommand::Emd(args)) => bench::emd(&args),
+        Command::Bench(BenchCommand::Dsmc(args)) => bench::dsmc(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
     }

@@ -21,7 +21,10 @@
 //! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K"
 //! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
 //! [run]
-//! engine = "event-driven"
+//! engine = "event-driven"  # event-driven | dsmc
+//! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 2048 (blocks),
+//! #       collisions_per_step = 0.5 or time_step = DT (blocks, spatial),
+//! #       collision_cell_width = W (spatial)
 //! collisions_per_particle = 500   # or end_time = ...
 //! samples = 200
 //! spacing = "log"          # log | linear
@@ -58,6 +61,7 @@
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
 use gas::observe::{sonine_a2, temperature, velocity_histogram};
+use crate::engine::{Counters, DsmcSetup, DsmcState, Engine, EngineState};
 use gas::{init, EventDriven};
 use restitution::dashpot::DashpotCriterion;
 use restitution::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
@@ -136,6 +140,20 @@ struct RunSection {
     /// Bins of the velocity histograms (default [`HISTOGRAM_BINS`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     histogram_bins: Option<usize>,
+    /// DSMC: "blocks" (default), "exact" (homogeneous) or "spatial".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dsmc_scheme: Option<String>,
+    /// DSMC blocks: particles per block.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    block_size: Option<usize>,
+    /// DSMC blocks / spatial: collisions per particle per step (or `time_step`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    collisions_per_step: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    time_step: Option<f64>,
+    /// Spatial DSMC: width of the collision cells.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    collision_cell_width: Option<f64>,
 }
 
 /// Default number of bins of a velocity histogram.
@@ -244,12 +262,35 @@ fn validate(file: &RunFile) -> CliResult<Stop> {
         }
     }
     let r = &file.run;
-    if r.engine != "event-driven" {
-        let allowed = "event-driven (dsmc comes with issue 5)";
-        return Err(CliError::argument(
-            "run.engine",
-            format!("'{}': allowed: {allowed}", r.engine),
-        ));
+    match r.engine.as_str() {
+        "event-driven" => {
+            for (key, given) in [
+                ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
+                ("run.block_size", r.block_size.is_some()),
+                ("run.collisions_per_step", r.collisions_per_step.is_some()),
+                ("run.time_step", r.time_step.is_some()),
+                ("run.collision_cell_width", r.collision_cell_width.is_some()),
+            ] {
+                if given {
+                    return Err(CliError::argument(key, "only for run.engine = \"dsmc\""));
+                }
+            }
+        }
+        "dsmc" => {
+            if file.collision.tc.is_some_and(|tc| tc > 0.0) {
+                return Err(CliError::argument(
+                    "collision.tc",
+                    "the TC model is for run.engine = \"event-driven\" (DSMC has no collapse)",
+                ));
+            }
+            dsmc_setup(r)?;
+        }
+        other => {
+            return Err(CliError::argument(
+                "run.engine",
+                format!("'{other}': allowed: event-driven, dsmc"),
+            ))
+        }
     }
     if !(2..=1_000_000).contains(&r.samples) {
         return Err(bad_key("run.samples", r.samples, "2 <= samples <= 1e6"));
@@ -314,6 +355,67 @@ fn to_species(entries: &[SpeciesEntry]) -> Vec<init::Species> {
             fraction: x.fraction,
         })
         .collect()
+}
+
+/// The DSMC engine and options of the `[run]` section (checked).
+fn dsmc_setup(r: &RunSection) -> CliResult<DsmcSetup> {
+    use gas::dsmc::{Scheme, SpatialOptions, StepSize};
+    let step = match (r.collisions_per_step, r.time_step) {
+        (None, None) => StepSize::Auto,
+        (Some(c), None) => {
+            if !(c.is_finite() && c > 0.0 && c <= 100.0) {
+                return Err(bad_key("run.collisions_per_step", c, "0 < value <= 100"));
+            }
+            StepSize::CollisionsPerParticle(c)
+        }
+        (None, Some(dt)) => StepSize::Fixed(positive("run.time_step", dt)?),
+        (Some(_), Some(_)) => {
+            return Err(CliError::argument(
+                "run.time_step",
+                "give at most one of run.collisions_per_step and run.time_step",
+            ))
+        }
+    };
+    let scheme = r.dsmc_scheme.as_deref().unwrap_or("blocks");
+    let exclusive = |key: &str, given: bool| -> CliResult {
+        if given {
+            Err(CliError::argument(
+                key,
+                format!("not used by run.dsmc_scheme = \"{scheme}\""),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    match scheme {
+        "blocks" => {
+            exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            let block_size = r.block_size.unwrap_or(gas::dsmc::DEFAULT_BLOCK_SIZE);
+            if !(2..=u32::MAX as usize).contains(&block_size) {
+                return Err(bad_key("run.block_size", block_size, "2 <= block_size <= 2^32 - 1"));
+            }
+            Ok(DsmcSetup::Homogeneous(Scheme::Blocks { block_size, step }))
+        }
+        "exact" => {
+            exclusive("run.block_size", r.block_size.is_some())?;
+            exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            exclusive("run.collisions_per_step", r.collisions_per_step.is_some())?;
+            exclusive("run.time_step", r.time_step.is_some())?;
+            Ok(DsmcSetup::Homogeneous(Scheme::Exact))
+        }
+        "spatial" => {
+            exclusive("run.block_size", r.block_size.is_some())?;
+            let cell_width = r
+                .collision_cell_width
+                .map(|w| positive("run.collision_cell_width", w))
+                .transpose()?;
+            Ok(DsmcSetup::Spatial(SpatialOptions { cell_width, step }))
+        }
+        other => Err(CliError::argument(
+            "run.dsmc_scheme",
+            format!("'{other}': allowed: blocks, exact, spatial"),
+        )),
+    }
 }
 
 /// The collision law of the `[collision]` section.
@@ -418,6 +520,9 @@ struct Checkpoint {
     /// Velocity histograms taken so far.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     histograms: Vec<Histogram>,
+    /// DSMC: the engine's state beyond its particles (`events` then counts candidates).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dsmc: Option<DsmcState>,
 }
 
 /// `haff run`.
@@ -603,106 +708,151 @@ struct RunContext<'a> {
     out: &'a Path,
 }
 
+/// The initial particles of the `[system]` section.
+fn initial_system<const D: usize>(file: &RunFile) -> CliResult<gas::System<D>> {
+    let s = &file.system;
+    let fail = |e: String| CliError::argument("system", e);
+    match &s.species {
+        // DSMC particles are points: no need to place them without overlaps.
+        None if file.run.engine == "dsmc" => {
+            let diameter = s.diameter.unwrap_or(1.0);
+            let volume = s.particles as f64 * gas::system::ball_volume::<D>(0.5 * diameter)
+                / s.packing_fraction;
+            gas::dsmc::point_gas::<D>(
+                s.particles,
+                volume.powf(1.0 / D as f64),
+                diameter,
+                s.mass.unwrap_or(1.0),
+                s.temperature,
+                s.seed,
+            )
+        }
+        None => init::monodisperse::<D>(
+            s.particles,
+            s.packing_fraction,
+            s.diameter.unwrap_or(1.0),
+            s.mass.unwrap_or(1.0),
+            s.temperature,
+            s.seed,
+        ),
+        Some(species) => init::polydisperse::<D>(
+            s.particles,
+            s.packing_fraction,
+            &to_species(species),
+            s.temperature,
+            s.seed,
+        ),
+    }
+    .map_err(fail)
+}
+
+/// The engine state stored in a check-point.
+fn checkpoint_state<const D: usize>(c: &Checkpoint) -> CliResult<EngineState<D>> {
+    let vector = |v: &Vec<f64>| -> CliResult<[f64; D]> {
+        v.as_slice()
+            .try_into()
+            .map_err(|_| CliError::argument("--resume", "check-point of another dimension"))
+    };
+    Ok(EngineState {
+        time: c.time,
+        system: gas::System {
+            length: c.length,
+            positions: c.positions.iter().map(vector).collect::<CliResult<_>>()?,
+            velocities: c.velocities.iter().map(vector).collect::<CliResult<_>>()?,
+            radii: c.radii.clone(),
+            masses: c.masses.clone(),
+        },
+        counts: c.counts.clone(),
+        counters: Counters {
+            collisions: c.collisions,
+            events: c.events,
+            energy_lost: c.energy_lost,
+            virial: c.virial,
+        },
+        // -inf (no collision yet) is stored as null: JSON has no infinities.
+        tc_last: c.tc_last.as_ref().map(|last| {
+            last.iter()
+                .map(|t| t.unwrap_or(f64::NEG_INFINITY))
+                .collect()
+        }),
+        dsmc: c.dsmc.clone(),
+    })
+}
+
 /// A fresh engine from the `[system]` section, or one restored from a check-point.
 fn start_engine<const D: usize>(
     file: &RunFile,
     law: Box<dyn Restitution>,
     resume: &Option<Checkpoint>,
-) -> CliResult<EventDriven<D>> {
+) -> CliResult<Engine<D>> {
     let s = &file.system;
     let fail = |e: String| CliError::argument("system", e);
+    if file.run.engine == "dsmc" {
+        let setup = dsmc_setup(&file.run)?;
+        let (phi, seed) = (s.packing_fraction, s.seed);
+        let resumed = |e: String| CliError::argument("--resume", e);
+        return match resume {
+            None => Engine::dsmc(initial_system::<D>(file)?, phi, law, seed, setup).map_err(fail),
+            Some(c) => Engine::restore_dsmc(checkpoint_state::<D>(c)?, phi, law, seed, setup)
+                .map_err(resumed),
+        };
+    }
     let mut engine = match resume {
-        None => {
-            let system = match &s.species {
-                None => init::monodisperse::<D>(
-                    s.particles,
-                    s.packing_fraction,
-                    s.diameter.unwrap_or(1.0),
-                    s.mass.unwrap_or(1.0),
-                    s.temperature,
-                    s.seed,
-                ),
-                Some(species) => init::polydisperse::<D>(
-                    s.particles,
-                    s.packing_fraction,
-                    &to_species(species),
-                    s.temperature,
-                    s.seed,
-                ),
-            }
-            .map_err(fail)?;
-            EventDriven::new(system, law).map_err(fail)?
-        }
+        None => EventDriven::new(initial_system::<D>(file)?, law).map_err(fail)?,
         Some(c) => {
-            let vector = |v: &Vec<f64>| -> CliResult<[f64; D]> {
-                v.as_slice()
-                    .try_into()
-                    .map_err(|_| CliError::argument("--resume", "check-point of another dimension"))
-            };
-            let system = gas::System {
-                length: c.length,
-                positions: c.positions.iter().map(vector).collect::<CliResult<_>>()?,
-                velocities: c.velocities.iter().map(vector).collect::<CliResult<_>>()?,
-                radii: c.radii.clone(),
-                masses: c.masses.clone(),
-            };
+            let state = checkpoint_state::<D>(c)?;
             let tally = gas::emd::Tally {
-                collisions: c.collisions,
-                events: c.events,
-                energy_lost: c.energy_lost,
-                virial: c.virial,
+                collisions: state.counters.collisions,
+                events: state.counters.events,
+                energy_lost: state.counters.energy_lost,
+                virial: state.counters.virial,
             };
-            EventDriven::restore(system, law, c.time, c.counts.clone(), tally).map_err(fail)?
+            EventDriven::restore(state.system, law, state.time, state.counts, tally)
+                .map_err(fail)?
         }
     };
     if let Some(tc) = file.collision.tc {
-        // -inf (no collision yet) is stored as null: JSON has no infinities.
-        let last = resume
-            .as_ref()
-            .and_then(|c| c.tc_last.as_ref())
-            .map(|last| {
-                last.iter()
-                    .map(|t| t.unwrap_or(f64::NEG_INFINITY))
-                    .collect()
-            });
+        let last = match resume {
+            Some(c) => checkpoint_state::<D>(c)?.tc_last,
+            None => None,
+        };
         engine
             .set_tc_model(tc, last)
             .map_err(|e| CliError::argument("collision.tc", e))?;
     }
-    Ok(engine)
+    Ok(Engine::EventDriven(Box::new(engine)))
 }
 
 fn write_checkpoint<const D: usize>(
     context: &RunContext,
-    engine: &mut EventDriven<D>,
+    engine: &mut Engine<D>,
     samples: &[Sample],
     histograms: &[Histogram],
     last_virial: (f64, f64),
 ) -> CliResult {
-    engine.synchronize();
-    let (time, tally, counts) = (engine.time(), engine.tally(), engine.counts().to_vec());
-    let tc_last = engine
-        .tc_model()
-        .map(|(_, last)| last.iter().map(|&t| t.is_finite().then_some(t)).collect());
-    let system = engine.system();
+    let state = engine.state();
+    let system = &state.system;
     let checkpoint = Checkpoint {
         file: context.file.clone(),
         samples: samples.to_vec(),
-        time,
+        time: state.time,
         length: system.length,
         positions: system.positions.iter().map(|p| p.to_vec()).collect(),
         velocities: system.velocities.iter().map(|v| v.to_vec()).collect(),
         radii: system.radii.clone(),
         masses: system.masses.clone(),
-        counts,
-        collisions: tally.collisions,
-        events: tally.events,
-        energy_lost: tally.energy_lost,
-        virial: tally.virial,
+        counts: state.counts,
+        collisions: state.counters.collisions,
+        events: state.counters.events,
+        energy_lost: state.counters.energy_lost,
+        virial: state.counters.virial,
         last_virial,
         every: context.every,
-        tc_last,
+        tc_last: state
+            .tc_last
+            .map(|last| last.iter().map(|&t| t.is_finite().then_some(t)).collect()),
         histograms: histograms.to_vec(),
+        dsmc: state.dsmc,
     };
     // Write then rename, so that an interrupted write never destroys the last check-point.
     let path = context.out.join("checkpoint.json");
@@ -719,7 +869,7 @@ fn simulate<const D: usize>(
     context: &RunContext,
     law: Box<dyn Restitution>,
     resume: Option<Checkpoint>,
-) -> CliResult<(Vec<Sample>, Vec<Histogram>, gas::emd::Tally)> {
+) -> CliResult<(Vec<Sample>, Vec<Histogram>, Counters)> {
     let file = context.file;
     let mut engine = start_engine::<D>(file, law, &resume)?;
     let n = file.system.particles as f64;
@@ -763,10 +913,10 @@ fn simulate<const D: usize>(
             engine.run_until(target.value);
         } else {
             let want = (target.value * n / 2.0).round() as u64;
-            let have = engine.tally().collisions;
+            let have = engine.counters().collisions;
             engine.run_collisions(want.saturating_sub(have));
         }
-        let tally = engine.tally();
+        let tally = engine.counters();
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());
         if target.histogram {
             histograms.push(Histogram {
@@ -779,12 +929,13 @@ fn simulate<const D: usize>(
         if target.sample.is_none() {
             continue;
         }
+        let weight = engine.weight();
         let system = engine.system();
         let t = temperature(system);
         let volume = system.volume();
         let dt = time - last.0;
         let virial = if dt > 0.0 {
-            (tally.virial - last.1) / (D as f64 * volume * dt)
+            weight * (tally.virial - last.1) / (D as f64 * volume * dt)
         } else {
             0.0
         };
@@ -794,7 +945,7 @@ fn simulate<const D: usize>(
             temperature: t,
             a2: sonine_a2(system),
             energy_lost: tally.energy_lost,
-            pressure: n / volume * t + virial,
+            pressure: weight * n / volume * t + virial,
             events: tally.events,
         });
         last = (time, tally.virial);
@@ -809,7 +960,7 @@ fn simulate<const D: usize>(
         }
     }
     progress.finish_and_clear();
-    Ok((samples, histograms, engine.tally()))
+    Ok((samples, histograms, engine.counters()))
 }
 
 fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {

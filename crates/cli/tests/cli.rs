@@ -821,3 +821,64 @@ fn bad_species_tc_and_histograms_are_rejected() {
         "run.histogram_at",
     );
 }
+
+/// DSMC runs share the sampling loop and check-points of eMD: a resumed run of each scheme
+/// repeats the uninterrupted one bit for bit (the random streams continue where they were).
+#[test]
+fn resumed_dsmc_runs_repeat_the_uninterrupted_ones() {
+    for scheme in ["blocks", "exact", "spatial"] {
+        let dir = std::env::temp_dir().join(format!(
+            "haff-resume-dsmc-{scheme}-{}",
+            std::process::id()
+        ));
+        let toml = format!(
+            "[system]\nparticles = 3000\npacking_fraction = 0.05\nseed = 4\n\
+             [collision]\nlaw = \"viscoelastic\"\nbeta = 0.3\nform = \"fast\"\n\
+             [run]\nengine = \"dsmc\"\ndsmc_scheme = \"{scheme}\"\n\
+             collisions_per_particle = 20\nsamples = 12\nhistogram_at = [0.0, 10.0]\n"
+        );
+        let (full, chunked) = run_full_and_chunked(&dir, &toml);
+        let a = read(&full, "timeseries.csv");
+        assert_eq!(a.lines().count(), 13, "{scheme}");
+        assert_eq!(a, read(&chunked, "timeseries.csv"), "{scheme}");
+        assert_eq!(
+            read(&full, "velocity_histograms.csv"),
+            read(&chunked, "velocity_histograms.csv")
+        );
+        let (_, rows) = parse_csv(&a);
+        let last = rows.last().unwrap();
+        assert!(last[2] < 1.0 && last[2] > 0.0, "{scheme}: T = {}", last[2]);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
+
+#[test]
+fn bad_dsmc_keys_are_rejected() {
+    let base = "[system]\nparticles = 100\npacking_fraction = 0.05\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\n";
+    let run = |extra: &str| format!("{base}[run]\ncollisions_per_particle = 5\n{extra}");
+    assert_run_rejected(&run("engine = \"monte-carlo\"\n"), "run.engine");
+    assert_run_rejected(&run("engine = \"dsmc\"\ndsmc_scheme = \"bird\"\n"), "run.dsmc_scheme");
+    assert_run_rejected(&run("engine = \"dsmc\"\nblock_size = 1\n"), "run.block_size");
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\ncollisions_per_step = 0.0\n"),
+        "run.collisions_per_step",
+    );
+    assert_run_rejected(&run("engine = \"dsmc\"\ntime_step = -1.0\n"), "run.time_step");
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\ndsmc_scheme = \"exact\"\nblock_size = 100\n"),
+        "run.block_size",
+    );
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollision_cell_width = 0.0\n"),
+        "run.collision_cell_width",
+    );
+    assert_run_rejected(&run("block_size = 100\n"), "run.block_size");
+    assert_run_rejected(
+        &format!(
+            "{}tc = 0.1\n[run]\nengine = \"dsmc\"\ncollisions_per_particle = 5\n",
+            base
+        ),
+        "collision.tc",
+    );
+}

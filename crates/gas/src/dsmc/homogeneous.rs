@@ -1,0 +1,535 @@
+//! The homogeneous DSMC engine: velocities only, exact serial or blocked parallel.
+
+use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
+use super::rng::{Purpose, Stream};
+use super::species::Species;
+use super::{
+    check_input, frequency_estimate, mean_velocity, theory, HomogeneousSnapshot, Scheme, StepSize,
+    Tally, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
+};
+use crate::system::{System, Vector};
+use rayon::prelude::*;
+use restitution::Restitution;
+
+/// Particles per lane of the block re-mixing: a lane moves to another block as a whole.
+const LANE: usize = 16;
+
+/// The particle records, with a second buffer for the block re-mixing.
+enum Store<const D: usize> {
+    /// One species: the velocity is the record (8 D bytes).
+    Uniform(Vec<Vector<D>>, Vec<Vector<D>>),
+    Mixed(Vec<Tagged<D>>, Vec<Tagged<D>>),
+}
+
+/// Everything but the records.
+struct Core<const D: usize> {
+    species: Species,
+    law: Box<dyn Restitution>,
+    scheme: Scheme,
+    phi: f64,
+    seed: u64,
+    /// N times the mean sphere volume over phi (the box of the event-driven engine).
+    volume: f64,
+    reference: Vector<D>,
+    time: f64,
+    steps: u64,
+    tally: Tally,
+    /// [`Scheme::Exact`]: the velocity the speed bound is measured from (the mean velocity
+    /// when the bound was last recomputed), the bound on |v - reference| and the stream.
+    speed_bound: f64,
+    stream: Stream,
+    temperature: f64,
+}
+
+/// DSMC of a spatially homogeneous granular gas (see the [module](super) documentation).
+///
+/// The collision rate of a pair is g2(phi) sigma^(D-1) c_D |g| / V with V the volume in which
+/// the spheres fill the packing fraction phi (the event-driven engine's box for a system
+/// from `init::monodisperse`), so times agree with the event-driven engine (Enskog).
+pub struct HomogeneousDsmc<const D: usize> {
+    core: Core<D>,
+    store: Store<D>,
+    /// Output buffer of [`HomogeneousDsmc::system`].
+    system: System<D>,
+}
+
+impl<const D: usize> HomogeneousDsmc<D> {
+    /// An engine at time 0 from the velocities, radii and masses of `system` (positions are
+    /// ignored), the packing fraction `phi` (0 < phi < close packing), the law, a seed and the
+    /// scheme. Fails, naming the parameter, for bad input.
+    pub fn new(
+        system: System<D>,
+        phi: f64,
+        law: Box<dyn Restitution>,
+        seed: u64,
+        scheme: Scheme,
+    ) -> Result<Self, String> {
+        check_input(&system, phi)?;
+        check_scheme(&scheme)?;
+        let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
+        let reference = mean_velocity(&system.velocities, &system.masses);
+        let n = system.velocities.len();
+        let mut core = Core {
+            volume: species.sphere_volume / phi,
+            species,
+            law,
+            scheme,
+            phi,
+            seed,
+            reference,
+            time: 0.0,
+            steps: 0,
+            tally: Tally::default(),
+            speed_bound: 0.0,
+            stream: Stream::new(seed, Purpose::Exact, 0, 0),
+            temperature: 0.0,
+        };
+        let store = make_store(&core.species, system.velocities, &index);
+        let (bound, moments) = match &store {
+            Store::Uniform(now, _) => (
+                kernel::speed_bound(now, &reference),
+                Moments::of(now, &core.species),
+            ),
+            Store::Mixed(now, _) => (
+                kernel::speed_bound(now, &reference),
+                Moments::of(now, &core.species),
+            ),
+        };
+        core.speed_bound = bound;
+        core.temperature = moments.spread / (n * D) as f64;
+        Ok(HomogeneousDsmc {
+            core,
+            store,
+            system: empty_system(),
+        })
+    }
+
+    /// Continues the run of `snapshot` bit for bit with the law it used.
+    pub fn restore(
+        snapshot: HomogeneousSnapshot<D>,
+        law: Box<dyn Restitution>,
+    ) -> Result<Self, String> {
+        let HomogeneousSnapshot {
+            system,
+            packing_fraction,
+            seed,
+            options,
+            time,
+            steps,
+            tally,
+            reference_velocity,
+            speed_bound,
+            draws,
+            temperature,
+        } = snapshot;
+        let mut engine = Self::new(system, packing_fraction, law, seed, options)?;
+        let core = &mut engine.core;
+        core.time = time;
+        core.steps = steps;
+        core.tally = tally;
+        core.reference = reference_velocity;
+        core.speed_bound = speed_bound;
+        core.stream = Stream::at(seed, Purpose::Exact, 0, 0, draws);
+        core.temperature = temperature;
+        Ok(engine)
+    }
+
+    /// The state, random stream positions and options, to continue later bit for bit.
+    pub fn snapshot(&mut self) -> HomogeneousSnapshot<D> {
+        let c = &self.core;
+        let (time, steps, tally, seed, scheme, phi) =
+            (c.time, c.steps, c.tally, c.seed, c.scheme, c.phi);
+        let (reference, speed_bound, draws, temperature) =
+            (c.reference, c.speed_bound, c.stream.draws(), c.temperature);
+        HomogeneousSnapshot {
+            system: self.system().clone(),
+            packing_fraction: phi,
+            seed,
+            options: scheme,
+            time,
+            steps,
+            tally,
+            reference_velocity: reference,
+            speed_bound,
+            draws,
+            temperature,
+        }
+    }
+
+    pub fn time(&self) -> f64 {
+        self.core.time
+    }
+
+    pub fn tally(&self) -> Tally {
+        self.core.tally
+    }
+
+    /// Steps of [`Scheme::Blocks`] so far (0 for the exact scheme).
+    pub fn steps(&self) -> u64 {
+        self.core.steps
+    }
+
+    pub fn len(&self) -> usize {
+        match &self.store {
+            Store::Uniform(now, _) => now.len(),
+            Store::Mixed(now, _) => now.len(),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Collisions per particle so far (each collision counts for two particles).
+    pub fn collisions_per_particle(&self) -> f64 {
+        2.0 * self.core.tally.collisions as f64 / self.len() as f64
+    }
+
+    /// The volume V of the gas (N sphere volumes over phi).
+    pub fn volume(&self) -> f64 {
+        self.core.volume
+    }
+
+    /// The temperature at the end of the last step (blocks) or at the start (exact); use
+    /// `observe::temperature(self.system())` for the current one.
+    pub fn step_temperature(&self) -> f64 {
+        self.core.temperature
+    }
+
+    /// The current state: velocities, radii and masses in the engine's current order (the
+    /// block scheme permutes particles every step), positions all zero, `length` the side of
+    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`.
+    pub fn system(&mut self) -> &System<D> {
+        let species = &self.core.species;
+        let s = &mut self.system;
+        s.length = self.core.volume.powf(1.0 / D as f64);
+        s.velocities.clear();
+        s.radii.clear();
+        s.masses.clear();
+        match &self.store {
+            Store::Uniform(now, _) => fill(s, now, species),
+            Store::Mixed(now, _) => fill(s, now, species),
+        }
+        s.positions.clear();
+        s.positions.resize(s.velocities.len(), [0.0; D]);
+        &self.system
+    }
+
+    /// Bytes held by the engine: records, the re-mixing buffer, the output of
+    /// [`HomogeneousDsmc::system`] once taken, and the species tables.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let records = match &self.store {
+            Store::Uniform(a, b) => (a.capacity() + b.capacity()) * size_of::<Vector<D>>(),
+            Store::Mixed(a, b) => (a.capacity() + b.capacity()) * size_of::<Tagged<D>>(),
+        };
+        let s = &self.system;
+        let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
+        records + output + self.core.species.memory_bytes()
+    }
+
+    /// Runs until `collisions` more collisions have happened. The exact scheme stops at
+    /// the collision; the block scheme at the end of a step, its last steps shortened to the
+    /// expected remaining count (overshoot of order its square root). Stops early if
+    /// nothing can collide (all particles at rest relative to each other).
+    pub fn run_collisions(&mut self, collisions: u64) {
+        let target = self.core.tally.collisions.saturating_add(collisions);
+        self.run(f64::INFINITY, target);
+    }
+
+    /// Runs until the time reaches `t` (no effect if it already has).
+    pub fn run_until(&mut self, t: f64) {
+        self.run(t, u64::MAX);
+    }
+
+    fn run(&mut self, end: f64, target: u64) {
+        let core = &mut self.core;
+        match &mut self.store {
+            Store::Uniform(now, spare) => run_records(core, now, spare, end, target),
+            Store::Mixed(now, spare) => run_records(core, now, spare, end, target),
+        }
+    }
+}
+
+fn check_scheme(scheme: &Scheme) -> Result<(), String> {
+    match scheme {
+        Scheme::Exact => Ok(()),
+        Scheme::Blocks { block_size, step } => {
+            if *block_size < 2 || *block_size > u32::MAX as usize {
+                return Err(format!(
+                    "block_size = {block_size}: allowed 2 ..= {}",
+                    u32::MAX
+                ));
+            }
+            step.check()
+        }
+    }
+}
+
+fn empty_system<const D: usize>() -> System<D> {
+    System {
+        length: 0.0,
+        positions: Vec::new(),
+        velocities: Vec::new(),
+        radii: Vec::new(),
+        masses: Vec::new(),
+    }
+}
+
+fn make_store<const D: usize>(
+    species: &Species,
+    velocities: Vec<Vector<D>>,
+    index: &[u32],
+) -> Store<D> {
+    if species.len() == 1 {
+        Store::Uniform(velocities, Vec::new())
+    } else {
+        let records = velocities
+            .into_iter()
+            .zip(index)
+            .map(|(velocity, &species)| Tagged { velocity, species })
+            .collect();
+        Store::Mixed(records, Vec::new())
+    }
+}
+
+fn fill<const D: usize, R: Record<D>>(s: &mut System<D>, records: &[R], species: &Species) {
+    for r in records {
+        s.velocities.push(*r.velocity());
+        s.radii.push(species.radii[r.species()]);
+        s.masses.push(species.masses[r.species()]);
+    }
+}
+
+fn run_records<const D: usize, R: Record<D>>(
+    core: &mut Core<D>,
+    now: &mut Vec<R>,
+    spare: &mut Vec<R>,
+    end: f64,
+    target: u64,
+) {
+    match core.scheme {
+        Scheme::Exact => run_exact(core, now, end, target),
+        Scheme::Blocks { block_size, step } => {
+            run_blocks(core, now, spare, block_size, step, end, target)
+        }
+    }
+}
+
+/// The exact scheme: the kernel over all particles, its speed bound recomputed from scratch
+/// (about the current mean velocity) after every N collisions: it only ever rises inside
+/// the kernel, while inelastic collisions slow particles down.
+fn run_exact<const D: usize, R: Record<D>>(
+    core: &mut Core<D>,
+    records: &mut [R],
+    end: f64,
+    target: u64,
+) {
+    let n = records.len() as u64;
+    let pair_rate = theory::cross_section_factor::<D>() * core.species.max_weight / core.volume;
+    while core.tally.collisions < target && core.time < end {
+        if core.speed_bound == 0.0 {
+            // Nothing moves relative to the rest: no collision ever.
+            if end.is_finite() {
+                core.time = end;
+            }
+            return;
+        }
+        let next_recompute = (core.tally.collisions / n + 1) * n;
+        let window = Window {
+            start: core.time,
+            end,
+            max_collisions: target.min(next_recompute) - core.tally.collisions,
+        };
+        let collider = Collider {
+            law: core.law.as_ref(),
+            species: &core.species,
+        };
+        core.time = collider.run(
+            records,
+            &core.reference,
+            pair_rate,
+            window,
+            &mut core.speed_bound,
+            &mut core.stream,
+            &mut core.tally,
+        );
+        if core.tally.collisions == next_recompute {
+            core.reference = Moments::of(records, &core.species).mean();
+            core.speed_bound = kernel::speed_bound(records, &core.reference);
+        }
+    }
+}
+
+/// How N particles split into blocks: `count` blocks, the first `longer` of them with
+/// `size + 1` particles, the rest with `size`.
+#[derive(Debug, Clone, Copy)]
+struct Blocks {
+    count: usize,
+    size: usize,
+    longer: usize,
+}
+
+impl Blocks {
+    fn new(n: usize, block_size: usize) -> Self {
+        let count = ((n as f64 / block_size as f64).round() as usize).clamp(1, n / 2);
+        Blocks {
+            count,
+            size: n / count,
+            longer: n % count,
+        }
+    }
+
+    fn start(&self, b: usize) -> usize {
+        b * self.size + b.min(self.longer)
+    }
+
+    fn len(&self, b: usize) -> usize {
+        self.size + (b < self.longer) as usize
+    }
+
+    /// Whole lanes every block has.
+    fn lanes(&self) -> usize {
+        self.size / LANE
+    }
+
+    fn split<'a, T>(&self, mut data: &'a mut [T]) -> Vec<&'a mut [T]> {
+        let mut parts = Vec::with_capacity(self.count);
+        for b in 0..self.count {
+            let (head, tail) = data.split_at_mut(self.len(b));
+            parts.push(head);
+            data = tail;
+        }
+        parts
+    }
+}
+
+/// The block scheme: steps until the time reaches `end` or the collisions `target`.
+fn run_blocks<const D: usize, R: Record<D>>(
+    core: &mut Core<D>,
+    now: &mut Vec<R>,
+    spare: &mut Vec<R>,
+    block_size: usize,
+    step: StepSize,
+    end: f64,
+    target: u64,
+) {
+    let n = now.len();
+    let layout = Blocks::new(n, block_size);
+    while core.tally.collisions < target && core.time < end {
+        let omega =
+            frequency_estimate::<D>(&core.species, n as f64 - 1.0, core.volume, core.temperature);
+        if !(omega > 0.0) {
+            // At rest: no collision ever.
+            if end.is_finite() {
+                core.time = end;
+            }
+            return;
+        }
+        let mut dt = match step {
+            StepSize::Auto => DEFAULT_BLOCK_COLLISIONS_PER_STEP / omega,
+            StepSize::CollisionsPerParticle(x) => x / omega,
+            StepSize::Fixed(dt) => dt,
+        };
+        if target != u64::MAX {
+            // Expected collisions in dt: N omega dt / 2.
+            let remaining = (target - core.tally.collisions) as f64;
+            dt = dt.min(2.0 * remaining / (n as f64 * omega));
+        }
+        let last = dt >= end - core.time;
+        if last {
+            dt = end - core.time;
+        }
+        let (tally, spread) = block_step(core, now, spare, &layout, dt);
+        std::mem::swap(now, spare);
+        core.tally.add(&tally);
+        core.temperature = spread / (n * D) as f64;
+        core.steps += 1;
+        core.time = if last { end } else { core.time + dt };
+    }
+}
+
+/// One step: every destination block gathers its particles (lane c from block
+/// b + offset_c), runs the exact process for `dt` (speeds bounded about the block's mean
+/// velocity), shuffles itself and takes its moments. Returns the tally and the spread
+/// (sum of m |v - <v>|^2) of the gas.
+fn block_step<const D: usize, R: Record<D>>(
+    core: &Core<D>,
+    now: &[R],
+    spare: &mut Vec<R>,
+    layout: &Blocks,
+    dt: f64,
+) -> (Tally, f64) {
+    let n = now.len();
+    if spare.len() != n {
+        spare.clear();
+        spare.extend_from_slice(now);
+    }
+    let mut mixing = Stream::new(core.seed, Purpose::Mixing, core.steps, 0);
+    let offsets: Vec<usize> = (0..layout.lanes())
+        .map(|_| mixing.below(layout.count as u64) as usize)
+        .collect();
+    let collider = Collider {
+        law: core.law.as_ref(),
+        species: &core.species,
+    };
+    let (seed, steps, species) = (core.seed, core.steps, &core.species);
+    let base_rate =
+        theory::cross_section_factor::<D>() * core.species.max_weight * (n as f64 - 1.0)
+            / core.volume;
+    let results: Vec<(Tally, Moments<D>)> = layout
+        .split(spare)
+        .into_par_iter()
+        .enumerate()
+        .map(|(b, block)| {
+            gather(now, layout, &offsets, b, block);
+            let mean = Moments::of(block, species).mean();
+            let mut bound = kernel::speed_bound(block, &mean);
+            let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
+            let mut tally = Tally::default();
+            // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
+            let pair_rate = base_rate / (block.len() as f64 - 1.0);
+            collider.run_for(
+                block,
+                &mean,
+                pair_rate,
+                (0.0, dt),
+                &mut bound,
+                &mut rng,
+                &mut tally,
+            );
+            kernel::shuffle(block, &mut rng);
+            (tally, Moments::of(block, species))
+        })
+        .collect();
+    let mut tally = Tally::default();
+    for (t, _) in &results {
+        tally.add(t);
+    }
+    let moments: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
+    (tally, Moments::pooled_spread(&moments))
+}
+
+/// Copies a lane as a fixed-size array (inline moves rather than a call to memmove).
+#[inline(always)]
+fn copy_lane<R: Copy>(from: &[R], to: &mut [R]) {
+    let from: &[R; LANE] = from.try_into().expect("a lane");
+    let to: &mut [R; LANE] = to.try_into().expect("a lane");
+    *to = *from;
+}
+
+/// Fills destination block `b`: lane c (particles c LANE .. (c+1) LANE) from block
+/// (b + offsets[c]) mod count, the rest of the block (fewer than LANE + 1) from block b.
+fn gather<R: Copy>(now: &[R], layout: &Blocks, offsets: &[usize], b: usize, block: &mut [R]) {
+    for (c, &offset) in offsets.iter().enumerate() {
+        let source = layout.start((b + offset) % layout.count) + c * LANE;
+        copy_lane(
+            &now[source..source + LANE],
+            &mut block[c * LANE..(c + 1) * LANE],
+        );
+    }
+    let done = offsets.len() * LANE;
+    let (own, len) = (layout.start(b), block.len());
+    block[done..].copy_from_slice(&now[own + done..own + len]);
+}

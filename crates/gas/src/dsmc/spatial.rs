@@ -1,0 +1,387 @@
+//! The spatially resolved DSMC engine: free streaming in a periodic box, then the exact
+//! majorant process inside each collision cell.
+
+use super::kernel::{self, Collider, Moments, Simulator};
+use super::rng::{Purpose, Stream};
+use super::species::Species;
+use super::{check_input, frequency_estimate, theory, SpatialSnapshot, StepSize, Tally};
+use crate::system::{wrap, System, Vector};
+use rayon::prelude::*;
+use restitution::Restitution;
+
+/// Collision cell width in mean free paths when none is given.
+pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
+
+/// Options of [`SpatialDsmc`].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SpatialOptions {
+    /// Width of the collision cells, rounded so that a whole number of cells fits the box
+    /// side. None: [`DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS`] mean free paths
+    /// 1 / (sqrt 2 n c_D g2 sigma^(D-1)) (Bird 1994, Sec. 11.1: cells of a fraction of the mean
+    /// free path).
+    pub cell_width: Option<f64>,
+    /// The time step. `StepSize::Auto`: 0.2 collisions per particle, or the time to cross
+    /// half a cell at the mean speed if that is shorter.
+    pub step: StepSize,
+}
+
+/// DSMC of a granular gas in a periodic box (see the [module](super) documentation).
+///
+/// Each step of time dt: (1) every particle streams freely, x += v dt (wrapped); (2) the
+/// particles are sorted by collision cell (a stable sort: the order is unique); (3) in every
+/// occupied cell, in parallel, the exact majorant process of [`kernel`] runs for dt among
+/// the cell's n_c particles with pair rate W c_D |g| F / V_cell, where W = g2 sigma^(D-1)
+/// with g2 of the mean packing fraction (the "Enskog-factor DSMC" approximation: no
+/// spatial offset of the collision partners) and F = phi V_box / (sum of sphere volumes)
+/// the physical particles each simulated one stands for (F = 1 for a system from
+/// `init::monodisperse` at the same phi; smaller F gives more particles per cell). The
+/// random impact direction is drawn as in the homogeneous engine; cell positions play no
+/// part in a collision.
+///
+/// Errors (Bird 1994; Garcia & Wagner 2000; Hadjiconstantinou 2000): transport
+/// coefficients carry O(dt^2) and O(cell width^2) errors from splitting streaming and
+/// collisions; a cell of few particles re-collides the same pairs (a correlation of order
+/// dt omega / n_c, which wants n_c >~ 10). Since E[n_c (n_c - 1)] = N (N - 1) (V_cell/V)^2
+/// for uniformly placed particles, the mean collision rate of a homogeneous gas is exact for
+/// any cell size and step.
+pub struct SpatialDsmc<const D: usize> {
+    simulators: Vec<Simulator<D>>,
+    species: Species,
+    law: Box<dyn Restitution>,
+    options: SpatialOptions,
+    phi: f64,
+    seed: u64,
+    length: f64,
+    cells_per_side: u64,
+    /// Physical particles per simulated one.
+    weight: f64,
+    time: f64,
+    steps: u64,
+    tally: Tally,
+    temperature: f64,
+    system: System<D>,
+}
+
+impl<const D: usize> SpatialDsmc<D> {
+    /// An engine at time 0 from `system` (positions in the periodic box of side
+    /// `system.length`, wrapped into it), the physical packing fraction `phi`
+    /// (0 < phi < close packing), the law, a seed and the options. Fails, naming the
+    /// parameter, for bad input.
+    pub fn new(
+        system: System<D>,
+        phi: f64,
+        law: Box<dyn Restitution>,
+        seed: u64,
+        options: SpatialOptions,
+    ) -> Result<Self, String> {
+        check_input(&system, phi)?;
+        let length = system.length;
+        if !(length.is_finite() && length > 0.0) {
+            return Err(format!("length = {length}: allowed a finite number > 0"));
+        }
+        let n = system.velocities.len();
+        if system.positions.len() != n {
+            return Err("positions and velocities differ in number".into());
+        }
+        if let Some(i) = system
+            .positions
+            .iter()
+            .position(|x| x.iter().any(|c| !c.is_finite()))
+        {
+            return Err(format!("positions[{i}]: not finite"));
+        }
+        options.step.check()?;
+        let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
+        let box_volume = length.powi(D as i32);
+        let weight = phi * box_volume / species.sphere_volume;
+        let density = n as f64 * weight / box_volume;
+        let mean_free_path = 1.0
+            / (2f64.sqrt() * density * theory::cross_section_factor::<D>() * species.max_weight);
+        let width = match options.cell_width {
+            None => DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS * mean_free_path,
+            Some(w) if w.is_finite() && w > 0.0 && w <= length => w,
+            Some(w) => {
+                return Err(format!(
+                    "cell_width = {w}: allowed 0 < width <= box side {length}"
+                ))
+            }
+        };
+        let cells_per_side = (length / width).round().max(1.0);
+        if cells_per_side.powi(D as i32) > (1u64 << 62) as f64 {
+            return Err(format!(
+                "cell_width = {width}: at most 2^62 cells (box side {length})"
+            ));
+        }
+        let simulators: Vec<Simulator<D>> = system
+            .positions
+            .iter()
+            .zip(&system.velocities)
+            .zip(&index)
+            .map(|((x, v), &s)| Simulator {
+                position: std::array::from_fn(|k| wrap(x[k], length)),
+                velocity: *v,
+                species: s,
+            })
+            .collect();
+        let temperature = Moments::of(&simulators, &species).spread / (n * D) as f64;
+        Ok(SpatialDsmc {
+            simulators,
+            species,
+            law,
+            options,
+            phi,
+            seed,
+            length,
+            cells_per_side: cells_per_side as u64,
+            weight,
+            time: 0.0,
+            steps: 0,
+            tally: Tally::default(),
+            temperature,
+            system: System {
+                length,
+                positions: Vec::new(),
+                velocities: Vec::new(),
+                radii: Vec::new(),
+                masses: Vec::new(),
+            },
+        })
+    }
+
+    /// Continues the run of `snapshot` bit for bit with the law it used.
+    pub fn restore(
+        snapshot: SpatialSnapshot<D>,
+        law: Box<dyn Restitution>,
+    ) -> Result<Self, String> {
+        let mut engine = Self::new(
+            snapshot.system,
+            snapshot.packing_fraction,
+            law,
+            snapshot.seed,
+            snapshot.options,
+        )?;
+        engine.time = snapshot.time;
+        engine.steps = snapshot.steps;
+        engine.tally = snapshot.tally;
+        engine.temperature = snapshot.temperature;
+        Ok(engine)
+    }
+
+    /// The state, step counter and options, to continue later bit for bit.
+    pub fn snapshot(&mut self) -> SpatialSnapshot<D> {
+        let (phi, seed, options, time, steps, tally, temperature) = (
+            self.phi,
+            self.seed,
+            self.options,
+            self.time,
+            self.steps,
+            self.tally,
+            self.temperature,
+        );
+        SpatialSnapshot {
+            system: self.system().clone(),
+            packing_fraction: phi,
+            seed,
+            options,
+            time,
+            steps,
+            tally,
+            reference_velocity: [0.0; D],
+            speed_bound: 0.0,
+            draws: 0,
+            temperature,
+        }
+    }
+
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub fn tally(&self) -> Tally {
+        self.tally
+    }
+
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    pub fn len(&self) -> usize {
+        self.simulators.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.simulators.is_empty()
+    }
+
+    /// Collisions per particle so far (each collision counts for two particles).
+    pub fn collisions_per_particle(&self) -> f64 {
+        2.0 * self.tally.collisions as f64 / self.len() as f64
+    }
+
+    /// Physical particles per simulated particle, F = phi V_box / (sum of sphere volumes).
+    pub fn weight(&self) -> f64 {
+        self.weight
+    }
+
+    /// Width of the collision cells.
+    pub fn cell_width(&self) -> f64 {
+        self.length / self.cells_per_side as f64
+    }
+
+    /// Mean number of particles per collision cell.
+    pub fn particles_per_cell(&self) -> f64 {
+        self.len() as f64 / (self.cells_per_side as f64).powi(D as i32)
+    }
+
+    /// The temperature at the end of the last step (sets the next step).
+    pub fn step_temperature(&self) -> f64 {
+        self.temperature
+    }
+
+    /// The current state in the engine's current order (sorted by cell every step).
+    pub fn system(&mut self) -> &System<D> {
+        let s = &mut self.system;
+        s.positions.clear();
+        s.velocities.clear();
+        s.radii.clear();
+        s.masses.clear();
+        for p in &self.simulators {
+            s.positions.push(p.position);
+            s.velocities.push(p.velocity);
+            s.radii.push(self.species.radii[p.species as usize]);
+            s.masses.push(self.species.masses[p.species as usize]);
+        }
+        &self.system
+    }
+
+    /// Bytes held between steps: records, the output of [`SpatialDsmc::system`] once
+    /// taken, the species tables. A step also allocates the sort's buffer (N/2 records) and
+    /// one entry per occupied cell, freed at its end.
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let s = &self.system;
+        self.simulators.capacity() * size_of::<Simulator<D>>()
+            + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
+            + self.species.memory_bytes()
+    }
+
+    /// Runs until `collisions` more collisions have happened, at the end of a step (the last
+    /// steps shortened to the expected remaining count).
+    pub fn run_collisions(&mut self, collisions: u64) {
+        let target = self.tally.collisions.saturating_add(collisions);
+        self.run(f64::INFINITY, target);
+    }
+
+    /// Runs until the time reaches `t` (the last step shortened to end there).
+    pub fn run_until(&mut self, t: f64) {
+        self.run(t, u64::MAX);
+    }
+
+    fn run(&mut self, end: f64, target: u64) {
+        let n = self.len() as f64;
+        while self.tally.collisions < target && self.time < end {
+            let density = n * self.weight / self.length.powi(D as i32);
+            let omega = frequency_estimate::<D>(&self.species, density, 1.0, self.temperature);
+            if !(omega > 0.0) {
+                if end.is_finite() {
+                    self.time = end;
+                }
+                return;
+            }
+            let mut dt = match self.options.step {
+                StepSize::Auto => {
+                    let speed = (self.temperature / self.species.min_mass).sqrt()
+                        * theory::mean_norm_of_gaussian::<D>();
+                    (0.2 / omega).min(0.5 * self.cell_width() / speed)
+                }
+                StepSize::CollisionsPerParticle(x) => x / omega,
+                StepSize::Fixed(dt) => dt,
+            };
+            if target != u64::MAX {
+                let remaining = (target - self.tally.collisions) as f64;
+                dt = dt.min(2.0 * remaining / (n * omega));
+            }
+            let last = dt >= end - self.time;
+            if last {
+                dt = end - self.time;
+            }
+            self.step(dt);
+            self.time = if last { end } else { self.time + dt };
+        }
+    }
+
+    /// One step of time dt: stream, sort into cells, collide in every cell.
+    fn step(&mut self, dt: f64) {
+        let (length, cells) = (self.length, self.cells_per_side);
+        let width = self.cell_width();
+        self.simulators.par_iter_mut().for_each(|p| {
+            for k in 0..D {
+                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
+            }
+        });
+        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        self.simulators.par_sort_by_key(key);
+        let sims = &self.simulators;
+        let starts: Vec<usize> = (0..sims.len())
+            .into_par_iter()
+            .filter(|&i| i == 0 || key(&sims[i]) != key(&sims[i - 1]))
+            .collect();
+        let groups = split_at_starts(&mut self.simulators, &starts);
+        let collider = Collider {
+            law: self.law.as_ref(),
+            species: &self.species,
+        };
+        let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
+            / width.powi(D as i32);
+        let (seed, step, species) = (self.seed, self.steps, &self.species);
+        let results: Vec<(Tally, Moments<D>)> = groups
+            .into_par_iter()
+            .map(|cell| {
+                let mut tally = Tally::default();
+                if cell.len() >= 2 {
+                    let mean = Moments::of(cell, species).mean();
+                    let mut bound = kernel::speed_bound(cell, &mean);
+                    let mut rng = Stream::new(seed, Purpose::Cell, step, key(&cell[0]));
+                    collider.run_for(
+                        cell,
+                        &mean,
+                        pair_rate,
+                        (0.0, dt),
+                        &mut bound,
+                        &mut rng,
+                        &mut tally,
+                    );
+                }
+                (tally, Moments::of(cell, species))
+            })
+            .collect();
+        for (t, _) in &results {
+            self.tally.add(t);
+        }
+        let moments: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
+        self.temperature = Moments::pooled_spread(&moments) / (self.simulators.len() * D) as f64;
+        self.steps += 1;
+    }
+}
+
+/// Linear index of the cell holding x (in [0, L)^D).
+#[inline]
+fn cell_key<const D: usize>(x: &Vector<D>, width: f64, cells: u64) -> u64 {
+    (0..D).rev().fold(0, |key, k| {
+        key * cells + ((x[k] / width) as u64).min(cells - 1)
+    })
+}
+
+fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
+    let mut parts = Vec::with_capacity(starts.len());
+    let mut at = 0;
+    for &next in starts.iter().skip(1) {
+        let (head, tail) = data.split_at_mut(next - at);
+        parts.push(head);
+        data = tail;
+        at = next;
+    }
+    parts.push(data);
+    parts
+}

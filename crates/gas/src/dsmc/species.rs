@@ -1,0 +1,150 @@
+//! The kinds of particle in a DSMC gas and what a collision needs to know about a pair.
+
+use super::theory::{contact_value, mixture_contact_value};
+use crate::system::ball_volume;
+
+/// Distinct (radius, mass) pairs the engines accept (pair data is a table of this squared).
+pub const MAX_SPECIES: usize = 256;
+
+/// What the collision kernel needs about a pair of species.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PairData {
+    /// W_ab / W_max with W = g_ab sigma_ab^(D-1): the pair's share of the majorant rate.
+    pub ratio: f64,
+    /// m_b / (m_a + m_b) and m_a / (m_a + m_b): velocity changes per unit of momentum
+    /// transfer over the reduced mass.
+    pub share_a: f64,
+    pub share_b: f64,
+    /// Reduced mass m_a m_b / (m_a + m_b).
+    pub reduced: f64,
+    /// Contact distance (sigma_a + sigma_b) / 2.
+    pub sigma: f64,
+}
+
+/// The species of a gas (distinct (radius, mass) pairs, in order of first appearance).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Species {
+    pub radii: Vec<f64>,
+    pub masses: Vec<f64>,
+    pairs: Vec<PairData>,
+    /// The largest pair weight W_max = max g_ab sigma_ab^(D-1).
+    pub max_weight: f64,
+    /// The smallest mass (for an upper estimate of the collision frequency).
+    pub min_mass: f64,
+    /// Total volume of all spheres.
+    pub sphere_volume: f64,
+}
+
+impl Species {
+    /// The species of particles with these radii and masses at packing fraction `phi`, and
+    /// the species index of each particle. Fails for a non-positive radius or mass or too
+    /// many species.
+    pub fn of<const D: usize>(
+        radii: &[f64],
+        masses: &[f64],
+        phi: f64,
+    ) -> Result<(Species, Vec<u32>), String> {
+        let mut kinds: Vec<(f64, f64)> = Vec::new();
+        let mut counts: Vec<usize> = Vec::new();
+        let mut index = Vec::with_capacity(radii.len());
+        let mut last = usize::MAX;
+        for (i, (&r, &m)) in radii.iter().zip(masses).enumerate() {
+            if !(r.is_finite() && r > 0.0) {
+                return Err(format!("radii[{i}] = {r}: allowed a finite number > 0"));
+            }
+            if !(m.is_finite() && m > 0.0) {
+                return Err(format!("masses[{i}] = {m}: allowed a finite number > 0"));
+            }
+            if last == usize::MAX || kinds[last] != (r, m) {
+                last = match kinds.iter().position(|&k| k == (r, m)) {
+                    Some(s) => s,
+                    None if kinds.len() < MAX_SPECIES => {
+                        kinds.push((r, m));
+                        counts.push(0);
+                        kinds.len() - 1
+                    }
+                    None => {
+                        return Err(format!(
+                            "species: more than {MAX_SPECIES} distinct (radius, mass) pairs"
+                        ))
+                    }
+                };
+            }
+            counts[last] += 1;
+            index.push(last as u32);
+        }
+        let radii: Vec<f64> = kinds.iter().map(|k| k.0).collect();
+        let masses: Vec<f64> = kinds.iter().map(|k| k.1).collect();
+        let weights = pair_weights::<D>(&radii, &counts, phi);
+        let max_weight = weights.iter().cloned().fold(0.0, f64::max);
+        let s = radii.len();
+        let pairs = (0..s * s)
+            .map(|ab| {
+                let (a, b) = (ab / s, ab % s);
+                let (ma, mb) = (masses[a], masses[b]);
+                PairData {
+                    ratio: weights[ab] / max_weight,
+                    share_a: mb / (ma + mb),
+                    share_b: ma / (ma + mb),
+                    reduced: ma * mb / (ma + mb),
+                    sigma: radii[a] + radii[b],
+                }
+            })
+            .collect();
+        let sphere_volume = counts
+            .iter()
+            .zip(&radii)
+            .map(|(&c, &r)| c as f64 * ball_volume::<D>(r))
+            .sum();
+        let min_mass = masses.iter().cloned().fold(f64::INFINITY, f64::min);
+        let species = Species {
+            radii,
+            masses,
+            pairs,
+            max_weight,
+            min_mass,
+            sphere_volume,
+        };
+        Ok((species, index))
+    }
+
+    pub fn len(&self) -> usize {
+        self.radii.len()
+    }
+
+    #[inline]
+    pub fn pair(&self, a: usize, b: usize) -> &PairData {
+        &self.pairs[a * self.radii.len() + b]
+    }
+
+    pub fn memory_bytes(&self) -> usize {
+        (self.radii.capacity() + self.masses.capacity()) * 8
+            + self.pairs.capacity() * std::mem::size_of::<PairData>()
+    }
+}
+
+/// W_ab = g_ab sigma_ab^(D-1) for all species pairs (row-major): the pure contact value for
+/// one species, the mixture contact value of [`mixture_contact_value`] otherwise.
+fn pair_weights<const D: usize>(radii: &[f64], counts: &[usize], phi: f64) -> Vec<f64> {
+    let s = radii.len();
+    let moment = |p: i32| -> f64 {
+        counts
+            .iter()
+            .zip(radii)
+            .map(|(&c, &r)| c as f64 * (2.0 * r).powi(p))
+            .sum()
+    };
+    let ratio = moment(D as i32 - 1) / moment(D as i32);
+    (0..s * s)
+        .map(|ab| {
+            let (da, db) = (2.0 * radii[ab / s], 2.0 * radii[ab % s]);
+            let sigma = 0.5 * (da + db);
+            let g = if s == 1 {
+                contact_value::<D>(phi)
+            } else {
+                mixture_contact_value::<D>(phi, da * db / (da + db) * ratio)
+            };
+            g * sigma.powi(D as i32 - 1)
+        })
+        .collect()
+}
