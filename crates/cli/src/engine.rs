@@ -23,6 +23,8 @@ pub struct Counters {
     pub energy_lost: f64,
     /// Sum of impulse times contact distance over collisions, in simulated particles.
     pub virial: f64,
+    /// Collisions the TC model made elastic (eMD).
+    pub tc_elastic: u64,
 }
 
 /// The state of a DSMC engine beyond its particles (for check-points).
@@ -62,12 +64,12 @@ impl<const D: usize> Engine<D> {
         setup: DsmcSetup,
     ) -> Result<Self, String> {
         Ok(match setup {
-            DsmcSetup::Homogeneous(scheme) => Engine::Homogeneous(Box::new(
-                HomogeneousDsmc::new(system, phi, law, seed, scheme)?,
-            )),
-            DsmcSetup::Spatial(options) => Engine::Spatial(Box::new(SpatialDsmc::new(
-                system, phi, law, seed, options,
+            DsmcSetup::Homogeneous(scheme) => Engine::Homogeneous(Box::new(HomogeneousDsmc::new(
+                system, phi, law, seed, scheme,
             )?)),
+            DsmcSetup::Spatial(options) => {
+                Engine::Spatial(Box::new(SpatialDsmc::new(system, phi, law, seed, options)?))
+            }
         })
     }
 
@@ -163,6 +165,7 @@ impl<const D: usize> Engine<D> {
                     events: t.events,
                     energy_lost: t.energy_lost,
                     virial: t.virial,
+                    tc_elastic: t.tc_elastic,
                 }
             }
             Engine::Homogeneous(e) => dsmc_counters(e.tally()),
@@ -176,6 +179,14 @@ impl<const D: usize> Engine<D> {
         match self {
             Engine::Spatial(e) => e.weight(),
             _ => 1.0,
+        }
+    }
+
+    /// The time of inelastic collapse if the event-driven engine stopped there.
+    pub fn collapsed(&self) -> Option<f64> {
+        match self {
+            Engine::EventDriven(e) => e.collapsed(),
+            _ => None,
         }
     }
 
@@ -217,6 +228,7 @@ fn dsmc_counters(t: dsmc::Tally) -> Counters {
         events: t.candidates,
         energy_lost: t.energy_lost,
         virial: t.virial,
+        tc_elastic: 0,
     }
 }
 

@@ -58,10 +58,10 @@
 //! (all particles brought to the same time, every event predicted afresh), so a resumed
 //! run repeats the uninterrupted one with the same settings bit for bit.
 
+use crate::engine::{Counters, DsmcSetup, DsmcState, Engine, EngineState};
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
 use gas::observe::{sonine_a2, temperature, velocity_histogram};
-use crate::engine::{Counters, DsmcSetup, DsmcState, Engine, EngineState};
 use gas::{init, EventDriven};
 use restitution::dashpot::DashpotCriterion;
 use restitution::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
@@ -392,7 +392,11 @@ fn dsmc_setup(r: &RunSection) -> CliResult<DsmcSetup> {
             exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
             let block_size = r.block_size.unwrap_or(gas::dsmc::DEFAULT_BLOCK_SIZE);
             if !(2..=u32::MAX as usize).contains(&block_size) {
-                return Err(bad_key("run.block_size", block_size, "2 <= block_size <= 2^32 - 1"));
+                return Err(bad_key(
+                    "run.block_size",
+                    block_size,
+                    "2 <= block_size <= 2^32 - 1",
+                ));
             }
             Ok(DsmcSetup::Homogeneous(Scheme::Blocks { block_size, step }))
         }
@@ -520,6 +524,9 @@ struct Checkpoint {
     /// Velocity histograms taken so far.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     histograms: Vec<Histogram>,
+    /// Collisions the TC model made elastic so far.
+    #[serde(default)]
+    tc_elastic: u64,
     /// DSMC: the engine's state beyond its particles (`events` then counts candidates).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     dsmc: Option<DsmcState>,
@@ -608,6 +615,7 @@ pub fn run(args: &RunArgs) -> CliResult {
         "parameters": file,
         "collisions": tally.collisions,
         "events": tally.events,
+        "tc_elastic_collisions": tally.tc_elastic,
         "wall_seconds": wall,
         "events_per_second": tally.events as f64 / wall,
         "collisions_per_second": tally.collisions as f64 / wall,
@@ -768,6 +776,7 @@ fn checkpoint_state<const D: usize>(c: &Checkpoint) -> CliResult<EngineState<D>>
             events: c.events,
             energy_lost: c.energy_lost,
             virial: c.virial,
+            tc_elastic: c.tc_elastic,
         },
         // -inf (no collision yet) is stored as null: JSON has no infinities.
         tc_last: c.tc_last.as_ref().map(|last| {
@@ -806,6 +815,7 @@ fn start_engine<const D: usize>(
                 events: state.counters.events,
                 energy_lost: state.counters.energy_lost,
                 virial: state.counters.virial,
+                tc_elastic: state.counters.tc_elastic,
             };
             EventDriven::restore(state.system, law, state.time, state.counts, tally)
                 .map_err(fail)?
@@ -846,6 +856,7 @@ fn write_checkpoint<const D: usize>(
         events: state.counters.events,
         energy_lost: state.counters.energy_lost,
         virial: state.counters.virial,
+        tc_elastic: state.counters.tc_elastic,
         last_virial,
         every: context.every,
         tc_last: state
@@ -915,6 +926,17 @@ fn simulate<const D: usize>(
             let want = (target.value * n / 2.0).round() as u64;
             let have = engine.counters().collisions;
             engine.run_collisions(want.saturating_sub(have));
+        }
+        if let Some(t) = engine.collapsed() {
+            progress.finish_and_clear();
+            return Err(CliError::argument(
+                "collision.tc",
+                format!(
+                    "inelastic collapse at t = {t}: {} collisions per particle without time \
+                     advancing; switch on the TC model (collision.tc > 0)",
+                    gas::emd::COLLAPSE_COLLISIONS_PER_PARTICLE
+                ),
+            ));
         }
         let tally = engine.counters();
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());

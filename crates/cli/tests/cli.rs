@@ -729,7 +729,10 @@ fn binary_mixture_run() {
 
 /// `haff run` with a bad file: exit code 2, one line naming `key`.
 fn assert_run_rejected(toml: &str, key: &str) {
-    let dir = std::env::temp_dir().join(format!("haff-bad-run-{}", std::process::id()));
+    // Tests run in parallel threads of one process: one directory per call.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("haff-bad-run-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("bad.toml");
     std::fs::write(&file, toml).unwrap();
@@ -827,10 +830,8 @@ fn bad_species_tc_and_histograms_are_rejected() {
 #[test]
 fn resumed_dsmc_runs_repeat_the_uninterrupted_ones() {
     for scheme in ["blocks", "exact", "spatial"] {
-        let dir = std::env::temp_dir().join(format!(
-            "haff-resume-dsmc-{scheme}-{}",
-            std::process::id()
-        ));
+        let dir =
+            std::env::temp_dir().join(format!("haff-resume-dsmc-{scheme}-{}", std::process::id()));
         let toml = format!(
             "[system]\nparticles = 3000\npacking_fraction = 0.05\nseed = 4\n\
              [collision]\nlaw = \"viscoelastic\"\nbeta = 0.3\nform = \"fast\"\n\
@@ -858,13 +859,22 @@ fn bad_dsmc_keys_are_rejected() {
                 [collision]\nlaw = \"constant\"\nrestitution = 0.9\n";
     let run = |extra: &str| format!("{base}[run]\ncollisions_per_particle = 5\n{extra}");
     assert_run_rejected(&run("engine = \"monte-carlo\"\n"), "run.engine");
-    assert_run_rejected(&run("engine = \"dsmc\"\ndsmc_scheme = \"bird\"\n"), "run.dsmc_scheme");
-    assert_run_rejected(&run("engine = \"dsmc\"\nblock_size = 1\n"), "run.block_size");
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\ndsmc_scheme = \"bird\"\n"),
+        "run.dsmc_scheme",
+    );
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\nblock_size = 1\n"),
+        "run.block_size",
+    );
     assert_run_rejected(
         &run("engine = \"dsmc\"\ncollisions_per_step = 0.0\n"),
         "run.collisions_per_step",
     );
-    assert_run_rejected(&run("engine = \"dsmc\"\ntime_step = -1.0\n"), "run.time_step");
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\ntime_step = -1.0\n"),
+        "run.time_step",
+    );
     assert_run_rejected(
         &run("engine = \"dsmc\"\ndsmc_scheme = \"exact\"\nblock_size = 100\n"),
         "run.block_size",
@@ -881,4 +891,30 @@ fn bad_dsmc_keys_are_rejected() {
         ),
         "collision.tc",
     );
+}
+
+/// Inelastic collapse (1D, eps = 0.5, dense): without the TC model the run stops with an
+/// error naming collision.tc instead of looping at a standing time; with it, it finishes.
+#[test]
+fn inelastic_collapse_is_reported_and_tc_prevents_it() {
+    let toml = "[system]\ndimension = 1\nparticles = 100\npacking_fraction = 0.5\nseed = 3\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.5\n\
+                [run]\nend_time = 100.0\nsamples = 5\n";
+    assert_run_rejected(toml, "collision.tc");
+    let dir = std::env::temp_dir().join(format!("haff-collapse-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("tc.toml");
+    std::fs::write(
+        &file,
+        toml.replace("restitution = 0.5\n", "restitution = 0.5\ntc = 1e-3\n"),
+    )
+    .unwrap();
+    run_ok(&[
+        file.to_str().unwrap(),
+        "--out",
+        dir.join("out").to_str().unwrap(),
+    ]);
+    let summary: Value = serde_json::from_str(&read(&dir.join("out"), "summary.json")).unwrap();
+    assert!(number(&summary["tc_elastic_collisions"]) > 0.0);
+    std::fs::remove_dir_all(&dir).ok();
 }

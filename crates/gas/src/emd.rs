@@ -142,7 +142,13 @@ pub struct Tally {
     pub energy_lost: f64,
     /// Sum over collisions of the momentum transfer times the contact distance (virial).
     pub virial: f64,
+    /// Collisions the TC model made elastic.
+    pub tc_elastic: u64,
 }
+
+/// Collisions per particle without time advancing (relative 1e-12) after which the engine
+/// declares inelastic collapse and stops, instead of looping at a fixed time forever.
+pub const COLLAPSE_COLLISIONS_PER_PARTICLE: u64 = 1000;
 
 /// The event-driven engine.
 pub struct EventDriven<const D: usize> {
@@ -163,6 +169,10 @@ pub struct EventDriven<const D: usize> {
     occupied: Vec<u64>,
     tally: Tally,
     tc: Option<TcModel>,
+    /// Time at which the current run of collisions without time advancing began, and
+    /// their number (see [`COLLAPSE_COLLISIONS_PER_PARTICLE`]).
+    stall: (f64, u64),
+    collapsed: Option<f64>,
 }
 
 /// The TC model of Luding & McNamara (Granular Matter 1, 113 (1998)) against inelastic
@@ -255,6 +265,8 @@ impl<const D: usize> EventDriven<D> {
             occupied: vec![0; grid.cells().div_ceil(64)],
             tally: Tally::default(),
             tc: None,
+            stall: (0.0, 0),
+            collapsed: None,
         };
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
@@ -626,7 +638,7 @@ impl<const D: usize> EventDriven<D> {
         let Some((i, t)) = self.queue.peek() else {
             return false;
         };
-        if !t.is_finite() {
+        if !t.is_finite() || self.collapsed.is_some() {
             return false;
         }
         self.time = t;
@@ -670,6 +682,7 @@ impl<const D: usize> EventDriven<D> {
         if let Some(tc) = &mut self.tc {
             if self.time - tc.last[i] < tc.duration || self.time - tc.last[j] < tc.duration {
                 eps = 1.0;
+                self.tally.tc_elastic += 1;
             }
             tc.last[i] = self.time;
             tc.last[j] = self.time;
@@ -688,8 +701,28 @@ impl<const D: usize> EventDriven<D> {
         }
         pj.count = pj.count.wrapping_add(1);
         self.tally.collisions += 1;
+        self.watch_for_collapse();
         self.tally.energy_lost += 0.5 * reduced * (1.0 - eps * eps) * approach * approach;
         self.tally.virial += impulse * distance;
+    }
+
+    /// Counts collisions at a standing time; declares collapse after too many.
+    fn watch_for_collapse(&mut self) {
+        let (since, count) = self.stall;
+        if self.time > since + 1e-12 * since.abs() {
+            self.stall = (self.time, 0);
+        } else if count + 1 >= COLLAPSE_COLLISIONS_PER_PARTICLE * self.particles.len() as u64 {
+            self.collapsed = Some(self.time);
+        } else {
+            self.stall.1 = count + 1;
+        }
+    }
+
+    /// The time of inelastic collapse, if the engine stopped there: more than
+    /// [`COLLAPSE_COLLISIONS_PER_PARTICLE`] collisions per particle without time advancing
+    /// (a finite-time singularity of inelastic hard spheres; the TC model prevents it).
+    pub fn collapsed(&self) -> Option<f64> {
+        self.collapsed
     }
 
     /// Runs until `collisions` more collisions have happened (or nothing moves).
@@ -698,14 +731,17 @@ impl<const D: usize> EventDriven<D> {
         while self.tally.collisions < target && self.step() {}
     }
 
-    /// Runs until the time reaches `t` (events at later times stay pending).
+    /// Runs until the time reaches `t` (events at later times stay pending), or stops at
+    /// inelastic collapse (see [`EventDriven::collapsed`]).
     pub fn run_until(&mut self, t: f64) {
         while let Some((_, next)) = self.queue.peek() {
             if next > t || !self.step() {
                 break;
             }
         }
-        self.time = self.time.max(t);
+        if self.collapsed.is_none() {
+            self.time = self.time.max(t);
+        }
     }
 }
 

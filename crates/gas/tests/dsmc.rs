@@ -361,7 +361,11 @@ fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
 #[test]
 fn results_do_not_depend_on_the_number_of_threads() {
     let homogeneous_run = || {
-        let mut e = homogeneous::<3>(20_000, 0.1, 0.8, 21, blocks(256));
+        let scheme = Scheme::Blocks {
+            block_size: 256,
+            step: StepSize::CollisionsPerParticle(0.5),
+        };
+        let mut e = homogeneous::<3>(20_000, 0.1, 0.8, 21, scheme);
         e.run_collisions(100_000);
         e.snapshot()
     };

@@ -293,7 +293,8 @@ fn sonine_a2_study() {
             let system = monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 50 + seed).unwrap();
             let law = Box::new(Constant::new(eps).unwrap());
             // Cells of 4 diameters: fewer crossings in this dilute gas.
-            let e = std::cell::RefCell::new(EventDriven::with_cell_width(system, law, 4.0).unwrap());
+            let e =
+                std::cell::RefCell::new(EventDriven::with_cell_width(system, law, 4.0).unwrap());
             md.extend(a2_batches(
                 |k| e.borrow_mut().run_collisions((k * n as f64 / 2.0) as u64),
                 || gas::observe::sonine_a2(e.borrow_mut().system()),

@@ -697,6 +697,8 @@ struct Run1d {
     elastic_with_loss: u64,
     /// Kinetic energy at the start and at the end, energy lost (tally).
     energy: (f64, f64, f64),
+    /// The engine's collapse time, if it stopped there.
+    collapsed: Option<f64>,
 }
 
 fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1d {
@@ -708,7 +710,13 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
     let (mut times, mut elastic, mut elastic_with_loss) = (Vec::new(), 0, 0);
     while e.tally().collisions < budget && e.tally().events < 20 * budget {
         let (collisions, lost) = (e.tally().collisions, e.tally().energy_lost);
-        assert!(e.step());
+        if !e.step() {
+            assert!(
+                e.collapsed().is_some(),
+                "the engine stopped without collapse"
+            );
+            break;
+        }
         if e.tally().collisions == collisions {
             continue;
         }
@@ -736,6 +744,7 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
         elastic,
         elastic_with_loss,
         energy: (e0, e1, e.tally().energy_lost),
+        collapsed: e.collapsed(),
     }
 }
 
@@ -770,8 +779,8 @@ fn shortest_span(times: &[f64], window: usize) -> f64 {
 /// Also asserted: energy stays positive and the balance E0 = E + (energy lost) holds to
 /// round-off (each collision errs by at most ~10 u E0, linear worst case); the engine
 /// loses no energy in the collisions the rule makes elastic; and the elastic fraction.
-/// Measured: without TC the time stops at t = 16.008528 (the last 4.9e5 collisions take no
-/// time at all); with TC, t = 7.5e5 after 5e5 collisions, every 14801 consecutive
+/// Measured: without TC the time stops at t = 16.008528 and the engine declares collapse
+/// after 1e5 collisions at that time (`EventDriven::collapsed`); with TC, t = 7.5e5 after 5e5 collisions, every 14801 consecutive
 /// collisions span at least 12.1 (the bound is 1e-3), 42 % of the collisions were made
 /// elastic, E falls from 50 to 7.6e-9 (Haff-like cooling, never zero), energy balance to
 /// 4e-13.
@@ -789,7 +798,10 @@ fn tc_model_prevents_inelastic_collapse_in_1d() {
         collapse.energy.1,
         clock.elapsed().as_secs_f64()
     );
-    assert_eq!(collapse.times.len() as u64, budget);
+    // The engine stops after COLLAPSE_COLLISIONS_PER_PARTICLE * N collisions at a standing
+    // time and reports the collapse time.
+    assert_eq!(collapse.collapsed, Some(collapse_time));
+    assert!((collapse.times.len() as u64) < budget);
     assert!(span_1000 < 1e-10 * collapse_time, "{span_1000}");
 
     let clock = Instant::now();
@@ -813,6 +825,7 @@ fn tc_model_prevents_inelastic_collapse_in_1d() {
         clock.elapsed().as_secs_f64()
     );
     assert_eq!(run.times.len() as u64, budget);
+    assert_eq!(run.collapsed, None);
     assert!(span >= tc, "{span}");
     assert!(time >= (budget / (c as u64 + 1)) as f64 * tc);
     assert!(e1 > 0.0 && e1 < e0);

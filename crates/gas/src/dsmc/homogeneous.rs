@@ -4,8 +4,8 @@ use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
 use super::rng::{Purpose, Stream};
 use super::species::Species;
 use super::{
-    check_input, frequency_estimate, mean_velocity, theory, HomogeneousSnapshot, Scheme, StepSize,
-    Tally, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
+    check_input, frequency_estimate, mean_velocity, positive, theory, HomogeneousSnapshot, Scheme,
+    StepSize, Tally, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
 };
 use crate::system::{System, Vector};
 use rayon::prelude::*;
@@ -420,7 +420,7 @@ fn run_blocks<const D: usize, R: Record<D>>(
     while core.tally.collisions < target && core.time < end {
         let omega =
             frequency_estimate::<D>(&core.species, n as f64 - 1.0, core.volume, core.temperature);
-        if !(omega > 0.0) {
+        if !positive(omega) {
             // At rest: no collision ever.
             if end.is_finite() {
                 core.time = end;

@@ -23,7 +23,7 @@
 
 use super::rng::Stream;
 use super::species::Species;
-use super::Tally;
+use super::{positive, Tally};
 use crate::system::{dot, Vector};
 use rand_distr::{Beta, Distribution, Poisson};
 use restitution::Restitution;
@@ -139,7 +139,7 @@ impl Collider<'_> {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
         let mut rate = pairs * pair_rate * 2.0 * *bound;
-        if n < 2 || !(rate > 0.0) || window.max_collisions == 0 {
+        if n < 2 || !positive(rate) || window.max_collisions == 0 {
             return window.end;
         }
         let mut time = window.start;
@@ -189,7 +189,7 @@ impl Collider<'_> {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
         let mut rate = pairs * pair_rate * 2.0 * *bound;
-        if n < 2 || !(rate > 0.0) || !(end > start) {
+        if n < 2 || !positive(rate) || !positive(end - start) {
             return;
         }
         let mut from = start;
