@@ -22,8 +22,8 @@
 //! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
 //! [run]
 //! engine = "event-driven"  # event-driven | dsmc
-//! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 2048 (blocks),
-//! #       collisions_per_step = 0.5 or time_step = DT (blocks, spatial),
+//! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 4096 (blocks),
+//! #       collisions_per_step = 1 (blocks; spatial: 0.2) or time_step = DT,
 //! #       collision_cell_width = W (spatial)
 //! collisions_per_particle = 500   # or end_time = ...
 //! samples = 200

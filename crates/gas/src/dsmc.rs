@@ -149,7 +149,9 @@ pub struct Snapshot<const D: usize, O> {
     /// Steps of a stepped scheme so far (each step's streams derive from its number).
     pub steps: u64,
     pub tally: Tally,
-    /// The fixed velocity the speed bounds are measured from (the initial mean velocity).
+    /// The velocity speed bounds are measured from (the mean velocity when the exact scheme
+    /// last recomputed its bound, or at the end of the last block step; unused by the
+    /// spatial engine, whose cells use their own mean).
     pub reference_velocity: Vector<D>,
     /// [`Scheme::Exact`]: the running bound on |v - reference_velocity|.
     pub speed_bound: f64,

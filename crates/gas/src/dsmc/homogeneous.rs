@@ -7,7 +7,7 @@ use super::{
     check_input, frequency_estimate, mean_velocity, positive, theory, HomogeneousSnapshot, Scheme,
     StepSize, Tally, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
 };
-use crate::system::{System, Vector};
+use crate::system::{dot, System, Vector};
 use rayon::prelude::*;
 use restitution::Restitution;
 
@@ -34,8 +34,9 @@ struct Core<const D: usize> {
     time: f64,
     steps: u64,
     tally: Tally,
-    /// [`Scheme::Exact`]: the velocity the speed bound is measured from (the mean velocity
-    /// when the bound was last recomputed), the bound on |v - reference| and the stream.
+    /// The velocity speed bounds are measured from: the mean velocity when the exact
+    /// scheme last recomputed its bound, or at the end of the last block step.
+    /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
     speed_bound: f64,
     stream: Stream,
     temperature: f64,
@@ -441,9 +442,10 @@ fn run_blocks<const D: usize, R: Record<D>>(
         if last {
             dt = end - core.time;
         }
-        let (tally, spread) = block_step(core, now, spare, &layout, dt);
+        let (tally, mean, spread) = block_step(core, now, spare, &layout, dt);
         std::mem::swap(now, spare);
         core.tally.add(&tally);
+        core.reference = mean;
         core.temperature = spread / (n * D) as f64;
         core.steps += 1;
         core.time = if last { end } else { core.time + dt };
@@ -451,16 +453,17 @@ fn run_blocks<const D: usize, R: Record<D>>(
 }
 
 /// One step: every destination block gathers its particles (lane c from block
-/// b + offset_c), runs the exact process for `dt` (speeds bounded about the block's mean
-/// velocity), shuffles itself and takes its moments. Returns the tally and the spread
-/// (sum of m |v - <v>|^2) of the gas.
+/// b + offset_c) and their speed bound about the reference velocity (the gas's mean at the
+/// end of the last step), runs the exact process for `dt`, shuffles itself and sums its
+/// mass, momentum and m |v - reference|^2. Returns the tally, the mean velocity and the
+/// spread (sum of m |v - <v>|^2) of the gas.
 fn block_step<const D: usize, R: Record<D>>(
     core: &Core<D>,
     now: &[R],
     spare: &mut Vec<R>,
     layout: &Blocks,
     dt: f64,
-) -> (Tally, f64) {
+) -> (Tally, Vector<D>, f64) {
     let n = now.len();
     if spare.len() != n {
         spare.clear();
@@ -475,6 +478,7 @@ fn block_step<const D: usize, R: Record<D>>(
         species: &core.species,
     };
     let (seed, steps, species) = (core.seed, core.steps, &core.species);
+    let reference = core.reference;
     let base_rate =
         theory::cross_section_factor::<D>() * core.species.max_weight * (n as f64 - 1.0)
             / core.volume;
@@ -483,16 +487,14 @@ fn block_step<const D: usize, R: Record<D>>(
         .into_par_iter()
         .enumerate()
         .map(|(b, block)| {
-            gather(now, layout, &offsets, b, block);
-            let mean = Moments::of(block, species).mean();
-            let mut bound = kernel::speed_bound(block, &mean);
+            let mut bound = gather(now, layout, &offsets, b, block, &reference).sqrt();
             let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
             let mut tally = Tally::default();
             // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
             let pair_rate = base_rate / (block.len() as f64 - 1.0);
             collider.run_for(
                 block,
-                &mean,
+                &reference,
                 pair_rate,
                 (0.0, dt),
                 &mut bound,
@@ -500,15 +502,16 @@ fn block_step<const D: usize, R: Record<D>>(
                 &mut tally,
             );
             kernel::shuffle(block, &mut rng);
-            (tally, Moments::of(block, species))
+            (tally, kernel::sums_about(block, species, &reference))
         })
         .collect();
     let mut tally = Tally::default();
     for (t, _) in &results {
         tally.add(t);
     }
-    let moments: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
-    (tally, Moments::pooled_spread(&moments))
+    let sums: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
+    let (mean, spread) = kernel::pooled_about(&sums, &reference);
+    (tally, mean, spread)
 }
 
 /// Copies a lane as a fixed-size array (inline moves rather than a call to memmove).
@@ -521,15 +524,31 @@ fn copy_lane<R: Copy>(from: &[R], to: &mut [R]) {
 
 /// Fills destination block `b`: lane c (particles c LANE .. (c+1) LANE) from block
 /// (b + offsets[c]) mod count, the rest of the block (fewer than LANE + 1) from block b.
-fn gather<R: Copy>(now: &[R], layout: &Blocks, offsets: &[usize], b: usize, block: &mut [R]) {
+/// Returns the largest |v - reference|^2 in the block.
+fn gather<const D: usize, R: Record<D>>(
+    now: &[R],
+    layout: &Blocks,
+    offsets: &[usize],
+    b: usize,
+    block: &mut [R],
+    reference: &Vector<D>,
+) -> f64 {
+    let mut largest: f64 = 0.0;
+    let mut note = |lane: &[R]| {
+        for r in lane {
+            let d: Vector<D> = std::array::from_fn(|k| r.velocity()[k] - reference[k]);
+            largest = largest.max(dot(&d, &d));
+        }
+    };
     for (c, &offset) in offsets.iter().enumerate() {
         let source = layout.start((b + offset) % layout.count) + c * LANE;
-        copy_lane(
-            &now[source..source + LANE],
-            &mut block[c * LANE..(c + 1) * LANE],
-        );
+        let lane = &mut block[c * LANE..(c + 1) * LANE];
+        copy_lane(&now[source..source + LANE], lane);
+        note(lane);
     }
     let done = offsets.len() * LANE;
     let (own, len) = (layout.start(b), block.len());
     block[done..].copy_from_slice(&now[own + done..own + len]);
+    note(&block[done..]);
+    largest
 }

@@ -414,6 +414,42 @@ impl<const D: usize> Moments<D> {
     }
 }
 
+/// Mass, momentum and sum of m |v - center|^2 of a group, in one pass.
+pub(crate) fn sums_about<const D: usize, R: Record<D>>(
+    group: &[R],
+    species: &Species,
+    center: &Vector<D>,
+) -> Moments<D> {
+    let mut sums = Moments {
+        mass: 0.0,
+        momentum: [0.0; D],
+        spread: 0.0,
+    };
+    for r in group {
+        let m = species.masses[r.species()];
+        let v = r.velocity();
+        let d: Vector<D> = std::array::from_fn(|k| v[k] - center[k]);
+        sums.mass += m;
+        (0..D).for_each(|k| sums.momentum[k] += m * v[k]);
+        sums.spread += m * dot(&d, &d);
+    }
+    sums
+}
+
+/// The mean velocity u of the union of `parts` (each from [`sums_about`] with the same
+/// `center`) and its spread about u: sum of m |v - center|^2 - M |u - center|^2.
+pub(crate) fn pooled_about<const D: usize>(
+    parts: &[Moments<D>],
+    center: &Vector<D>,
+) -> (Vector<D>, f64) {
+    let mass: f64 = parts.iter().map(|p| p.mass).sum();
+    let momentum: Vector<D> = std::array::from_fn(|k| parts.iter().map(|p| p.momentum[k]).sum());
+    let mean = scaled(&momentum, mass);
+    let d: Vector<D> = std::array::from_fn(|k| mean[k] - center[k]);
+    let about_center: f64 = parts.iter().map(|p| p.spread).sum();
+    (mean, about_center - mass * dot(&d, &d))
+}
+
 fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
     if mass > 0.0 {
         std::array::from_fn(|k| x[k] / mass)

@@ -18,7 +18,7 @@ pub const DEFAULT_MIN_PARTICLES_PER_CELL: f64 = 10.0;
 /// Options of [`SpatialDsmc`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SpatialOptions {
-    /// Width of the collision cells, rounded so that a whole number of cells fits the box
+    /// Width of the collision cells, widened to the nearest width that divides the box
     /// side. None: [`DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS`] mean free paths
     /// 1 / (sqrt 2 n c_D g2 sigma^(D-1)) (Bird 1994, Sec. 11.1: cells of a fraction of the mean
     /// free path), widened where needed to hold [`DEFAULT_MIN_PARTICLES_PER_CELL`] simulated
@@ -112,8 +112,8 @@ impl<const D: usize> SpatialDsmc<D> {
             / (2f64.sqrt() * density * theory::cross_section_factor::<D>() * species.max_weight);
         let width = match options.cell_width {
             None => {
-                let crowded = (DEFAULT_MIN_PARTICLES_PER_CELL * box_volume / n as f64)
-                    .powf(1.0 / D as f64);
+                let crowded =
+                    (DEFAULT_MIN_PARTICLES_PER_CELL * box_volume / n as f64).powf(1.0 / D as f64);
                 (DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS * mean_free_path)
                     .max(crowded)
                     .min(length)
@@ -125,7 +125,8 @@ impl<const D: usize> SpatialDsmc<D> {
                 ))
             }
         };
-        let cells_per_side = (length / width).round().max(1.0);
+        // The largest number of cells that are at least `width` wide (floor).
+        let cells_per_side = (length / width * (1.0 + 1e-12)).floor().max(1.0);
         if cells_per_side.powi(D as i32) > (1u64 << 62) as f64 {
             return Err(format!(
                 "cell_width = {width}: at most 2^62 cells (box side {length})"

@@ -114,11 +114,11 @@ pub fn collision_frequency<const D: usize>(
         * (temperature / (PI * mass)).sqrt()
 }
 
-/// Mean free path: the mean speed sqrt(2T/m) E|Z| over the collision frequency
-/// (1 / (sqrt 2 pi n sigma^2 g2) in 3D); independent of T.
+/// Mean free path: the mean speed sqrt(T/m) E|Z| over the collision frequency
+/// (1 / (sqrt 2 pi n sigma^2 g2) in 3D, 1 / (sqrt 2 n sigma^(D-1) c_D g2) in general);
+/// independent of T.
 pub fn mean_free_path<const D: usize>(density: f64, diameter: f64, phi: f64) -> f64 {
-    2f64.sqrt() * mean_norm_of_gaussian::<D>()
-        / collision_frequency::<D>(density, diameter, 1.0, 1.0, phi)
+    mean_norm_of_gaussian::<D>() / collision_frequency::<D>(density, diameter, 1.0, 1.0, phi)
 }
 
 /// Haff's time tau = 2 D / ((1 - eps^2) omega0): T(t) = T0 / (1 + t/tau)^2 (Maxwellian
@@ -168,8 +168,14 @@ mod tests {
     fn three_dimensional_values() {
         let omega = collision_frequency::<3>(0.1, 1.0, 1.0, 1.0, 0.0);
         assert!((omega - 4.0 * PI.sqrt() * 0.1).abs() < 1e-15);
-        let lambda = mean_free_path::<3>(0.1, 1.0, 0.0);
-        assert!((lambda - 1.0 / (2f64.sqrt() * PI * 0.1)).abs() < 1e-12);
+        for phi in [0.0, 0.2] {
+            let lambda = mean_free_path::<3>(0.1, 1.0, phi);
+            let g2 = contact_value::<3>(phi);
+            assert!((lambda - 1.0 / (2f64.sqrt() * PI * 0.1 * g2)).abs() < 1e-12);
+            let lambda2 = mean_free_path::<2>(0.1, 1.0, phi);
+            let g2 = contact_value::<2>(phi);
+            assert!((lambda2 - 1.0 / (2f64.sqrt() * 2.0 * 0.1 * g2)).abs() < 1e-12);
+        }
         // 81 - 17 eps + 30 eps^2 (1 - eps) in 3D.
         let eps = 0.7;
         let a2 = 16.0 * 0.3 * (1.0 - 2.0 * eps * eps)
