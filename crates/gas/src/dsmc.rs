@@ -251,15 +251,7 @@ fn check_input<const D: usize>(system: &System<D>, phi: f64) -> Result<(), Strin
 
 /// The mass-weighted mean velocity (conserved by collisions).
 fn mean_velocity<const D: usize>(velocities: &[Vector<D>], masses: &[f64]) -> Vector<D> {
-    let total: f64 = masses.iter().sum();
-    std::array::from_fn(|k| {
-        velocities
-            .iter()
-            .zip(masses)
-            .map(|(v, m)| m * v[k])
-            .sum::<f64>()
-            / total
-    })
+    crate::observe::mass_weighted_mean(velocities, masses)
 }
 
 /// The Maxwellian collision frequency (upper estimate for a mixture) of a particle among

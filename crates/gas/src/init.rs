@@ -23,15 +23,7 @@ pub fn monodisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>, String> {
-    if n < 2 {
-        return Err(format!("particles = {n}: need at least 2"));
-    }
-    if !(phi > 0.0 && phi <= max_packing::<D>()) {
-        return Err(format!(
-            "packing_fraction = {phi}: allowed 0 < phi <= {}",
-            max_packing::<D>()
-        ));
-    }
+    check_count_and_packing::<D>(n, phi)?;
     let length = (n as f64 * ball_volume::<D>(0.5 * diameter) / phi).powf(1.0 / D as f64);
     let mut rng = Pcg64::seed_from_u64(seed);
     let positions = if phi <= RANDOM_ADDITION_LIMIT {
@@ -134,15 +126,7 @@ pub fn polydisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>, String> {
-    if n < 2 {
-        return Err(format!("particles = {n}: need at least 2"));
-    }
-    if !(phi > 0.0 && phi <= max_packing::<D>()) {
-        return Err(format!(
-            "packing_fraction = {phi}: allowed 0 < phi <= {}",
-            max_packing::<D>()
-        ));
-    }
+    check_count_and_packing::<D>(n, phi)?;
     if !(temperature.is_finite() && temperature > 0.0) {
         return Err(format!(
             "temperature = {temperature}: allowed a finite number > 0"
@@ -227,15 +211,7 @@ fn set_momentum_and_temperature<const D: usize>(
     masses: &[f64],
     temperature: f64,
 ) {
-    let total: f64 = masses.iter().sum();
-    let mean: Vector<D> = std::array::from_fn(|k| {
-        velocities
-            .iter()
-            .zip(masses)
-            .map(|(v, m)| m * v[k])
-            .sum::<f64>()
-            / total
-    });
+    let mean = crate::observe::mass_weighted_mean(velocities, masses);
     for v in velocities.iter_mut() {
         for k in 0..D {
             v[k] -= mean[k];
@@ -267,6 +243,20 @@ pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<Syst
     let mut engine = crate::EventDriven::new(system, Box::new(elastic))?;
     engine.run_collisions(per_particle * n / 2);
     Ok(engine.system().clone())
+}
+
+/// At least two particles, and a packing fraction the initializer accepts.
+fn check_count_and_packing<const D: usize>(n: usize, phi: f64) -> Result<(), String> {
+    if n < 2 {
+        return Err(format!("particles = {n}: need at least 2"));
+    }
+    if !(phi > 0.0 && phi <= max_packing::<D>()) {
+        return Err(format!(
+            "packing_fraction = {phi}: allowed 0 < phi <= {}",
+            max_packing::<D>()
+        ));
+    }
+    Ok(())
 }
 
 /// Packing fractions the initializer accepts.

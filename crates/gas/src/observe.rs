@@ -100,6 +100,19 @@ pub fn mean_velocity<const D: usize>(s: &System<D>) -> ([f64; D], [f64; D]) {
     (std::array::from_fn(|k| p[k] / total), p)
 }
 
+/// The mass-weighted mean of velocities (conserved by collisions).
+pub fn mass_weighted_mean<const D: usize>(velocities: &[[f64; D]], masses: &[f64]) -> [f64; D] {
+    let total: f64 = masses.iter().sum();
+    std::array::from_fn(|k| {
+        velocities
+            .iter()
+            .zip(masses)
+            .map(|(v, m)| m * v[k])
+            .sum::<f64>()
+            / total
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
