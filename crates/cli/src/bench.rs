@@ -427,6 +427,8 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         "collisions_per_second_min": min,
         "collisions_per_second_max": max,
         "collisions_per_second_per_thread": median / threads as f64,
+        // One worker thread per core (the default uses all cores).
+        "collisions_per_second_per_core": median / threads as f64,
         "bytes_per_particle": bytes as f64 / n as f64,
     });
     let mut out = stdout();

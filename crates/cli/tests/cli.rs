@@ -918,3 +918,33 @@ fn inelastic_collapse_is_reported_and_tc_prevents_it() {
     assert!(number(&summary["tc_elastic_collisions"]) > 0.0);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bench_dsmc_reports_rates_and_memory() {
+    let report = json_of(&[
+        "bench",
+        "dsmc",
+        "--particles",
+        "20000",
+        "--collisions",
+        "0.5",
+        "--repeats",
+        "1",
+        "--threads",
+        "2",
+        "--format",
+        "json",
+    ]);
+    let total = number(&report["collisions_per_second"]);
+    assert!(total > 0.0);
+    assert_eq!(number(&report["threads"]), 2.0);
+    assert_eq!(
+        number(&report["collisions_per_second_per_core"]),
+        total / 2.0
+    );
+    let bytes = number(&report["bytes_per_particle"]);
+    assert!((24.0..200.0).contains(&bytes), "{bytes}");
+    assert_rejected(&["bench", "dsmc", "--law", "1.5"], "--law");
+    assert_rejected(&["bench", "dsmc", "--scheme", "fast"], "--scheme");
+    assert_rejected(&["bench", "emd", "--calendar", "tree"], "--calendar");
+}
