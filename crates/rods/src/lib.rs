@@ -1,0 +1,2 @@
+//! Giese's one-dimensional elastic rods with internal vibration modes.
+pub mod deterministic;
