@@ -806,8 +806,11 @@ fn start_engine<const D: usize>(
                 .map_err(resumed),
         };
     }
-    let mut engine = match resume {
-        None => EventDriven::new(initial_system::<D>(file)?, law).map_err(fail)?,
+    let (mut engine, tc_last) = match resume {
+        None => (
+            EventDriven::new(initial_system::<D>(file)?, law).map_err(fail)?,
+            None,
+        ),
         Some(c) => {
             let state = checkpoint_state::<D>(c)?;
             let tally = gas::emd::Tally {
@@ -817,17 +820,14 @@ fn start_engine<const D: usize>(
                 virial: state.counters.virial,
                 tc_elastic: state.counters.tc_elastic,
             };
-            EventDriven::restore(state.system, law, state.time, state.counts, tally)
-                .map_err(fail)?
+            let engine = EventDriven::restore(state.system, law, state.time, state.counts, tally)
+                .map_err(fail)?;
+            (engine, state.tc_last)
         }
     };
     if let Some(tc) = file.collision.tc {
-        let last = match resume {
-            Some(c) => checkpoint_state::<D>(c)?.tc_last,
-            None => None,
-        };
         engine
-            .set_tc_model(tc, last)
+            .set_tc_model(tc, tc_last)
             .map_err(|e| CliError::argument("collision.tc", e))?;
     }
     Ok(Engine::EventDriven(Box::new(engine)))

@@ -61,21 +61,28 @@ pub(crate) struct Tagged<const D: usize> {
     pub species: u32,
 }
 
-impl<const D: usize> Record<D> for Tagged<D> {
-    const MIXED: bool = true;
-    #[inline]
-    fn velocity(&self) -> &Vector<D> {
-        &self.velocity
-    }
-    #[inline]
-    fn velocity_mut(&mut self) -> &mut Vector<D> {
-        &mut self.velocity
-    }
-    #[inline]
-    fn species(&self) -> usize {
-        self.species as usize
-    }
+/// The records that carry a species tag (`velocity` and `species` fields).
+macro_rules! tagged_record {
+    ($record:ident) => {
+        impl<const D: usize> Record<D> for $record<D> {
+            const MIXED: bool = true;
+            #[inline]
+            fn velocity(&self) -> &Vector<D> {
+                &self.velocity
+            }
+            #[inline]
+            fn velocity_mut(&mut self) -> &mut Vector<D> {
+                &mut self.velocity
+            }
+            #[inline]
+            fn species(&self) -> usize {
+                self.species as usize
+            }
+        }
+    };
 }
+
+tagged_record!(Tagged);
 
 /// The record of the spatial engine: position, velocity, species.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,21 +92,7 @@ pub(crate) struct Simulator<const D: usize> {
     pub species: u32,
 }
 
-impl<const D: usize> Record<D> for Simulator<D> {
-    const MIXED: bool = true;
-    #[inline]
-    fn velocity(&self) -> &Vector<D> {
-        &self.velocity
-    }
-    #[inline]
-    fn velocity_mut(&mut self) -> &mut Vector<D> {
-        &mut self.velocity
-    }
-    #[inline]
-    fn species(&self) -> usize {
-        self.species as usize
-    }
-}
+tagged_record!(Simulator);
 
 /// The law and the species: everything a collision needs besides the two particles.
 pub(crate) struct Collider<'a> {
