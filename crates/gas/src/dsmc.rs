@@ -24,7 +24,7 @@
 
 mod homogeneous;
 pub mod kernel;
-mod rng;
+pub(crate) mod rng;
 mod spatial;
 mod species;
 pub mod theory;

@@ -10,8 +10,10 @@
 
 use crate::calendar::CalendarQueue;
 use crate::cells::{Grid, NONE};
+use crate::dsmc::rng::{Purpose, Stream};
 use crate::queue::EventQueue;
 use crate::system::{dot, wrap, System, Vector};
+use restitution::stochastic::collide_with_baths;
 use restitution::Restitution;
 
 /// Everything the engine keeps per particle, in two cache lines (D = 3). The first line
@@ -169,10 +171,42 @@ pub struct EventDriven<const D: usize> {
     occupied: Vec<u64>,
     tally: Tally,
     tc: Option<TcModel>,
+    /// Per-particle bath temperatures, present iff the law is stochastic.
+    baths: Option<Baths>,
     /// Time at which the current run of collisions without time advancing began, and
     /// their number (see [`COLLAPSE_COLLISIONS_PER_PARTICLE`]).
     stall: (f64, u64),
     collapsed: Option<f64>,
+}
+
+/// The internal state of Giese's event-driven + Monte Carlo algorithm: each particle's bath
+/// temperature, and one counted random stream (restored by jumping ahead) for eps.
+#[derive(Debug, Clone)]
+struct Baths {
+    temperatures: Vec<f64>,
+    seed: u64,
+    stream: Stream,
+}
+
+impl Baths {
+    fn new(temperatures: Vec<f64>, seed: u64) -> Self {
+        Baths {
+            temperatures,
+            seed,
+            stream: Stream::new(seed, Purpose::Baths, 0, 0),
+        }
+    }
+}
+
+/// A snapshot of the baths of a stochastic law (see [`EventDriven::bath_state`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BathState {
+    /// Bath temperature of each particle (energy per internal mode).
+    pub temperatures: Vec<f64>,
+    /// Seed of the stream that draws eps.
+    pub seed: u64,
+    /// Numbers drawn from it so far.
+    pub draws: u64,
 }
 
 /// The TC model of Luding & McNamara (Granular Matter 1, 113 (1998)) against inelastic
@@ -253,6 +287,7 @@ impl<const D: usize> EventDriven<D> {
         system.velocities = Vec::new();
         system.radii = Vec::new();
         system.masses = Vec::new();
+        let law_is_stochastic = law.stochastic().is_some();
         let mut engine = EventDriven {
             system,
             particles,
@@ -265,6 +300,7 @@ impl<const D: usize> EventDriven<D> {
             occupied: vec![0; grid.cells().div_ceil(64)],
             tally: Tally::default(),
             tc: None,
+            baths: law_is_stochastic.then(|| Baths::new(vec![0.0; n], 0)),
             stall: (0.0, 0),
             collapsed: None,
         };
@@ -339,6 +375,57 @@ impl<const D: usize> EventDriven<D> {
 
     /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
     /// calendar, cell lists, and the snapshot of [`EventDriven::system`] once taken).
+    /// Sets the bath temperatures of a stochastic law (one per particle, >= 0) and the
+    /// seed of its random stream; fails if the law is deterministic.
+    pub fn set_baths(&mut self, temperatures: Vec<f64>, seed: u64) -> Result<(), String> {
+        self.set_bath_state(BathState {
+            temperatures,
+            seed,
+            draws: 0,
+        })
+    }
+
+    /// Restores baths saved by [`EventDriven::bath_state`].
+    pub fn set_bath_state(&mut self, state: BathState) -> Result<(), String> {
+        if self.baths.is_none() {
+            return Err(format!("the law '{}' has no baths", self.law.describe()));
+        }
+        if state.temperatures.len() != self.particles.len() {
+            return Err(format!(
+                "bath temperatures: {} given for {} particles",
+                state.temperatures.len(),
+                self.particles.len()
+            ));
+        }
+        if let Some(k) = state
+            .temperatures
+            .iter()
+            .position(|t| !(t.is_finite() && *t >= 0.0))
+        {
+            return Err(format!(
+                "bath temperature of particle {k} must be finite and >= 0"
+            ));
+        }
+        let mut baths = Baths::new(state.temperatures, state.seed);
+        baths.stream = Stream::at(state.seed, Purpose::Baths, 0, 0, state.draws);
+        self.baths = Some(baths);
+        Ok(())
+    }
+
+    /// Bath temperature of each particle, if the law is stochastic.
+    pub fn bath_temperatures(&self) -> Option<&[f64]> {
+        self.baths.as_ref().map(|b| b.temperatures.as_slice())
+    }
+
+    /// The baths and the position of their random stream (for check-points).
+    pub fn bath_state(&self) -> Option<BathState> {
+        self.baths.as_ref().map(|b| BathState {
+            temperatures: b.temperatures.clone(),
+            seed: b.seed,
+            draws: b.stream.draws(),
+        })
+    }
+
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let s = &self.system;
@@ -678,18 +765,22 @@ impl<const D: usize> EventDriven<D> {
         let approach = -(0..D)
             .map(|k| (b.velocity[k] - a.velocity[k]) * n[k])
             .sum::<f64>();
-        let mut eps = self.law.eps(approach.max(0.0));
+        let (mi, mj) = (a.mass, b.mass);
+        let reduced = mi * mj / (mi + mj);
+        let mut elastic = false;
         if let Some(tc) = &mut self.tc {
             if self.time - tc.last[i] < tc.duration || self.time - tc.last[j] < tc.duration {
-                eps = 1.0;
+                elastic = true;
                 self.tally.tc_elastic += 1;
             }
             tc.last[i] = self.time;
             tc.last[j] = self.time;
         }
-        let (mi, mj) = (a.mass, b.mass);
-        let reduced = mi * mj / (mi + mj);
-        let impulse = (1.0 + eps) * reduced * approach;
+        let (impulse, lost) = if elastic {
+            (2.0 * reduced * approach, 0.0)
+        } else {
+            self.impulse(i, j, reduced, approach)
+        };
         let (pa, pb) = (&mut self.particles[i], impulse / mi);
         for (k, nk) in n.iter().enumerate() {
             pa.velocity[k] -= pb * nk;
@@ -702,8 +793,31 @@ impl<const D: usize> EventDriven<D> {
         pj.count = pj.count.wrapping_add(1);
         self.tally.collisions += 1;
         self.watch_for_collapse();
-        self.tally.energy_lost += 0.5 * reduced * (1.0 - eps * eps) * approach * approach;
+        self.tally.energy_lost += lost;
         self.tally.virial += impulse * distance;
+    }
+
+    /// The normal impulse on j (minus that on i) and the translational energy lost: from
+    /// eps of the law, or, for a stochastic law, from the energy E' drawn at the pair's
+    /// bath temperature, the bath taking up the difference (Giese's steps (2)-(4)).
+    fn impulse(&mut self, i: usize, j: usize, reduced: f64, approach: f64) -> (f64, f64) {
+        let e_tr = 0.5 * reduced * approach * approach;
+        match (self.law.stochastic(), &mut self.baths) {
+            (Some(law), Some(baths)) => {
+                let approach = approach.max(0.0);
+                let t = &mut baths.temperatures;
+                let (mut ti, mut tj) = (t[i], t[j]);
+                let u = baths.stream.uniform();
+                let e_after = collide_with_baths(law, e_tr, (&mut ti, &mut tj), u);
+                (t[i], t[j]) = (ti, tj);
+                let separation = (2.0 * e_after / reduced).sqrt();
+                (reduced * (approach + separation), e_tr - e_after)
+            }
+            _ => {
+                let eps = self.law.eps(approach.max(0.0));
+                ((1.0 + eps) * reduced * approach, (1.0 - eps * eps) * e_tr)
+            }
+        }
     }
 
     /// Counts collisions at a standing time; declares collapse after too many.

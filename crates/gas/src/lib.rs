@@ -16,5 +16,5 @@ pub mod queue;
 pub mod system;
 
 pub use dsmc::{HomogeneousDsmc, SpatialDsmc};
-pub use emd::{Calendar, EventDriven};
+pub use emd::{BathState, Calendar, EventDriven};
 pub use system::System;

@@ -27,6 +27,11 @@ pub trait Restitution: Send + Sync + fmt::Debug {
     fn describe(&self) -> String;
     /// A boxed copy (for `Clone` on `Box<dyn Restitution>`).
     fn box_clone(&self) -> Box<dyn Restitution>;
+    /// The stochastic side of laws whose eps is random and feeds internal baths (Giese);
+    /// `None` for deterministic laws.
+    fn stochastic(&self) -> Option<&dyn crate::stochastic::StochasticRestitution> {
+        None
+    }
 }
 
 impl Clone for Box<dyn Restitution> {

@@ -7,6 +7,7 @@
 //!
 //! References used throughout the documentation:
 //! - **MP2011**: P. Müller and T. Pöschel, Phys. Rev. E 84, 021302 (2011) — Padé approximants.
+//! - **Giese**: G. Giese, "Stochastic coefficient of restitution" — vibrating rods.
 //! - **SP2008**: T. Schwager and T. Pöschel, Phys. Rev. E 78, 051304 (2008) — delayed recovery.
 
 pub mod bucket;
@@ -19,8 +20,10 @@ pub mod material;
 pub mod ode;
 pub mod pade;
 pub mod series;
+pub mod stochastic;
 
 pub use error::{Error, Result};
 pub use exact::Criterion;
 
 pub use law::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
+pub use stochastic::{Glauber, StochasticRestitution, Tabulated};

@@ -22,6 +22,8 @@ pub(crate) enum Purpose {
     Mixing = 3,
     /// Collisions in one cell of the spatial engine in one step.
     Cell = 4,
+    /// The stochastic coefficient of restitution of the event-driven engine.
+    Baths = 5,
 }
 
 /// A counted PCG-64 stream.
