@@ -182,6 +182,14 @@ impl<const D: usize> Engine<D> {
         }
     }
 
+    /// The baths of a stochastic law (event-driven engine only).
+    pub fn bath_state(&self) -> Option<gas::BathState> {
+        match self {
+            Engine::EventDriven(e) => e.bath_state(),
+            _ => None,
+        }
+    }
+
     /// The time of inelastic collapse if the event-driven engine stopped there.
     pub fn collapsed(&self) -> Option<f64> {
         match self {

@@ -64,7 +64,7 @@ use crate::RunArgs;
 use gas::observe::{sonine_a2, temperature, velocity_histogram};
 use gas::{init, EventDriven};
 use restitution::dashpot::DashpotCriterion;
-use restitution::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
+use restitution::{Constant, Dashpot, Glauber, Restitution, ScaledForm, Tabulated, Viscoelastic};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -121,6 +121,18 @@ struct CollisionSection {
     /// Contact duration of the TC model (0 or absent: off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     tc: Option<f64>,
+    /// Stochastic law (Giese): "glauber" (Eq. 7, default) or "tabulated" (from Eq. 3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    distribution: Option<String>,
+    /// Stochastic law: internal vibration modes per particle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    modes: Option<u32>,
+    /// Stochastic law: initial bath temperature of every particle (default 0: cold).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bath_temperature: Option<f64>,
+    /// Stochastic tabulated law: a table written by `haff rods table`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    table: Option<String>,
 }
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -256,6 +268,7 @@ fn validate(file: &RunFile) -> CliResult<Stop> {
         }
     }
     positive("system.temperature", s.temperature)?;
+    validate_stochastic(file)?;
     if let Some(tc) = file.collision.tc {
         if !(tc.is_finite() && tc >= 0.0) {
             return Err(bad_key("collision.tc", tc, "a finite number >= 0 (0: off)"));
@@ -344,6 +357,40 @@ fn validate(file: &RunFile) -> CliResult<Stop> {
         }
     }
     Ok(stop)
+}
+
+/// The stochastic keys: only with law = "stochastic", which runs event-driven only.
+fn validate_stochastic(file: &RunFile) -> CliResult {
+    let c = &file.collision;
+    if c.law != "stochastic" {
+        for (key, given) in [
+            ("collision.distribution", c.distribution.is_some()),
+            ("collision.modes", c.modes.is_some()),
+            ("collision.bath_temperature", c.bath_temperature.is_some()),
+            ("collision.table", c.table.is_some()),
+        ] {
+            if given {
+                return Err(CliError::argument(key, "only for law = \"stochastic\""));
+            }
+        }
+        return Ok(());
+    }
+    if file.run.engine != "event-driven" {
+        return Err(CliError::argument(
+            "run.engine",
+            "law = \"stochastic\" runs with engine = \"event-driven\" (Giese's ED + Monte Carlo)",
+        ));
+    }
+    if let Some(t) = c.bath_temperature {
+        if !(t.is_finite() && t >= 0.0) {
+            return Err(bad_key(
+                "collision.bath_temperature",
+                t,
+                "a finite number >= 0",
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn to_species(entries: &[SpeciesEntry]) -> Vec<init::Species> {
@@ -463,13 +510,47 @@ fn build_law(c: &CollisionSection) -> CliResult<Box<dyn Restitution>> {
                 Viscoelastic::new(beta, form).map_err(lib("collision.beta"))?,
             ))
         }
-        "stochastic" => Err(CliError::argument(
-            "collision.law",
-            "'stochastic' comes with issue 6",
-        )),
+        "stochastic" => stochastic_law(c),
         other => Err(CliError::argument(
             "collision.law",
-            format!("'{other}': allowed: constant, dashpot, viscoelastic"),
+            format!("'{other}': allowed: constant, dashpot, viscoelastic, stochastic"),
+        )),
+    }
+}
+
+/// Giese's stochastic law: `collision.distribution`, `modes` and, tabulated, `table`.
+fn stochastic_law(c: &CollisionSection) -> CliResult<Box<dyn Restitution>> {
+    let modes = c
+        .modes
+        .ok_or_else(|| CliError::argument("collision.modes", "missing for law = \"stochastic\""))?;
+    let lib = |key: &'static str| move |e: restitution::Error| CliError::library(key, e);
+    match c.distribution.as_deref().unwrap_or("glauber") {
+        "glauber" => {
+            if c.table.is_some() {
+                return Err(CliError::argument(
+                    "collision.table",
+                    "only for distribution = \"tabulated\"",
+                ));
+            }
+            Ok(Box::new(
+                Glauber::new(modes).map_err(lib("collision.modes"))?,
+            ))
+        }
+        "tabulated" => {
+            let path = c.table.as_deref().ok_or_else(|| {
+                CliError::argument("collision.table", "missing: a table from `haff rods table`")
+            })?;
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::argument("collision.table", format!("{path}: {e}")))?;
+            let t: Tabulated = serde_json::from_str(&text)
+                .map_err(|e| CliError::argument("collision.table", format!("{path}: {e}")))?;
+            let law = Tabulated::new(t.gamma, t.kappa, t.energy_ratios, t.quantiles, modes)
+                .map_err(lib("collision.table"))?;
+            Ok(Box::new(law))
+        }
+        other => Err(CliError::argument(
+            "collision.distribution",
+            format!("'{other}': allowed: glauber, tabulated"),
         )),
     }
 }
@@ -484,6 +565,9 @@ struct Sample {
     energy_lost: f64,
     pressure: f64,
     events: u64,
+    /// Stochastic law: mean bath temperature of the particles.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    bath_temperature: Option<f64>,
 }
 
 /// A velocity histogram taken at one of `run.histogram_at`.
@@ -530,6 +614,17 @@ struct Checkpoint {
     /// DSMC: the engine's state beyond its particles (`events` then counts candidates).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     dsmc: Option<DsmcState>,
+    /// Stochastic law: the particles' baths and the position of their random stream.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    baths: Option<BathRecord>,
+}
+
+/// [`gas::BathState`] in a check-point.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct BathRecord {
+    temperatures: Vec<f64>,
+    seed: u64,
+    draws: u64,
 }
 
 /// `haff run`.
@@ -825,6 +920,23 @@ fn start_engine<const D: usize>(
             (engine, state.tc_last)
         }
     };
+    if file.collision.law == "stochastic" {
+        let bath_state = match resume.as_ref().and_then(|c| c.baths.clone()) {
+            Some(b) => gas::BathState {
+                temperatures: b.temperatures,
+                seed: b.seed,
+                draws: b.draws,
+            },
+            None => gas::BathState {
+                temperatures: vec![file.collision.bath_temperature.unwrap_or(0.0); s.particles],
+                seed: s.seed,
+                draws: 0,
+            },
+        };
+        engine
+            .set_bath_state(bath_state)
+            .map_err(|e| CliError::argument("collision.bath_temperature", e))?;
+    }
     if let Some(tc) = file.collision.tc {
         engine
             .set_tc_model(tc, tc_last)
@@ -864,6 +976,11 @@ fn write_checkpoint<const D: usize>(
             .map(|last| last.iter().map(|&t| t.is_finite().then_some(t)).collect()),
         histograms: histograms.to_vec(),
         dsmc: state.dsmc,
+        baths: engine.bath_state().map(|b| BathRecord {
+            temperatures: b.temperatures,
+            seed: b.seed,
+            draws: b.draws,
+        }),
     };
     // Write then rename, so that an interrupted write never destroys the last check-point.
     let path = context.out.join("checkpoint.json");
@@ -969,6 +1086,7 @@ fn simulate<const D: usize>(
             energy_lost: tally.energy_lost,
             pressure: weight * n / volume * t + virial,
             events: tally.events,
+            bath_temperature: engine.bath_state().map(|b| mean(&b.temperatures)),
         });
         last = (time, tally.virial);
         if context.every.is_some_and(|k| samples.len() % k == 0) {
@@ -987,12 +1105,14 @@ fn simulate<const D: usize>(
 
 fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let baths = samples.iter().any(|s| s.bath_temperature.is_some());
+    let extra = if baths { ",bath_temperature" } else { "" };
     writeln!(
         f,
-        "time,collisions_per_particle,temperature,a2,energy_lost,pressure,events"
+        "time,collisions_per_particle,temperature,a2,energy_lost,pressure,events{extra}"
     )?;
     for s in samples {
-        writeln!(
+        write!(
             f,
             "{},{},{},{},{},{},{}",
             s.time,
@@ -1003,8 +1123,16 @@ fn write_timeseries(path: &Path, samples: &[Sample]) -> CliResult {
             s.pressure,
             s.events
         )?;
+        match s.bath_temperature {
+            Some(t) => writeln!(f, ",{t}")?,
+            None => writeln!(f)?,
+        }
     }
     Ok(f.flush()?)
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len().max(1) as f64
 }
 
 /// velocity_histograms.csv: one row per bin of every histogram, with the Maxwellian

@@ -948,3 +948,46 @@ fn bench_dsmc_reports_rates_and_memory() {
     assert_rejected(&["bench", "dsmc", "--scheme", "fast"], "--scheme");
     assert_rejected(&["bench", "emd", "--calendar", "tree"], "--calendar");
 }
+
+/// Giese's stochastic law on a 1D ring from cold baths: the baths and the position of the
+/// random stream go into the check-point (the resumed run is bit-identical), the
+/// timeseries gains a bath_temperature column, and translational plus bath energy is
+/// conserved: N (T/2 + N_modes T_bath) stays N/2 (T0 = 1).
+#[test]
+fn resumed_stochastic_run_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-resume-giese-{}", std::process::id()));
+    let toml = "[system]\ndimension = 1\nparticles = 300\npacking_fraction = 0.3\nseed = 4\n\
+                [collision]\nlaw = \"stochastic\"\nmodes = 6\n\
+                [run]\ncollisions_per_particle = 30\nsamples = 12\nspacing = \"linear\"\n";
+    let (full, chunked) = run_full_and_chunked(&dir, toml);
+    let a = read(&full, "timeseries.csv");
+    assert_eq!(a, read(&chunked, "timeseries.csv"));
+    let (header, rows) = parse_csv(&a);
+    assert_eq!(
+        header,
+        "time,collisions_per_particle,temperature,a2,energy_lost,pressure,events,bath_temperature"
+    );
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    assert_eq!(first[7], 0.0);
+    // Temperature T = m <c^2> about the mean velocity, which is zero by construction.
+    for row in &rows {
+        let energy = 0.5 * row[2] + 6.0 * row[7];
+        assert!((energy - 0.5 * first[2]).abs() < 1e-9, "{row:?}");
+    }
+    assert!(last[7] > 0.5 * first[2] / 6.5 * 0.8, "baths took up energy: {last:?}");
+    // Other engines and stray keys are refused with the key named.
+    let bad = dir.join("bad.toml");
+    for (text, key) in [
+        (toml.replace("modes = 6", ""), "collision.modes"),
+        (toml.replace("modes = 6", "modes = 0"), "collision.modes"),
+        (toml.replace("[run]", "[run]\nengine = \"dsmc\""), "run.engine"),
+        (toml.replace("law = \"stochastic\"", "law = \"constant\"\nrestitution = 0.9"), "collision.modes"),
+        (toml.replace("modes = 6", "modes = 6\ndistribution = \"x\""), "collision.distribution"),
+        (toml.replace("modes = 6", "modes = 6\ndistribution = \"tabulated\""), "collision.table"),
+        (toml.replace("modes = 6", "modes = 6\nbath_temperature = -1"), "collision.bath_temperature"),
+    ] {
+        std::fs::write(&bad, text).unwrap();
+        assert_rejected(&["run", bad.to_str().unwrap()], key);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
