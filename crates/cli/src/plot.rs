@@ -60,3 +60,93 @@ pub fn temperature(
     };
     draw().map_err(|e| CliError::argument("--out", format!("writing {}: {e}", path.display())))
 }
+
+/// Axis scales of [`lines`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axes<'a> {
+    pub title: &'a str,
+    pub x: &'a str,
+    pub y: &'a str,
+    pub log_x: bool,
+    pub log_y: bool,
+}
+
+/// Several named curves on one chart as a PNG (dashed-looking thin lines for names that
+/// start with "theory" or "equilibrium").
+pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> CliResult {
+    let keep = |&(x, y): &(f64, f64)| {
+        x.is_finite() && y.is_finite() && (!axes.log_x || x > 0.0) && (!axes.log_y || y > 0.0)
+    };
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|(_, s)| s.iter().copied().filter(keep))
+        .collect();
+    if all.len() < 2 {
+        return Ok(());
+    }
+    let bounds = |f: fn(&(f64, f64)) -> f64| {
+        all.iter()
+            .map(f)
+            .fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)))
+    };
+    let (x0, x1) = bounds(|p| p.0);
+    let (y0, y1) = bounds(|p| p.1);
+    let pad = |lo: f64, hi: f64, log: bool| {
+        if log {
+            (lo / 1.3, hi * 1.3)
+        } else {
+            let d = (hi - lo).max(1e-300);
+            (lo - 0.05 * d, hi + 0.05 * d)
+        }
+    };
+    let ((x0, x1), (y0, y1)) = (pad(x0, x1, axes.log_x), pad(y0, y1, axes.log_y));
+    let draw = || -> Result<(), Box<dyn std::error::Error>> {
+        let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(axes.title, ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(75);
+        macro_rules! finish {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(axes.x)
+                    .y_desc(axes.y)
+                    .draw()?;
+                for (k, (name, points)) in series.iter().enumerate() {
+                    let color = Palette99::pick(k).to_rgba();
+                    let width = if name.starts_with("theory") || name.starts_with("equilibrium") {
+                        1
+                    } else {
+                        2
+                    };
+                    let data: Vec<(f64, f64)> = points.iter().copied().filter(keep).collect();
+                    chart
+                        .draw_series(LineSeries::new(data, color.stroke_width(width)))?
+                        .label(name.as_str())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+                }
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.8))
+                    .border_style(BLACK)
+                    .draw()?;
+            }};
+        }
+        match (axes.log_x, axes.log_y) {
+            (false, false) => finish!(builder.build_cartesian_2d(x0..x1, y0..y1)?),
+            (true, false) => finish!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)?),
+            (false, true) => finish!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?),
+            (true, true) => {
+                finish!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?)
+            }
+        }
+        root.present()?;
+        Ok(())
+    };
+    draw().map_err(|e| CliError::argument("--out", format!("writing {}: {e}", path.display())))
+}

@@ -974,17 +974,38 @@ fn resumed_stochastic_run_repeats_the_uninterrupted_one() {
         let energy = 0.5 * row[2] + 6.0 * row[7];
         assert!((energy - 0.5 * first[2]).abs() < 1e-9, "{row:?}");
     }
-    assert!(last[7] > 0.5 * first[2] / 6.5 * 0.8, "baths took up energy: {last:?}");
+    assert!(
+        last[7] > 0.5 * first[2] / 6.5 * 0.8,
+        "baths took up energy: {last:?}"
+    );
     // Other engines and stray keys are refused with the key named.
     let bad = dir.join("bad.toml");
     for (text, key) in [
         (toml.replace("modes = 6", ""), "collision.modes"),
         (toml.replace("modes = 6", "modes = 0"), "collision.modes"),
-        (toml.replace("[run]", "[run]\nengine = \"dsmc\""), "run.engine"),
-        (toml.replace("law = \"stochastic\"", "law = \"constant\"\nrestitution = 0.9"), "collision.modes"),
-        (toml.replace("modes = 6", "modes = 6\ndistribution = \"x\""), "collision.distribution"),
-        (toml.replace("modes = 6", "modes = 6\ndistribution = \"tabulated\""), "collision.table"),
-        (toml.replace("modes = 6", "modes = 6\nbath_temperature = -1"), "collision.bath_temperature"),
+        (
+            toml.replace("[run]", "[run]\nengine = \"dsmc\""),
+            "run.engine",
+        ),
+        (
+            toml.replace(
+                "law = \"stochastic\"",
+                "law = \"constant\"\nrestitution = 0.9",
+            ),
+            "collision.modes",
+        ),
+        (
+            toml.replace("modes = 6", "modes = 6\ndistribution = \"x\""),
+            "collision.distribution",
+        ),
+        (
+            toml.replace("modes = 6", "modes = 6\ndistribution = \"tabulated\""),
+            "collision.table",
+        ),
+        (
+            toml.replace("modes = 6", "modes = 6\nbath_temperature = -1"),
+            "collision.bath_temperature",
+        ),
     ] {
         std::fs::write(&bad, text).unwrap();
         assert_rejected(&["run", bad.to_str().unwrap()], key);

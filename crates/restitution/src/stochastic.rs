@@ -78,11 +78,16 @@ impl StochasticRestitution for Glauber {
 }
 
 /// p(eps^2 | E_tr / T_bath) tabulated from realizations of Giese's stochastic collision
-/// equation, Eq. (3) (built by `rods::stochastic`): quantiles of eps^2 at `levels`
-/// equally spaced probabilities 0, 1/(L-1), ..., 1 for each energy ratio of a log-spaced
-/// grid. Sampling interpolates linearly in probability and in ln(E_tr / T_bath); ratios
-/// outside the grid use its first or last row (the last row is close to the cold-bath,
-/// deterministic eps of the length ratio).
+/// equation, Eq. (3) (built by `rods::stochastic::Table`): quantiles of eps^2 at L
+/// equally spaced probabilities 0, 1/(L-1), ..., 1 for each energy ratio r = E_tr/T_bath
+/// of an increasing grid.
+///
+/// Sampling (inverse distribution function): linear in u between the quantiles; between
+/// two grid ratios ln eps^2 is interpolated linearly in ln r at fixed u (a proper
+/// distribution, exact for power laws such as eps^2 ~ 1/r at small r). For r above the
+/// grid the last row is used (the distribution tends to the deterministic, cold-bath eps);
+/// below it the outgoing energy is distributed as at the first ratio,
+/// E'/T = eps^2(r_min, u) r_min (for r -> 0 the bath alone sets E').
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Tabulated {
     /// Length ratio gamma = l1 / l2 of the rods the table was built for.
@@ -112,16 +117,18 @@ impl Tabulated {
         if energy_ratios.is_empty() || energy_ratios.len() != quantiles.len() {
             return bad("one row of quantiles per energy ratio, at least one".into());
         }
-        if !energy_ratios.windows(2).all(|w| w[0] < w[1]) || energy_ratios[0] <= 0.0 {
-            return bad("energy ratios must be positive and increasing".into());
+        let increasing = energy_ratios.windows(2).all(|w| w[0] < w[1]);
+        if !increasing || !(energy_ratios[0] > 0.0) || !energy_ratios.iter().all(|r| r.is_finite())
+        {
+            return bad("energy ratios must be finite, positive and increasing".into());
         }
         let levels = quantiles[0].len();
         for (r, row) in quantiles.iter().enumerate() {
             let sorted = row.windows(2).all(|w| w[0] <= w[1]);
-            if row.len() != levels || levels < 2 || !sorted || !row.iter().all(|q| *q >= 0.0) {
+            let finite = row.iter().all(|q| q.is_finite() && *q >= 0.0);
+            if row.len() != levels || levels < 2 || !sorted || !finite {
                 return bad(format!(
-                    "row {r} must hold {levels} >= 2 finite, non-negative, \
-                     non-decreasing quantiles"
+                    "row {r} must hold {levels} >= 2 finite, non-negative, non-decreasing quantiles"
                 ));
             }
         }
@@ -142,37 +149,45 @@ impl Tabulated {
         let f = x - k as f64;
         row[k] + f * (row[k + 1] - row[k])
     }
+
+    /// eps^2 at r = E_tr / T_bath > 0 (infinite for a cold bath) and probability `u`.
+    pub fn draw_eps2(&self, energy_ratio: f64, u: f64) -> f64 {
+        let ratios = &self.energy_ratios;
+        let last = ratios.len() - 1;
+        if energy_ratio <= ratios[0] {
+            return self.quantile(0, u) * ratios[0] / energy_ratio;
+        }
+        if energy_ratio >= ratios[last] {
+            return self.quantile(last, u);
+        }
+        let r = ratios.partition_point(|&q| q <= energy_ratio) - 1;
+        let f = (energy_ratio / ratios[r]).ln() / (ratios[r + 1] / ratios[r]).ln();
+        let (a, b) = (self.quantile(r, u), self.quantile(r + 1, u));
+        if a > 0.0 && b > 0.0 {
+            ((1.0 - f) * a.ln() + f * b.ln()).exp()
+        } else {
+            (1.0 - f) * a + f * b
+        }
+    }
 }
 
 impl StochasticRestitution for Tabulated {
     fn draw_energy(&self, e_tr: f64, t_bath: f64, u: f64) -> f64 {
-        e_tr * self.draw_eps2(e_tr, t_bath, u)
-    }
-
-    fn modes(&self) -> u32 {
-        self.modes
-    }
-}
-
-impl Tabulated {
-    /// eps^2 at E_tr / T_bath (infinite for a cold bath) and probability `u`.
-    pub fn draw_eps2(&self, e_tr: f64, t_bath: f64, u: f64) -> f64 {
-        let ratios = &self.energy_ratios;
-        let x = if t_bath > 0.0 {
+        let r_min = self.energy_ratios[0];
+        if t_bath > 0.0 && e_tr <= r_min * t_bath {
+            // Below the grid: E' / T as at r_min (also for a pair touching at rest).
+            return self.quantile(0, u) * r_min * t_bath;
+        }
+        let ratio = if t_bath > 0.0 {
             e_tr / t_bath
         } else {
             f64::INFINITY
         };
-        let last = ratios.len() - 1;
-        if x <= ratios[0] {
-            return self.quantile(0, u);
-        }
-        if x >= ratios[last] {
-            return self.quantile(last, u);
-        }
-        let r = ratios.partition_point(|&q| q <= x) - 1;
-        let f = (x / ratios[r]).ln() / (ratios[r + 1] / ratios[r]).ln();
-        (1.0 - f) * self.quantile(r, u) + f * self.quantile(r + 1, u)
+        e_tr * self.draw_eps2(ratio, u)
+    }
+
+    fn modes(&self) -> u32 {
+        self.modes
     }
 }
 
@@ -281,19 +296,16 @@ mod tests {
 
     #[test]
     fn tabulated_interpolates_and_validates() {
-        let t = Tabulated::new(
-            0.5,
-            100.0,
-            vec![1.0, 100.0],
-            vec![vec![0.0, 2.0], vec![0.2, 0.4]],
-            3,
-        )
-        .unwrap();
-        assert_eq!(t.draw_eps2(1.0, 1.0, 0.5), 1.0);
-        assert!((t.draw_eps2(1e4, 1.0, 0.5) - 0.3).abs() < 1e-15);
-        assert_eq!(t.draw_eps2(1.0, 0.0, 0.0), 0.2);
-        // Halfway in ln(ratio): the mean of the two rows' quantiles.
-        assert!((t.draw_eps2(10.0, 1.0, 0.5) - 0.65).abs() < 1e-12);
+        let rows = vec![vec![0.0, 2.0], vec![0.2, 0.4]];
+        let t = Tabulated::new(0.5, 100.0, vec![1.0, 100.0], rows, 3).unwrap();
+        assert_eq!(t.draw_eps2(1.0, 0.5), 1.0);
+        assert!((t.draw_eps2(1e4, 0.5) - 0.3).abs() < 1e-15);
+        assert!((t.draw_energy(1.0, 0.0, 0.0) - 0.2).abs() < 1e-15);
+        // Halfway in ln(ratio): the geometric mean of the two rows' quantiles.
+        assert!((t.draw_eps2(10.0, 0.5) - 0.3f64.sqrt()).abs() < 1e-15);
+        // Below the grid E'/T is that of the first ratio, for E_tr = 0 too.
+        assert!((t.draw_energy(0.0, 2.0, 0.5) - 2.0).abs() < 1e-15);
+        assert!((t.draw_energy(0.1, 2.0, 0.5) - 2.0).abs() < 1e-15);
         assert!(Tabulated::new(0.5, 100.0, vec![2.0, 1.0], vec![vec![0.0, 1.0]; 2], 3).is_err());
         assert!(Tabulated::new(0.5, 100.0, vec![1.0], vec![vec![1.0, 0.0]], 3).is_err());
         assert!(Glauber::new(0).is_err());
