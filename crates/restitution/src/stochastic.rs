@@ -141,33 +141,42 @@ impl Tabulated {
         })
     }
 
-    /// The quantile function of row `r` at probability `u`.
-    fn quantile(&self, r: usize, u: f64) -> f64 {
-        let row = &self.quantiles[r];
-        let x = u.clamp(0.0, 1.0) * (row.len() - 1) as f64;
-        let k = (x as usize).min(row.len() - 2);
-        let f = x - k as f64;
-        row[k] + f * (row[k + 1] - row[k])
-    }
-
     /// eps^2 at r = E_tr / T_bath > 0 (infinite for a cold bath) and probability `u`.
     pub fn draw_eps2(&self, energy_ratio: f64, u: f64) -> f64 {
-        let ratios = &self.energy_ratios;
-        let last = ratios.len() - 1;
-        if energy_ratio <= ratios[0] {
-            return self.quantile(0, u) * ratios[0] / energy_ratio;
-        }
-        if energy_ratio >= ratios[last] {
-            return self.quantile(last, u);
-        }
-        let r = ratios.partition_point(|&q| q <= energy_ratio) - 1;
-        let f = (energy_ratio / ratios[r]).ln() / (ratios[r + 1] / ratios[r]).ln();
-        let (a, b) = (self.quantile(r, u), self.quantile(r + 1, u));
-        if a > 0.0 && b > 0.0 {
-            ((1.0 - f) * a.ln() + f * b.ln()).exp()
-        } else {
-            (1.0 - f) * a + f * b
-        }
+        tabulated_eps2(&self.energy_ratios, &self.quantiles, energy_ratio, u)
+    }
+}
+
+/// The quantile function of one row of a table at probability `u`.
+fn quantile(row: &[f64], u: f64) -> f64 {
+    let x = u.clamp(0.0, 1.0) * (row.len() - 1) as f64;
+    let k = (x as usize).min(row.len() - 2);
+    let f = x - k as f64;
+    row[k] + f * (row[k + 1] - row[k])
+}
+
+/// eps^2 from the quantile table (`energy_ratios`, `quantiles`) at r = `energy_ratio` and
+/// probability `u`, interpolated as [`Tabulated`] says; shared with `rods::stochastic::Table`.
+pub fn tabulated_eps2(
+    energy_ratios: &[f64],
+    quantiles: &[Vec<f64>],
+    energy_ratio: f64,
+    u: f64,
+) -> f64 {
+    let last = energy_ratios.len() - 1;
+    if energy_ratio <= energy_ratios[0] {
+        return quantile(&quantiles[0], u) * energy_ratios[0] / energy_ratio;
+    }
+    if energy_ratio >= energy_ratios[last] {
+        return quantile(&quantiles[last], u);
+    }
+    let r = energy_ratios.partition_point(|&q| q <= energy_ratio) - 1;
+    let f = (energy_ratio / energy_ratios[r]).ln() / (energy_ratios[r + 1] / energy_ratios[r]).ln();
+    let (a, b) = (quantile(&quantiles[r], u), quantile(&quantiles[r + 1], u));
+    if a > 0.0 && b > 0.0 {
+        ((1.0 - f) * a.ln() + f * b.ln()).exp()
+    } else {
+        (1.0 - f) * a + f * b
     }
 }
 
@@ -176,7 +185,7 @@ impl StochasticRestitution for Tabulated {
         let r_min = self.energy_ratios[0];
         if t_bath > 0.0 && e_tr <= r_min * t_bath {
             // Below the grid: E' / T as at r_min (also for a pair touching at rest).
-            return self.quantile(0, u) * r_min * t_bath;
+            return quantile(&self.quantiles[0], u) * r_min * t_bath;
         }
         let ratio = if t_bath > 0.0 {
             e_tr / t_bath

@@ -3,6 +3,7 @@
 //! proposed at the end of Giese's letter, with the exact p(ε²) instead of Eq. (7)).
 use super::{check_params, realization_rng, sample_eps};
 use rand::RngCore;
+use restitution::stochastic::{tabulated_eps2, Tabulated};
 use serde::{Deserialize, Serialize};
 
 /// Quantiles of ε² at the probability levels p_k = k/`levels`, k = 0..=`levels`, for each
@@ -112,41 +113,17 @@ impl Table {
         })
     }
 
-    fn row(&self, i: usize, u: f64) -> f64 {
-        let x = u.clamp(0.0, 1.0) * self.levels as f64;
-        let k = (x as usize).min(self.levels - 1);
-        let f = x - k as f64;
-        let q = &self.quantiles[i];
-        q[k] + f * (q[k + 1] - q[k])
+    /// ε² for energy ratio r = E_tr/T_bath and a uniform variate u ∈ [0, 1) (inverse
+    /// distribution function), interpolated as `restitution::Tabulated` says (linear in u;
+    /// ln ε² linear in ln r; last row above the grid; E'_tr/T_bath as at r_min below it).
+    pub fn sample(&self, energy_ratio: f64, u: f64) -> f64 {
+        tabulated_eps2(&self.energy_ratios, &self.quantiles, energy_ratio, u)
     }
 
-    /// ε² for energy ratio r = E_tr/T_bath and a uniform variate u ∈ [0, 1) (inverse
-    /// distribution function): linear in u between the tabulated quantiles; between two
-    /// grid ratios, ln ε² is interpolated linearly in ln r at fixed u (quantile
-    /// interpolation, which yields a proper distribution and is exact for power laws such
-    /// as ε² ∝ 1/r at small r).
-    /// Outside the grid: for r > r_max the r_max row is used (ε² clamped: the
-    /// distribution approaches the deterministic value for r → ∞); for r < r_min the
-    /// post-collision energy is clamped instead, ε² = ε²(r_min, u)·r_min/r, i.e.
-    /// E'_tr/T_bath is distributed as at r_min (for r → 0 the outgoing energy is set by the
-    /// bath alone).
-    pub fn sample(&self, energy_ratio: f64, u: f64) -> f64 {
-        let r = &self.energy_ratios;
-        let last = r.len() - 1;
-        if energy_ratio <= r[0] {
-            return self.row(0, u) * r[0] / energy_ratio;
-        }
-        if energy_ratio >= r[last] {
-            return self.row(last, u);
-        }
-        let i = r.partition_point(|&x| x <= energy_ratio) - 1;
-        let f = (energy_ratio.ln() - r[i].ln()) / (r[i + 1].ln() - r[i].ln());
-        let (a, b) = (self.row(i, u), self.row(i + 1, u));
-        if a > 0.0 && b > 0.0 {
-            ((1.0 - f) * a.ln() + f * b.ln()).exp()
-        } else {
-            (1.0 - f) * a + f * b
-        }
+    /// The collision law of this table for particles with `modes` internal modes each.
+    pub fn law(&self, modes: u32) -> Result<Tabulated, String> {
+        let (ratios, quantiles) = (self.energy_ratios.clone(), self.quantiles.clone());
+        Tabulated::new(self.gamma, self.kappa, ratios, quantiles, modes).map_err(|e| e.to_string())
     }
 
     /// Mean of ε² at grid row `i` under [`Table::sample`] (trapezoidal in u).
