@@ -118,8 +118,7 @@ impl Tabulated {
             return bad("one row of quantiles per energy ratio, at least one".into());
         }
         let increasing = energy_ratios.windows(2).all(|w| w[0] < w[1]);
-        if !increasing || !(energy_ratios[0] > 0.0) || !energy_ratios.iter().all(|r| r.is_finite())
-        {
+        if !increasing || energy_ratios[0] <= 0.0 || !energy_ratios.iter().all(|r| r.is_finite()) {
             return bad("energy ratios must be finite, positive and increasing".into());
         }
         let levels = quantiles[0].len();
