@@ -13,6 +13,7 @@ mod engine;
 mod error;
 mod output;
 mod plot;
+mod rods;
 mod run;
 
 use clap::error::ErrorKind;
@@ -41,6 +42,85 @@ enum Command {
     Demo,
     /// A granular-gas run described by a TOML file (event-driven MD).
     Run(RunArgs),
+    /// Giese's vibrating rods: the collision equation, p(eps^2), the rod-chain MD.
+    #[command(subcommand)]
+    Rods(RodsCommand),
+}
+
+#[derive(Debug, Subcommand)]
+enum RodsCommand {
+    /// eps of two cold rods (T_bath = 0) solved from Eq. (3) of Giese, closed forms beside it.
+    Deterministic(RodsDeterministicArgs),
+    /// eps from realizations of the stochastic Eq. (3): samples or the histogram of eps^2.
+    Collide(RodsCollideArgs),
+    /// Quantiles of eps^2 on a grid of E_tr/T_bath, as JSON for the tabulated law.
+    Table(RodsTableArgs),
+}
+
+/// Arguments of `haff rods deterministic`.
+#[derive(Debug, Args)]
+pub struct RodsDeterministicArgs {
+    /// Length ratio(s) gamma = l1/l2, comma-separated, 1e-3 <= gamma <= 1e3.
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: String,
+    /// Scaled impact speed(s) kappa = alpha l V / c, comma-separated, 1 <= kappa <= 1e5.
+    #[arg(long, allow_hyphen_values = true)]
+    pub kappa: String,
+    /// Integration step times kappa, 0 < h kappa < 1 (converged to ~4e-7 at 0.02).
+    #[arg(long, default_value = "0.02", allow_hyphen_values = true)]
+    pub step: String,
+}
+
+/// Arguments of `haff rods collide`.
+#[derive(Debug, Args)]
+pub struct RodsCollideArgs {
+    /// Length ratio gamma = l1/l2, 1e-3 <= gamma <= 1e3.
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: String,
+    /// Scaled impact speed kappa = alpha l V / c, 1 <= kappa <= 1e5.
+    #[arg(long, allow_hyphen_values = true)]
+    pub kappa: String,
+    /// E_tr / T_bath, 1e-4 ..= 1e6, or inf (cold bath, the deterministic eps) [default: inf].
+    #[arg(long, allow_hyphen_values = true)]
+    pub bath_ratio: Option<String>,
+    /// Number of noise realizations.
+    #[arg(long, default_value = "8000", allow_hyphen_values = true)]
+    pub realizations: String,
+    /// Seed (the samples do not depend on the number of threads).
+    #[arg(long, default_value = "1", allow_hyphen_values = true)]
+    pub seed: String,
+    /// Print the histogram of eps^2 with this many bins on [0, --max) instead of the samples.
+    #[arg(long, allow_hyphen_values = true)]
+    pub histogram: Option<String>,
+    /// Upper end of the histogram of eps^2.
+    #[arg(long, default_value = "4", allow_hyphen_values = true)]
+    pub max: String,
+    /// With --histogram: also draw the density and the distribution function as a PNG.
+    #[arg(long, requires = "histogram")]
+    pub plot: Option<std::path::PathBuf>,
+}
+
+/// Arguments of `haff rods table`.
+#[derive(Debug, Args)]
+pub struct RodsTableArgs {
+    /// Length ratio gamma = l1/l2.
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: String,
+    /// Scaled impact speed kappa (p(eps^2) hardly depends on it above ~30).
+    #[arg(long, default_value = "100", allow_hyphen_values = true)]
+    pub kappa: String,
+    /// The log-spaced grid of E_tr/T_bath: MIN,MAX,COUNT.
+    #[arg(long, default_value = "0.01,100,17", allow_hyphen_values = true)]
+    pub ratios: String,
+    /// Realizations of Eq. (3) per ratio.
+    #[arg(long, default_value = "4000", allow_hyphen_values = true)]
+    pub realizations: String,
+    /// Seed.
+    #[arg(long, default_value = "1", allow_hyphen_values = true)]
+    pub seed: String,
+    /// The JSON file to write.
+    #[arg(long)]
+    pub out: std::path::PathBuf,
 }
 
 /// Arguments of `haff run`.
@@ -333,6 +413,9 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Dsmc(args)) => bench::dsmc(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
+        Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),
+        Command::Rods(RodsCommand::Collide(args)) => rods::collide(&args),
+        Command::Rods(RodsCommand::Table(args)) => rods::table(&args),
     }
 }
 
