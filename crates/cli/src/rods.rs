@@ -155,7 +155,7 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
             "give MIN,MAX,COUNT (log-spaced grid)",
         ));
     };
-    if !(max > min && count >= 2.0 && count <= 1000.0 && count.fract() == 0.0) {
+    if !(max > min && (2.0..=1000.0).contains(&count) && count.fract() == 0.0) {
         return Err(CliError::argument(
             "--ratios",
             "need MIN < MAX and an integer 2 <= COUNT <= 1000",
