@@ -1,0 +1,376 @@
+//! `haff rods chain RUN.toml`: the rod-chain MD of Giese's Eq. (2) on a ring, and, on
+//! request, Giese's event-driven + Monte Carlo gas of the same rods from the same start
+//! (1D event-driven engine with a stochastic law and per-particle baths), so that the
+//! cooling of the translational energy can be compared.
+
+use crate::error::{CliError, CliResult};
+use crate::plot::{self, Axes};
+use crate::RodsChainArgs;
+use gas::EventDriven;
+use rand::SeedableRng;
+use rand_distr::{Distribution, StandardNormal};
+use restitution::{Glauber, Restitution};
+use rods::chain::{Chain, ChainConfig};
+use rods::stochastic::Table;
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct ChainFile {
+    chain: ChainSection,
+    run: ChainRunSection,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct ChainSection {
+    /// Number of rods N on the ring.
+    rods: usize,
+    /// Rod lengths, repeated along the ring (e.g. two lengths: alternating rods).
+    #[serde(default = "unit_length")]
+    lengths: Vec<f64>,
+    /// Internal modes per rod.
+    modes: usize,
+    /// Ring perimeter (default: twice the total length of the rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    perimeter: Option<f64>,
+    /// Inverse range alpha of the contact potential B exp(-alpha r).
+    alpha: f64,
+    /// B of the contact potential [default: m c^2 / (alpha l)^2 of the mean rod].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    strength: Option<f64>,
+    #[serde(default = "one")]
+    sound_speed: f64,
+    #[serde(default = "one")]
+    density: f64,
+    /// Initial translational temperature: velocities ~ N(0, T/m), zero total momentum.
+    temperature: f64,
+    /// Initial temperature of the internal modes (default 0: cold rods).
+    #[serde(default)]
+    bath_temperature: f64,
+    #[serde(default = "seed")]
+    seed: u64,
+    /// Step constant c_h of the contact integrator, h = c_h / (alpha v_ref).
+    #[serde(default = "step")]
+    step: f64,
+}
+
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct ChainRunSection {
+    end_time: f64,
+    #[serde(default = "samples")]
+    samples: usize,
+    /// ED + MC runs from the same start: "glauber" and/or "tabulated".
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    compare: Vec<String>,
+    /// Table of `haff rods table` for compare = "tabulated".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    table: Option<PathBuf>,
+}
+
+fn unit_length() -> Vec<f64> {
+    vec![1.0]
+}
+fn one() -> f64 {
+    1.0
+}
+fn seed() -> u64 {
+    1
+}
+fn step() -> f64 {
+    0.05
+}
+fn samples() -> usize {
+    100
+}
+
+/// One row of a timeseries: energies summed over the rods.
+#[derive(Debug, Clone, Copy, Serialize)]
+struct Row {
+    time: f64,
+    collisions_per_particle: f64,
+    translational_energy: f64,
+    bath_energy: f64,
+    total_energy: f64,
+}
+
+const HEADER: &str = "time,collisions_per_particle,translational_energy,bath_energy,total_energy";
+
+fn bad(key: &str, detail: impl std::fmt::Display) -> CliError {
+    CliError::argument(key, detail)
+}
+
+fn positive(key: &str, x: f64) -> CliResult<f64> {
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(bad(key, format!("{x} is out of range; allowed: a finite number > 0")))
+    }
+}
+
+/// Checks the file; returns the rod lengths around the ring and the perimeter.
+fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
+    let c = &file.chain;
+    if !(2..=100_000).contains(&c.rods) {
+        return Err(bad("chain.rods", format!("{}; allowed: 2 <= N <= 100000", c.rods)));
+    }
+    if !(1..=10_000).contains(&c.modes) {
+        return Err(bad("chain.modes", format!("{}; allowed: 1 <= modes <= 10000", c.modes)));
+    }
+    if c.lengths.is_empty() {
+        return Err(bad("chain.lengths", "give at least one length"));
+    }
+    for l in &c.lengths {
+        positive("chain.lengths", *l)?;
+    }
+    for (key, x) in [
+        ("chain.alpha", c.alpha),
+        ("chain.sound_speed", c.sound_speed),
+        ("chain.density", c.density),
+        ("chain.temperature", c.temperature),
+        ("chain.step", c.step),
+        ("run.end_time", file.run.end_time),
+    ] {
+        positive(key, x)?;
+    }
+    if c.step > 1.0 {
+        return Err(bad("chain.step", format!("{}; allowed: 0 < step <= 1", c.step)));
+    }
+    if !(c.bath_temperature.is_finite() && c.bath_temperature >= 0.0) {
+        return Err(bad("chain.bath_temperature", "must be a finite number >= 0"));
+    }
+    if !(2..=100_000).contains(&file.run.samples) {
+        return Err(bad("run.samples", "allowed: 2 <= samples <= 100000"));
+    }
+    for name in &file.run.compare {
+        if name != "glauber" && name != "tabulated" {
+            return Err(bad("run.compare", format!("'{name}': allowed: glauber, tabulated")));
+        }
+    }
+    let tabulated = file.run.compare.iter().any(|c| c == "tabulated");
+    if tabulated != file.run.table.is_some() {
+        return Err(bad("run.table", "give a table exactly when compare holds \"tabulated\""));
+    }
+    let lengths: Vec<f64> = (0..c.rods).map(|i| c.lengths[i % c.lengths.len()]).collect();
+    let total: f64 = lengths.iter().sum();
+    let perimeter = c.perimeter.unwrap_or(2.0 * total);
+    if !(perimeter.is_finite() && perimeter > total) {
+        let allowed = format!("a finite number > {total} (the total length of the rods)");
+        return Err(bad("chain.perimeter", format!("{perimeter}; allowed: {allowed}")));
+    }
+    Ok((lengths, perimeter))
+}
+
+/// Rod centres evenly spaced (equal gaps) and Maxwellian velocities with zero momentum.
+fn initial_state(c: &ChainSection, lengths: &[f64], perimeter: f64) -> (Vec<f64>, Vec<f64>) {
+    let gap = (perimeter - lengths.iter().sum::<f64>()) / lengths.len() as f64;
+    let mut x = 0.0;
+    let positions = lengths
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if i > 0 {
+                x += 0.5 * (lengths[i - 1] + l) + gap;
+            }
+            x
+        })
+        .collect();
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(c.seed);
+    let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
+    let mut v: Vec<f64> = masses
+        .iter()
+        .map(|m| (c.temperature / m).sqrt() * StandardNormal.sample(&mut rng))
+        .collect::<Vec<f64>>();
+    let momentum: f64 = v.iter().zip(&masses).map(|(v, m)| v * m).sum();
+    let drift = momentum / masses.iter().sum::<f64>();
+    v.iter_mut().for_each(|v| *v -= drift);
+    (positions, v)
+}
+
+/// Translational energy about the centre of mass.
+fn translational(velocities: &[f64], masses: &[f64]) -> f64 {
+    let total: f64 = masses.iter().sum();
+    let drift = velocities.iter().zip(masses).map(|(v, m)| v * m).sum::<f64>() / total;
+    velocities.iter().zip(masses).map(|(v, m)| 0.5 * m * (v - drift).powi(2)).sum()
+}
+
+/// `haff rods chain`.
+pub fn run(args: &RodsChainArgs) -> CliResult {
+    let text = std::fs::read_to_string(&args.file)
+        .map_err(|e| bad("RUN.toml", format!("{}: {e}", args.file.display())))?;
+    let file: ChainFile = toml::from_str(&text).map_err(|e| {
+        bad("RUN.toml", e.to_string().split_whitespace().collect::<Vec<_>>().join(" "))
+    })?;
+    let (lengths, perimeter) = validate(&file)?;
+    let out = args.out.clone().unwrap_or_else(|| args.file.with_extension(""));
+    std::fs::create_dir_all(&out).map_err(|e| bad("--out", format!("{}: {e}", out.display())))?;
+    let c = &file.chain;
+    let (positions, velocities) = initial_state(c, &lengths, perimeter);
+    let targets: Vec<f64> = (0..file.run.samples)
+        .map(|k| file.run.end_time * k as f64 / (file.run.samples - 1) as f64)
+        .collect();
+    let started = Instant::now();
+    let chain_rows = run_chain(&file, &lengths, perimeter, &positions, &velocities, &targets)?;
+    let chain_seconds = started.elapsed().as_secs_f64();
+    write_rows(&out.join("timeseries.csv"), &chain_rows)?;
+    let mut curves = vec![("rod-chain MD".to_string(), chain_rows.clone())];
+    for name in &file.run.compare {
+        let law = stochastic_law(name, &file)?;
+        let rows = run_ed_mc(c, law, &lengths, perimeter, &positions, &velocities, &targets)?;
+        write_rows(&out.join(format!("ed_mc_{name}.csv")), &rows)?;
+        curves.push((format!("ED + MC, {name}"), rows));
+    }
+    plot_cooling(&out.join("cooling.png"), &curves)?;
+    let last = chain_rows.last().copied();
+    let summary = serde_json::json!({
+        "parameters": file,
+        "perimeter": perimeter,
+        "wall_seconds_chain": chain_seconds,
+        "final": last,
+        "energy_drift": last.map(|r| (r.total_energy - chain_rows[0].total_energy) / chain_rows[0].total_energy),
+        "compare_final": curves[1..].iter().map(|(n, r)| (n.clone(), r.last().copied())).collect::<Vec<_>>(),
+    });
+    let mut f = std::fs::File::create(out.join("summary.json"))?;
+    serde_json::to_writer_pretty(&mut f, &summary)?;
+    writeln!(f)?;
+    eprintln!("haff rods chain: {} rods, {chain_seconds:.2} s; output in {}", c.rods, out.display());
+    Ok(())
+}
+
+fn run_chain(
+    file: &ChainFile,
+    lengths: &[f64],
+    perimeter: f64,
+    positions: &[f64],
+    velocities: &[f64],
+    targets: &[f64],
+) -> CliResult<Vec<Row>> {
+    let c = &file.chain;
+    let mean_length = lengths.iter().sum::<f64>() / lengths.len() as f64;
+    let mass = c.density * mean_length;
+    let strength = c.strength.unwrap_or(mass * c.sound_speed.powi(2) / (c.alpha * mean_length).powi(2));
+    let mut chain = Chain::new(ChainConfig {
+        lengths: lengths.to_vec(),
+        modes: c.modes,
+        alpha: c.alpha,
+        b: positive("chain.strength", strength)?,
+        c: c.sound_speed,
+        rho: c.density,
+        perimeter,
+        positions: positions.to_vec(),
+        velocities: velocities.to_vec(),
+        c_h: c.step,
+        global_step: false,
+    })
+    .map_err(|e| bad("chain", e))?;
+    if c.bath_temperature > 0.0 {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(c.seed ^ 0x5eed);
+        chain.thermalize_modes(c.bath_temperature, &mut rng).map_err(|e| bad("chain.bath_temperature", e))?;
+    }
+    let masses = chain.masses();
+    let n = lengths.len() as f64;
+    let progress = indicatif::ProgressBar::new(targets.len() as u64);
+    let mut rows = Vec::with_capacity(targets.len());
+    for &t in targets {
+        chain.run_until(t);
+        let kinetic = translational(&chain.velocities(), &masses);
+        let bath: f64 = (0..lengths.len()).map(|i| chain.modal_energies(i).iter().sum::<f64>()).sum();
+        rows.push(Row {
+            time: chain.time(),
+            collisions_per_particle: 2.0 * chain.collisions() as f64 / n,
+            translational_energy: kinetic,
+            bath_energy: bath,
+            total_energy: chain.energy(),
+        });
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    Ok(rows)
+}
+
+fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution>> {
+    let modes = u32::try_from(file.chain.modes).map_err(|_| bad("chain.modes", "too many"))?;
+    if name == "glauber" {
+        return Ok(Box::new(Glauber::new(modes).map_err(|e| CliError::library("chain.modes", e))?));
+    }
+    let path = file.run.table.as_ref().ok_or_else(|| bad("run.table", "missing"))?;
+    let text = std::fs::read_to_string(path).map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
+    let table: Table = serde_json::from_str(&text).map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
+    Ok(Box::new(table.law(modes).map_err(|e| bad("run.table", e))?))
+}
+
+/// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
+/// modes at the chain's initial mode temperature.
+fn run_ed_mc(
+    c: &ChainSection,
+    law: Box<dyn Restitution>,
+    lengths: &[f64],
+    perimeter: f64,
+    positions: &[f64],
+    velocities: &[f64],
+    targets: &[f64],
+) -> CliResult<Vec<Row>> {
+    let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
+    let system = gas::System::<1> {
+        length: perimeter,
+        positions: positions.iter().map(|x| [*x]).collect(),
+        velocities: velocities.iter().map(|v| [*v]).collect(),
+        radii: lengths.iter().map(|l| 0.5 * l).collect(),
+        masses: masses.clone(),
+    };
+    let mut engine = EventDriven::new(system, law).map_err(|e| bad("chain", e))?;
+    let n = lengths.len();
+    engine
+        .set_baths(vec![c.bath_temperature; n], c.seed)
+        .map_err(|e| bad("chain.bath_temperature", e))?;
+    let mut rows = Vec::with_capacity(targets.len());
+    for &t in targets {
+        engine.run_until(t);
+        let baths: f64 = engine.bath_temperatures().unwrap_or(&[]).iter().sum::<f64>() * c.modes as f64;
+        let time = engine.time();
+        let cpp = engine.collisions_per_particle();
+        let s = engine.system();
+        let v: Vec<f64> = s.velocities.iter().map(|v| v[0]).collect();
+        let kinetic = translational(&v, &masses);
+        rows.push(Row {
+            time: t.max(time),
+            collisions_per_particle: cpp,
+            translational_energy: kinetic,
+            bath_energy: baths,
+            total_energy: kinetic + baths,
+        });
+    }
+    Ok(rows)
+}
+
+fn write_rows(path: &Path, rows: &[Row]) -> CliResult {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(f, "{HEADER}")?;
+    for r in rows {
+        writeln!(
+            f,
+            "{},{},{},{},{}",
+            r.time, r.collisions_per_particle, r.translational_energy, r.bath_energy, r.total_energy
+        )?;
+    }
+    Ok(f.flush()?)
+}
+
+fn plot_cooling(path: &Path, curves: &[(String, Vec<Row>)]) -> CliResult {
+    let series: Vec<(String, Vec<(f64, f64)>)> = curves
+        .iter()
+        .map(|(name, rows)| (name.clone(), rows.iter().map(|r| (r.time, r.translational_energy)).collect()))
+        .collect();
+    let axes = Axes {
+        title: "translational energy of the rods",
+        x: "time",
+        y: "E_tr (centre-of-mass frame)",
+        log_x: false,
+        log_y: true,
+    };
+    plot::lines(path, axes, &series)
+}
