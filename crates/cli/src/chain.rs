@@ -108,7 +108,10 @@ fn positive(key: &str, x: f64) -> CliResult<f64> {
     if x.is_finite() && x > 0.0 {
         Ok(x)
     } else {
-        Err(bad(key, format!("{x} is out of range; allowed: a finite number > 0")))
+        Err(bad(
+            key,
+            format!("{x} is out of range; allowed: a finite number > 0"),
+        ))
     }
 }
 
@@ -116,10 +119,16 @@ fn positive(key: &str, x: f64) -> CliResult<f64> {
 fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
     let c = &file.chain;
     if !(2..=100_000).contains(&c.rods) {
-        return Err(bad("chain.rods", format!("{}; allowed: 2 <= N <= 100000", c.rods)));
+        return Err(bad(
+            "chain.rods",
+            format!("{}; allowed: 2 <= N <= 100000", c.rods),
+        ));
     }
     if !(1..=10_000).contains(&c.modes) {
-        return Err(bad("chain.modes", format!("{}; allowed: 1 <= modes <= 10000", c.modes)));
+        return Err(bad(
+            "chain.modes",
+            format!("{}; allowed: 1 <= modes <= 10000", c.modes),
+        ));
     }
     if c.lengths.is_empty() {
         return Err(bad("chain.lengths", "give at least one length"));
@@ -138,29 +147,46 @@ fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
         positive(key, x)?;
     }
     if c.step > 1.0 {
-        return Err(bad("chain.step", format!("{}; allowed: 0 < step <= 1", c.step)));
+        return Err(bad(
+            "chain.step",
+            format!("{}; allowed: 0 < step <= 1", c.step),
+        ));
     }
     if !(c.bath_temperature.is_finite() && c.bath_temperature >= 0.0) {
-        return Err(bad("chain.bath_temperature", "must be a finite number >= 0"));
+        return Err(bad(
+            "chain.bath_temperature",
+            "must be a finite number >= 0",
+        ));
     }
     if !(2..=100_000).contains(&file.run.samples) {
         return Err(bad("run.samples", "allowed: 2 <= samples <= 100000"));
     }
     for name in &file.run.compare {
         if name != "glauber" && name != "tabulated" {
-            return Err(bad("run.compare", format!("'{name}': allowed: glauber, tabulated")));
+            return Err(bad(
+                "run.compare",
+                format!("'{name}': allowed: glauber, tabulated"),
+            ));
         }
     }
     let tabulated = file.run.compare.iter().any(|c| c == "tabulated");
     if tabulated != file.run.table.is_some() {
-        return Err(bad("run.table", "give a table exactly when compare holds \"tabulated\""));
+        return Err(bad(
+            "run.table",
+            "give a table exactly when compare holds \"tabulated\"",
+        ));
     }
-    let lengths: Vec<f64> = (0..c.rods).map(|i| c.lengths[i % c.lengths.len()]).collect();
+    let lengths: Vec<f64> = (0..c.rods)
+        .map(|i| c.lengths[i % c.lengths.len()])
+        .collect();
     let total: f64 = lengths.iter().sum();
     let perimeter = c.perimeter.unwrap_or(2.0 * total);
     if !(perimeter.is_finite() && perimeter > total) {
         let allowed = format!("a finite number > {total} (the total length of the rods)");
-        return Err(bad("chain.perimeter", format!("{perimeter}; allowed: {allowed}")));
+        return Err(bad(
+            "chain.perimeter",
+            format!("{perimeter}; allowed: {allowed}"),
+        ));
     }
     Ok((lengths, perimeter))
 }
@@ -183,7 +209,9 @@ fn initial_state(c: &ChainSection, lengths: &[f64], perimeter: f64) -> (Vec<f64>
     let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
     let mut v: Vec<f64> = masses
         .iter()
-        .map(|m| (c.temperature / m).sqrt() * StandardNormal.sample(&mut rng))
+        .map(|m| {
+            (c.temperature / m).sqrt() * Distribution::<f64>::sample(&StandardNormal, &mut rng)
+        })
         .collect::<Vec<f64>>();
     let momentum: f64 = v.iter().zip(&masses).map(|(v, m)| v * m).sum();
     let drift = momentum / masses.iter().sum::<f64>();
@@ -194,8 +222,17 @@ fn initial_state(c: &ChainSection, lengths: &[f64], perimeter: f64) -> (Vec<f64>
 /// Translational energy about the centre of mass.
 fn translational(velocities: &[f64], masses: &[f64]) -> f64 {
     let total: f64 = masses.iter().sum();
-    let drift = velocities.iter().zip(masses).map(|(v, m)| v * m).sum::<f64>() / total;
-    velocities.iter().zip(masses).map(|(v, m)| 0.5 * m * (v - drift).powi(2)).sum()
+    let drift = velocities
+        .iter()
+        .zip(masses)
+        .map(|(v, m)| v * m)
+        .sum::<f64>()
+        / total;
+    velocities
+        .iter()
+        .zip(masses)
+        .map(|(v, m)| 0.5 * m * (v - drift).powi(2))
+        .sum()
 }
 
 /// `haff rods chain`.
@@ -203,10 +240,19 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
     let text = std::fs::read_to_string(&args.file)
         .map_err(|e| bad("RUN.toml", format!("{}: {e}", args.file.display())))?;
     let file: ChainFile = toml::from_str(&text).map_err(|e| {
-        bad("RUN.toml", e.to_string().split_whitespace().collect::<Vec<_>>().join(" "))
+        bad(
+            "RUN.toml",
+            e.to_string()
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" "),
+        )
     })?;
     let (lengths, perimeter) = validate(&file)?;
-    let out = args.out.clone().unwrap_or_else(|| args.file.with_extension(""));
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| args.file.with_extension(""));
     std::fs::create_dir_all(&out).map_err(|e| bad("--out", format!("{}: {e}", out.display())))?;
     let c = &file.chain;
     let (positions, velocities) = initial_state(c, &lengths, perimeter);
@@ -214,13 +260,28 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
         .map(|k| file.run.end_time * k as f64 / (file.run.samples - 1) as f64)
         .collect();
     let started = Instant::now();
-    let chain_rows = run_chain(&file, &lengths, perimeter, &positions, &velocities, &targets)?;
+    let chain_rows = run_chain(
+        &file,
+        &lengths,
+        perimeter,
+        &positions,
+        &velocities,
+        &targets,
+    )?;
     let chain_seconds = started.elapsed().as_secs_f64();
     write_rows(&out.join("timeseries.csv"), &chain_rows)?;
     let mut curves = vec![("rod-chain MD".to_string(), chain_rows.clone())];
     for name in &file.run.compare {
         let law = stochastic_law(name, &file)?;
-        let rows = run_ed_mc(c, law, &lengths, perimeter, &positions, &velocities, &targets)?;
+        let rows = run_ed_mc(
+            c,
+            law,
+            &lengths,
+            perimeter,
+            &positions,
+            &velocities,
+            &targets,
+        )?;
         write_rows(&out.join(format!("ed_mc_{name}.csv")), &rows)?;
         curves.push((format!("ED + MC, {name}"), rows));
     }
@@ -237,7 +298,11 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
     let mut f = std::fs::File::create(out.join("summary.json"))?;
     serde_json::to_writer_pretty(&mut f, &summary)?;
     writeln!(f)?;
-    eprintln!("haff rods chain: {} rods, {chain_seconds:.2} s; output in {}", c.rods, out.display());
+    eprintln!(
+        "haff rods chain: {} rods, {chain_seconds:.2} s; output in {}",
+        c.rods,
+        out.display()
+    );
     Ok(())
 }
 
@@ -252,7 +317,9 @@ fn run_chain(
     let c = &file.chain;
     let mean_length = lengths.iter().sum::<f64>() / lengths.len() as f64;
     let mass = c.density * mean_length;
-    let strength = c.strength.unwrap_or(mass * c.sound_speed.powi(2) / (c.alpha * mean_length).powi(2));
+    let strength = c
+        .strength
+        .unwrap_or(mass * c.sound_speed.powi(2) / (c.alpha * mean_length).powi(2));
     let mut chain = Chain::new(ChainConfig {
         lengths: lengths.to_vec(),
         modes: c.modes,
@@ -264,24 +331,29 @@ fn run_chain(
         positions: positions.to_vec(),
         velocities: velocities.to_vec(),
         c_h: c.step,
-        global_step: false,
+        global_step: true,
     })
     .map_err(|e| bad("chain", e))?;
     if c.bath_temperature > 0.0 {
         let mut rng = rand_pcg::Pcg64::seed_from_u64(c.seed ^ 0x5eed);
-        chain.thermalize_modes(c.bath_temperature, &mut rng).map_err(|e| bad("chain.bath_temperature", e))?;
+        chain
+            .thermalize_modes(c.bath_temperature, &mut rng)
+            .map_err(|e| bad("chain.bath_temperature", e))?;
     }
     let masses = chain.masses();
     let n = lengths.len() as f64;
     let progress = indicatif::ProgressBar::new(targets.len() as u64);
     let mut rows = Vec::with_capacity(targets.len());
+    let mut impacts = Impacts::new(lengths.len());
     for &t in targets {
-        chain.run_until(t);
+        impacts.count(&chain.run_until(t));
         let kinetic = translational(&chain.velocities(), &masses);
-        let bath: f64 = (0..lengths.len()).map(|i| chain.modal_energies(i).iter().sum::<f64>()).sum();
+        let bath: f64 = (0..lengths.len())
+            .map(|i| chain.modal_energies(i).iter().sum::<f64>())
+            .sum();
         rows.push(Row {
             time: chain.time(),
-            collisions_per_particle: 2.0 * chain.collisions() as f64 / n,
+            collisions_per_particle: 2.0 * impacts.collisions as f64 / n,
             translational_energy: kinetic,
             bath_energy: bath,
             total_energy: chain.energy(),
@@ -292,14 +364,54 @@ fn run_chain(
     Ok(rows)
 }
 
+/// Counts impacts from contact episodes: with finitely many modes the rod ends ring, so
+/// one impact opens and closes its contact several times. An episode of contact k (rods k
+/// and k+1) starts a new impact unless both rods' previous episode was at contact k too
+/// (in 1D a pair can only meet again after one of them hit its other neighbour).
+struct Impacts {
+    last_contact: Vec<usize>,
+    collisions: u64,
+}
+
+impl Impacts {
+    fn new(rods: usize) -> Self {
+        Impacts {
+            last_contact: vec![usize::MAX; rods],
+            collisions: 0,
+        }
+    }
+
+    fn count(&mut self, episodes: &[rods::chain::CollisionRecord]) {
+        let n = self.last_contact.len();
+        let mut sorted: Vec<_> = episodes.iter().map(|e| (e.t_start, e.contact)).collect();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (_, k) in sorted {
+            let (left, right) = (k, (k + 1) % n);
+            if self.last_contact[left] != k || self.last_contact[right] != k {
+                self.collisions += 1;
+            }
+            self.last_contact[left] = k;
+            self.last_contact[right] = k;
+        }
+    }
+}
+
 fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution>> {
     let modes = u32::try_from(file.chain.modes).map_err(|_| bad("chain.modes", "too many"))?;
     if name == "glauber" {
-        return Ok(Box::new(Glauber::new(modes).map_err(|e| CliError::library("chain.modes", e))?));
+        return Ok(Box::new(
+            Glauber::new(modes).map_err(|e| CliError::library("chain.modes", e))?,
+        ));
     }
-    let path = file.run.table.as_ref().ok_or_else(|| bad("run.table", "missing"))?;
-    let text = std::fs::read_to_string(path).map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
-    let table: Table = serde_json::from_str(&text).map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
+    let path = file
+        .run
+        .table
+        .as_ref()
+        .ok_or_else(|| bad("run.table", "missing"))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
+    let table: Table = serde_json::from_str(&text)
+        .map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
     Ok(Box::new(table.law(modes).map_err(|e| bad("run.table", e))?))
 }
 
@@ -330,7 +442,12 @@ fn run_ed_mc(
     let mut rows = Vec::with_capacity(targets.len());
     for &t in targets {
         engine.run_until(t);
-        let baths: f64 = engine.bath_temperatures().unwrap_or(&[]).iter().sum::<f64>() * c.modes as f64;
+        let baths: f64 = engine
+            .bath_temperatures()
+            .unwrap_or(&[])
+            .iter()
+            .sum::<f64>()
+            * c.modes as f64;
         let time = engine.time();
         let cpp = engine.collisions_per_particle();
         let s = engine.system();
@@ -354,7 +471,11 @@ fn write_rows(path: &Path, rows: &[Row]) -> CliResult {
         writeln!(
             f,
             "{},{},{},{},{}",
-            r.time, r.collisions_per_particle, r.translational_energy, r.bath_energy, r.total_energy
+            r.time,
+            r.collisions_per_particle,
+            r.translational_energy,
+            r.bath_energy,
+            r.total_energy
         )?;
     }
     Ok(f.flush()?)
@@ -363,7 +484,14 @@ fn write_rows(path: &Path, rows: &[Row]) -> CliResult {
 fn plot_cooling(path: &Path, curves: &[(String, Vec<Row>)]) -> CliResult {
     let series: Vec<(String, Vec<(f64, f64)>)> = curves
         .iter()
-        .map(|(name, rows)| (name.clone(), rows.iter().map(|r| (r.time, r.translational_energy)).collect()))
+        .map(|(name, rows)| {
+            (
+                name.clone(),
+                rows.iter()
+                    .map(|r| (r.time, r.translational_energy))
+                    .collect(),
+            )
+        })
         .collect();
     let axes = Axes {
         title: "translational energy of the rods",

@@ -7,6 +7,7 @@
 
 mod algebra;
 mod bench;
+mod chain;
 mod cor;
 mod demo;
 mod engine;
@@ -55,6 +56,47 @@ enum RodsCommand {
     Collide(RodsCollideArgs),
     /// Quantiles of eps^2 on a grid of E_tr/T_bath, as JSON for the tabulated law.
     Table(RodsTableArgs),
+    /// Two cold rods colliding on a ring (Figs. 1 and 2 of Giese): energy, entropy, spectrum.
+    TwoRods(RodsTwoRodsArgs),
+    /// Rod-chain MD of Eq. (2) from a TOML file, optionally against ED + Monte Carlo.
+    Chain(RodsChainArgs),
+}
+
+/// Arguments of `haff rods two-rods`.
+#[derive(Debug, Args)]
+pub struct RodsTwoRodsArgs {
+    /// Length ratio gamma = l1/l2.
+    #[arg(long, default_value = "0.6173", allow_hyphen_values = true)]
+    pub gamma: String,
+    /// kappa = alpha l V0 / c.
+    #[arg(long, default_value = "4000", allow_hyphen_values = true)]
+    pub kappa: String,
+    /// Modes per rod; a comma-separated list runs one experiment per value.
+    #[arg(long, default_value = "75", allow_hyphen_values = true)]
+    pub modes: String,
+    /// Collisions per experiment.
+    #[arg(long, default_value = "4500", allow_hyphen_values = true)]
+    pub collisions: String,
+    /// Collisions before the averages (spectrum, plateau) start.
+    #[arg(long, default_value = "500", allow_hyphen_values = true)]
+    pub transient: String,
+    /// Step constant c_h of the contact integrator (energy drift ~1e-10 at 0.125).
+    #[arg(long, default_value = "0.125", allow_hyphen_values = true)]
+    pub step: String,
+    /// Output directory: two_rods.csv, spectrum.csv, summary.json, energy.png, entropy.png,
+    /// spectrum.png.
+    #[arg(long)]
+    pub out: std::path::PathBuf,
+}
+
+/// Arguments of `haff rods chain`.
+#[derive(Debug, Args)]
+pub struct RodsChainArgs {
+    /// The run file (schema in the README).
+    pub file: std::path::PathBuf,
+    /// Output directory [default: the run file's name without extension].
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
 }
 
 /// Arguments of `haff rods deterministic`.
@@ -416,6 +458,8 @@ fn run(command: Command) -> CliResult {
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),
         Command::Rods(RodsCommand::Collide(args)) => rods::collide(&args),
         Command::Rods(RodsCommand::Table(args)) => rods::table(&args),
+        Command::Rods(RodsCommand::TwoRods(args)) => rods::two_rods(&args),
+        Command::Rods(RodsCommand::Chain(args)) => chain::run(&args),
     }
 }
 

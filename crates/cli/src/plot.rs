@@ -71,8 +71,8 @@ pub struct Axes<'a> {
     pub log_y: bool,
 }
 
-/// Several named curves on one chart as a PNG (dashed-looking thin lines for names that
-/// start with "theory" or "equilibrium").
+/// Several named curves on one chart as a PNG; curves named "theory..." or
+/// "equilibrium..." are thin reference lines in the colour of the curve before them.
 pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> CliResult {
     let keep = |&(x, y): &(f64, f64)| {
         x.is_finite() && y.is_finite() && (!axes.log_x || x > 0.0) && (!axes.log_y || y > 0.0)
@@ -117,13 +117,15 @@ pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> C
                     .x_desc(axes.x)
                     .y_desc(axes.y)
                     .draw()?;
-                for (k, (name, points)) in series.iter().enumerate() {
-                    let color = Palette99::pick(k).to_rgba();
-                    let width = if name.starts_with("theory") || name.starts_with("equilibrium") {
-                        1
-                    } else {
-                        2
-                    };
+                let mut curve = 0;
+                for (name, points) in series {
+                    // A reference line takes the colour of the curve before it.
+                    let reference = name.starts_with("theory") || name.starts_with("equilibrium");
+                    if !reference {
+                        curve += 1;
+                    }
+                    let color = Palette99::pick(curve.max(1) - 1).to_rgba();
+                    let width = if reference { 1 } else { 2 };
                     let data: Vec<(f64, f64)> = points.iter().copied().filter(keep).collect();
                     chart
                         .draw_series(LineSeries::new(data, color.stroke_width(width)))?

@@ -177,3 +177,213 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
     );
     Ok(())
 }
+
+/// One two-rod experiment's outcome for the summary.
+#[derive(Debug, serde::Serialize)]
+struct TwoRodSummary {
+    modes: usize,
+    collisions: usize,
+    transient: usize,
+    wall_seconds: f64,
+    energy_drift: f64,
+    /// Mean E_tr/E0 per collision after the transient, and Giese's E0/(2M+1).
+    mean_e_tr: f64,
+    equipartition_per_collision: f64,
+    /// Time average of E_tr/E0 after the transient, and E0/(4M+1).
+    time_mean_e_tr: f64,
+    equipartition_time: f64,
+    mean_eta: f64,
+    eta_equilibrium: f64,
+    eta_relaxation_collision: Option<usize>,
+    eta_within_20_percent_collision: Option<usize>,
+    cooling_collision: Option<usize>,
+}
+
+/// `haff rods two-rods`: Figs. 1 and 2 of Giese — two cold rods on a ring, E_tr, eps and
+/// the spectral entropy after every collision, and the mean modal spectrum.
+pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
+    use rods::chain::*;
+    let gamma = parse_number("--gamma", &args.gamma, Allowed::between("gamma", 1e-2, 1e2))?;
+    let kappa = parse_number("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e6))?;
+    let modes: Vec<usize> = parse_list(
+        "--modes",
+        &args.modes,
+        Allowed::between("modes", 1.0, 2000.0),
+    )?
+    .into_iter()
+    .map(|m| m as usize)
+    .collect();
+    let collisions = parse_count("--collisions", &args.collisions, 1, 10_000_000)?;
+    let transient = parse_count("--transient", &args.transient, 0, collisions - 1)?;
+    let c_h = parse_number("--step", &args.step, Allowed::between("c_h", 1e-4, 1.0))?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::argument("--out", format!("{}: {e}", args.out.display())))?;
+    let mut rows = Vec::new();
+    let mut spectra = Vec::new();
+    let mut summaries = Vec::new();
+    let (mut energy, mut entropy) = (Vec::new(), Vec::new());
+    for &m in &modes {
+        let setup = TwoRodSetup {
+            gamma,
+            kappa,
+            modes: m,
+            gap: 1.0,
+            c_h,
+        };
+        let clock = std::time::Instant::now();
+        let run = run_two_rods(&setup, collisions, transient).map_err(library("--modes"))?;
+        let wall_seconds = clock.elapsed().as_secs_f64();
+        let tail = &run.records[transient..];
+        let mean =
+            |f: fn(&TwoRodRecord) -> f64| tail.iter().map(f).sum::<f64>() / tail.len() as f64;
+        let (mean_e_tr, eq) = (mean(|r| r.e_tr), eta_equilibrium(m));
+        summaries.push(TwoRodSummary {
+            modes: m,
+            collisions,
+            transient,
+            wall_seconds,
+            energy_drift: run.energy_drift,
+            mean_e_tr,
+            equipartition_per_collision: 1.0 / (2.0 * m as f64 + 1.0),
+            time_mean_e_tr: run.time_mean_etr(),
+            equipartition_time: 1.0 / (4.0 * m as f64 + 1.0),
+            mean_eta: mean(|r| r.eta),
+            eta_equilibrium: eq,
+            eta_relaxation_collision: eta_relaxation(&run.records, eq),
+            eta_within_20_percent_collision: eta_within(&run.records, eq, 0.2),
+            cooling_collision: cooling_collision(&run.records, mean_e_tr, 25, 2.0),
+        });
+        for r in &run.records {
+            rows.push(vec![
+                m.to_string(),
+                r.collision.to_string(),
+                number(r.e_tr),
+                number(r.eps),
+                number(r.eta),
+            ]);
+        }
+        for (j, w) in mean_spectrum(tail).iter().enumerate() {
+            spectra.push(vec![
+                m.to_string(),
+                (j / m + 1).to_string(),
+                (j % m + 1).to_string(),
+                number(*w),
+            ]);
+        }
+        let label = format!("M = {m}");
+        energy.push((
+            label.clone(),
+            run.records
+                .iter()
+                .map(|r| (r.collision as f64, r.e_tr))
+                .collect(),
+        ));
+        energy.push((
+            format!("equilibrium 1/(2M+1), M = {m}"),
+            vec![
+                (1.0, 1.0 / (2.0 * m as f64 + 1.0)),
+                (collisions as f64, 1.0 / (2.0 * m as f64 + 1.0)),
+            ],
+        ));
+        let window = 25.min(run.records.len());
+        let running = run.records.windows(window).map(|w| {
+            let mean = w.iter().map(|r| r.e_tr).sum::<f64>() / window as f64;
+            (w[window / 2].collision as f64, mean)
+        });
+        energy.push((
+            format!("M = {m}, mean of {window} collisions"),
+            running.collect(),
+        ));
+        entropy.push((
+            label,
+            run.records
+                .iter()
+                .map(|r| (r.collision as f64, r.eta))
+                .collect(),
+        ));
+        entropy.push((
+            format!("equilibrium eta_eq, M = {m}"),
+            vec![(1.0, eq), (collisions as f64, eq)],
+        ));
+    }
+    let file = |name: &str| args.out.join(name);
+    let mut f = std::io::BufWriter::new(std::fs::File::create(file("two_rods.csv"))?);
+    write_csv(&mut f, &["modes", "collision", "e_tr", "eps", "eta"], rows)?;
+    f.flush()?;
+    let mut f = std::io::BufWriter::new(std::fs::File::create(file("spectrum.csv"))?);
+    write_csv(&mut f, &["modes", "rod", "mode", "w"], spectra)?;
+    f.flush()?;
+    let mut f = std::fs::File::create(file("summary.json"))?;
+    serde_json::to_writer_pretty(&mut f, &summaries)?;
+    writeln!(f)?;
+    let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: E_tr/E0 after each collision");
+    let axes = Axes {
+        title: &title,
+        x: "collision",
+        y: "E_tr / E0",
+        log_x: true,
+        log_y: true,
+    };
+    plot::lines(&file("energy.png"), axes, &energy)?;
+    let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: spectral entropy");
+    let axes = Axes {
+        title: &title,
+        x: "collision",
+        y: "eta = 1 - h / ln(2M)",
+        log_x: true,
+        log_y: false,
+    };
+    plot::lines(&file("entropy.png"), axes, &entropy)?;
+    plot_spectrum(&file("spectrum.png"), &summaries, &args.out)?;
+    for s in &summaries {
+        eprintln!(
+            "M = {}: <E_tr>/E0 = {:.5} (E0/(2M+1) = {:.5}), time mean {:.5} (E0/(4M+1) = {:.5}), <eta> = {:.4} (eta_eq = {:.4}), eta relaxed at collision {:?}; energy drift {:.1e}; {:.1} s",
+            s.modes, s.mean_e_tr, s.equipartition_per_collision, s.time_mean_e_tr, s.equipartition_time,
+            s.mean_eta, s.eta_equilibrium, s.eta_relaxation_collision, s.energy_drift, s.wall_seconds
+        );
+    }
+    Ok(())
+}
+
+/// The mean modal spectrum of the last M as w(mode) per rod (inset of Fig. 1).
+fn plot_spectrum(path: &Path, summaries: &[TwoRodSummary], dir: &Path) -> CliResult {
+    let Some(last) = summaries.last() else {
+        return Ok(());
+    };
+    let text = std::fs::read_to_string(dir.join("spectrum.csv"))?;
+    let mut rods: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
+    for line in text.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        if cells.len() == 4 && cells[0] == last.modes.to_string() {
+            let rod: usize = cells[1].parse().unwrap_or(1);
+            let (mode, w) = (
+                cells[2].parse().unwrap_or(0.0),
+                cells[3].parse().unwrap_or(0.0),
+            );
+            rods[(rod - 1).min(1)].push((mode, w));
+        }
+    }
+    let flat = 0.5 / last.modes as f64;
+    let title = format!(
+        "mean modal energies w after collision {} (M = {})",
+        last.transient, last.modes
+    );
+    let axes = Axes {
+        title: &title,
+        x: "mode nu",
+        y: "<w>",
+        log_x: false,
+        log_y: false,
+    };
+    let [a, b] = rods;
+    let equal = vec![(1.0, flat), (last.modes as f64, flat)];
+    plot::lines(
+        path,
+        axes,
+        &[
+            ("rod 1".into(), a),
+            ("rod 2".into(), b),
+            ("equilibrium 1/(2M)".into(), equal),
+        ],
+    )
+}

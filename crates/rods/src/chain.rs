@@ -33,7 +33,8 @@ mod rod;
 mod two_rods;
 
 pub use two_rods::{
-    eta_equilibrium, run_two_rods, spectral_entropy, TwoRodRecord, TwoRodRun, TwoRodSetup,
+    cooling_collision, eta_equilibrium, eta_relaxation, eta_within, mean_spectrum, run_two_rods,
+    spectral_entropy, TwoRodRecord, TwoRodRun, TwoRodSetup,
 };
 
 use cluster::{Cluster, Geom};

@@ -218,3 +218,50 @@ pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRod
     run.stats = chain.stats();
     Ok(run)
 }
+
+/// First collision after which η − η_eq has fallen below 1/e of its value after the
+/// first collision (the modal relaxation time of Fig. 2 of Giese).
+pub fn eta_relaxation(records: &[TwoRodRecord], eta_eq: f64) -> Option<usize> {
+    let d0 = records.first()?.eta - eta_eq;
+    records
+        .iter()
+        .find(|r| r.eta - eta_eq < d0 / std::f64::consts::E)
+        .map(|r| r.collision)
+}
+
+/// First collision with η within `fraction` of η_eq (η < (1 + fraction) η_eq).
+pub fn eta_within(records: &[TwoRodRecord], eta_eq: f64, fraction: f64) -> Option<usize> {
+    records
+        .iter()
+        .find(|r| r.eta < (1.0 + fraction) * eta_eq)
+        .map(|r| r.collision)
+}
+
+/// First collision at which the mean E_tr/E0 of the next `window` collisions has fallen
+/// below `factor` times the plateau (the cooling time of Fig. 1 of Giese).
+pub fn cooling_collision(
+    records: &[TwoRodRecord],
+    plateau: f64,
+    window: usize,
+    factor: f64,
+) -> Option<usize> {
+    let threshold = factor * plateau;
+    records
+        .windows(window.max(1))
+        .find(|w| w.iter().map(|r| r.e_tr).sum::<f64>() < threshold * w.len() as f64)
+        .map(|w| w[0].collision)
+}
+
+/// The relative modal energies w averaged over `records` (rod 1 ν = 1..M, then rod 2).
+pub fn mean_spectrum(records: &[TwoRodRecord]) -> Vec<f64> {
+    let Some(first) = records.first() else {
+        return Vec::new();
+    };
+    let mut mean = vec![0.0; first.w.len()];
+    for r in records {
+        mean.iter_mut()
+            .zip(&r.w)
+            .for_each(|(m, w)| *m += w / records.len() as f64);
+    }
+    mean
+}
