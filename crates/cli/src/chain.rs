@@ -11,7 +11,6 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use restitution::{Glauber, Restitution};
 use rods::chain::{Chain, ChainConfig};
-use rods::stochastic::Table;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -67,6 +66,9 @@ struct ChainRunSection {
     /// ED + MC runs from the same start: "glauber" and/or "tabulated".
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     compare: Vec<String>,
+    /// Runs from seeds seed, seed + 1, ...; the outputs are their means.
+    #[serde(default = "one_repeat")]
+    repeats: usize,
     /// Table of `haff rods table` for compare = "tabulated".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     table: Option<PathBuf>,
@@ -74,6 +76,9 @@ struct ChainRunSection {
 
 fn unit_length() -> Vec<f64> {
     vec![1.0]
+}
+fn one_repeat() -> usize {
+    1
 }
 fn one() -> f64 {
     1.0
@@ -89,7 +94,7 @@ fn samples() -> usize {
 }
 
 /// One row of a timeseries: energies summed over the rods.
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, Default, Serialize)]
 struct Row {
     time: f64,
     collisions_per_particle: f64,
@@ -156,6 +161,12 @@ fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
         return Err(bad(
             "chain.bath_temperature",
             "must be a finite number >= 0",
+        ));
+    }
+    if !(1..=10_000).contains(&file.run.repeats) {
+        return Err(bad(
+            "run.repeats",
+            format!("{}; allowed: 1 <= repeats <= 10000", file.run.repeats),
         ));
     }
     if !(2..=100_000).contains(&file.run.samples) {
@@ -254,43 +265,61 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
         .clone()
         .unwrap_or_else(|| args.file.with_extension(""));
     std::fs::create_dir_all(&out).map_err(|e| bad("--out", format!("{}: {e}", out.display())))?;
-    let c = &file.chain;
-    let (positions, velocities) = initial_state(c, &lengths, perimeter);
     let targets: Vec<f64> = (0..file.run.samples)
         .map(|k| file.run.end_time * k as f64 / (file.run.samples - 1) as f64)
         .collect();
     let started = Instant::now();
-    let chain_rows = run_chain(
-        &file,
-        &lengths,
-        perimeter,
-        &positions,
-        &velocities,
-        &targets,
-    )?;
-    let chain_seconds = started.elapsed().as_secs_f64();
-    write_rows(&out.join("timeseries.csv"), &chain_rows)?;
-    let mut curves = vec![("rod-chain MD".to_string(), chain_rows.clone())];
-    for name in &file.run.compare {
-        let law = stochastic_law(name, &file)?;
-        let rows = run_ed_mc(
-            c,
-            law,
-            &lengths,
-            perimeter,
-            &positions,
-            &velocities,
-            &targets,
-        )?;
-        write_rows(&out.join(format!("ed_mc_{name}.csv")), &rows)?;
-        curves.push((format!("ED + MC, {name}"), rows));
+    // Curve 0: the chain MD; then one per ED + MC law; each averaged over the repeats.
+    let mut curves: Vec<(String, Vec<Row>)> = Vec::new();
+    let mut chain_seconds = 0.0;
+    for repeat in 0..file.run.repeats {
+        let mut one = file.clone();
+        one.chain.seed = file.chain.seed.wrapping_add(repeat as u64);
+        let c = &one.chain;
+        let (positions, velocities) = initial_state(c, &lengths, perimeter);
+        let clock = Instant::now();
+        let mut runs = vec![(
+            "rod-chain MD".to_string(),
+            run_chain(&one, &lengths, perimeter, &positions, &velocities, &targets)?,
+        )];
+        chain_seconds += clock.elapsed().as_secs_f64();
+        for name in &file.run.compare {
+            let law = stochastic_law(name, &one)?;
+            let rows = run_ed_mc(
+                c,
+                law,
+                &lengths,
+                perimeter,
+                &positions,
+                &velocities,
+                &targets,
+            )?;
+            runs.push((format!("ED + MC, {name}"), rows));
+        }
+        accumulate(&mut curves, runs, file.run.repeats);
     }
-    plot_cooling(&out.join("cooling.png"), &curves)?;
+    write_rows(&out.join("timeseries.csv"), &curves[0].1)?;
+    for (name, (_, rows)) in file.run.compare.iter().zip(&curves[1..]) {
+        write_rows(&out.join(format!("ed_mc_{name}.csv")), rows)?;
+    }
+    let chain_rows = curves[0].1.clone();
+    let c = &file.chain;
+    let n = c.rods as f64;
+    // Equipartition: (N - 1)/2 translational quadratic terms (momentum is conserved),
+    // 2 N_modes per rod.
+    let share = 0.5 * (n - 1.0) / (0.5 * (n - 1.0) + n * c.modes as f64);
+    let equilibrium: Vec<(f64, f64)> = chain_rows
+        .iter()
+        .map(|r| (r.time, share * r.total_energy))
+        .collect();
+    plot_cooling(&out.join("cooling.png"), &curves, equilibrium)?;
     let last = chain_rows.last().copied();
     let summary = serde_json::json!({
         "parameters": file,
         "perimeter": perimeter,
         "wall_seconds_chain": chain_seconds,
+        "wall_seconds": started.elapsed().as_secs_f64(),
+        "equipartition_translational_energy": share * chain_rows[0].total_energy,
         "final": last,
         "energy_drift": last.map(|r| (r.total_energy - chain_rows[0].total_energy) / chain_rows[0].total_energy),
         "compare_final": curves[1..].iter().map(|(n, r)| (n.clone(), r.last().copied())).collect::<Vec<_>>(),
@@ -408,11 +437,7 @@ fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution
         .table
         .as_ref()
         .ok_or_else(|| bad("run.table", "missing"))?;
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
-    let table: Table = serde_json::from_str(&text)
-        .map_err(|e| bad("run.table", format!("{}: {e}", path.display())))?;
-    Ok(Box::new(table.law(modes).map_err(|e| bad("run.table", e))?))
+    crate::run::tabulated_law(path, modes, "run.table")
 }
 
 /// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
@@ -464,6 +489,31 @@ fn run_ed_mc(
     Ok(rows)
 }
 
+/// Adds `runs` (one row list per curve) into `sums` with weight 1/`repeats`.
+fn accumulate(sums: &mut Vec<(String, Vec<Row>)>, runs: Vec<(String, Vec<Row>)>, repeats: usize) {
+    let w = 1.0 / repeats as f64;
+    if sums.is_empty() {
+        for (name, rows) in &runs {
+            let zero = rows
+                .iter()
+                .map(|r| Row {
+                    time: r.time,
+                    ..Row::default()
+                })
+                .collect();
+            sums.push((name.clone(), zero));
+        }
+    }
+    for ((_, sum), (_, rows)) in sums.iter_mut().zip(runs) {
+        for (s, r) in sum.iter_mut().zip(rows) {
+            s.collisions_per_particle += w * r.collisions_per_particle;
+            s.translational_energy += w * r.translational_energy;
+            s.bath_energy += w * r.bath_energy;
+            s.total_energy += w * r.total_energy;
+        }
+    }
+}
+
 fn write_rows(path: &Path, rows: &[Row]) -> CliResult {
     let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
     writeln!(f, "{HEADER}")?;
@@ -481,8 +531,12 @@ fn write_rows(path: &Path, rows: &[Row]) -> CliResult {
     Ok(f.flush()?)
 }
 
-fn plot_cooling(path: &Path, curves: &[(String, Vec<Row>)]) -> CliResult {
-    let series: Vec<(String, Vec<(f64, f64)>)> = curves
+fn plot_cooling(
+    path: &Path,
+    curves: &[(String, Vec<Row>)],
+    equilibrium: Vec<(f64, f64)>,
+) -> CliResult {
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = curves
         .iter()
         .map(|(name, rows)| {
             (
@@ -493,6 +547,10 @@ fn plot_cooling(path: &Path, curves: &[(String, Vec<Row>)]) -> CliResult {
             )
         })
         .collect();
+    series.push((
+        "equilibrium (equipartition with the modes)".into(),
+        equilibrium,
+    ));
     let axes = Axes {
         title: "translational energy of the rods",
         x: "time",

@@ -64,7 +64,7 @@ use crate::RunArgs;
 use gas::observe::{sonine_a2, temperature, velocity_histogram};
 use gas::{init, EventDriven};
 use restitution::dashpot::DashpotCriterion;
-use restitution::{Constant, Dashpot, Glauber, Restitution, ScaledForm, Tabulated, Viscoelastic};
+use restitution::{Constant, Dashpot, Glauber, Restitution, ScaledForm, Viscoelastic};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -540,19 +540,22 @@ fn stochastic_law(c: &CollisionSection) -> CliResult<Box<dyn Restitution>> {
             let path = c.table.as_deref().ok_or_else(|| {
                 CliError::argument("collision.table", "missing: a table from `haff rods table`")
             })?;
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::argument("collision.table", format!("{path}: {e}")))?;
-            let t: Tabulated = serde_json::from_str(&text)
-                .map_err(|e| CliError::argument("collision.table", format!("{path}: {e}")))?;
-            let law = Tabulated::new(t.gamma, t.kappa, t.energy_ratios, t.quantiles, modes)
-                .map_err(lib("collision.table"))?;
-            Ok(Box::new(law))
+            tabulated_law(Path::new(path), modes, "collision.table")
         }
         other => Err(CliError::argument(
             "collision.distribution",
             format!("'{other}': allowed: glauber, tabulated"),
         )),
     }
+}
+
+/// The tabulated stochastic law from a table of `haff rods table` (errors name `key`).
+pub fn tabulated_law(path: &Path, modes: u32, key: &str) -> CliResult<Box<dyn Restitution>> {
+    let fail = |e: String| CliError::argument(key, format!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
+    let table: rods::stochastic::Table =
+        serde_json::from_str(&text).map_err(|e| fail(e.to_string()))?;
+    Ok(Box::new(table.law(modes).map_err(fail)?))
 }
 
 /// One row of timeseries.csv.
