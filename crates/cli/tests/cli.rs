@@ -1227,3 +1227,58 @@ fn rods_two_rods_and_chain_run() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Giese's ED + Monte Carlo against the rod-chain MD (docs/giese.md; 2 min):
+/// cargo test --release -p haff-cli --test cli -- --ignored ed_mc_against_rod_chain
+/// Measured: late-time E_tr / equipartition 1.04 (chain), 1.08 (Glauber), 1.01 (tabulated);
+/// at t = 500 Glauber / chain = 0.53, tabulated / chain = 0.81.
+#[test]
+#[ignore]
+fn ed_mc_against_rod_chain() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let out = std::env::temp_dir().join(format!("haff-giese-ring-{}", std::process::id()));
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_haff"))
+        .current_dir(root)
+        .args([
+            "rods",
+            "chain",
+            "docs/data/giese-ring.toml",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    let equilibrium = summary["equipartition_translational_energy"]
+        .as_f64()
+        .unwrap();
+    let late = |name: &str| {
+        let (_, rows) = parse_csv(&read(&out, name));
+        let tail = &rows[rows.len() / 2..];
+        tail.iter().map(|r| r[2]).sum::<f64>() / tail.len() as f64 / equilibrium
+    };
+    let early = |name: &str| parse_csv(&read(&out, name)).1[1][2];
+    for name in ["timeseries.csv", "ed_mc_glauber.csv", "ed_mc_tabulated.csv"] {
+        let ratio = late(name);
+        eprintln!(
+            "{name}: late E_tr / equipartition {ratio:.3}, E_tr(t = 500) {:.4e}",
+            early(name)
+        );
+        assert!((ratio - 1.0).abs() < 0.1, "{name}: {ratio}");
+    }
+    let chain = early("timeseries.csv");
+    let (glauber, tabulated) = (
+        early("ed_mc_glauber.csv") / chain,
+        early("ed_mc_tabulated.csv") / chain,
+    );
+    assert!(
+        glauber < tabulated && tabulated < 0.95,
+        "{glauber} {tabulated}"
+    );
+    std::fs::remove_dir_all(&out).ok();
+}
