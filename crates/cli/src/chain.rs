@@ -277,23 +277,19 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
         one.chain.seed = file.chain.seed.wrapping_add(repeat as u64);
         let c = &one.chain;
         let (positions, velocities) = initial_state(c, &lengths, perimeter);
+        let start = Start {
+            lengths: &lengths,
+            perimeter,
+            positions,
+            velocities,
+            targets: &targets,
+        };
         let clock = Instant::now();
-        let mut runs = vec![(
-            "rod-chain MD".to_string(),
-            run_chain(&one, &lengths, perimeter, &positions, &velocities, &targets)?,
-        )];
+        let mut runs = vec![("rod-chain MD".to_string(), run_chain(&one, &start)?)];
         chain_seconds += clock.elapsed().as_secs_f64();
         for name in &file.run.compare {
             let law = stochastic_law(name, &one)?;
-            let rows = run_ed_mc(
-                c,
-                law,
-                &lengths,
-                perimeter,
-                &positions,
-                &velocities,
-                &targets,
-            )?;
+            let rows = run_ed_mc(c, law, &start)?;
             runs.push((format!("ED + MC, {name}"), rows));
         }
         accumulate(&mut curves, runs, file.run.repeats);
@@ -335,14 +331,23 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
     Ok(())
 }
 
-fn run_chain(
-    file: &ChainFile,
-    lengths: &[f64],
+/// The rods and their common start, shared by the chain MD and the ED + MC runs.
+struct Start<'a> {
+    lengths: &'a [f64],
     perimeter: f64,
-    positions: &[f64],
-    velocities: &[f64],
-    targets: &[f64],
-) -> CliResult<Vec<Row>> {
+    positions: Vec<f64>,
+    velocities: Vec<f64>,
+    /// Sampling times.
+    targets: &'a [f64],
+}
+
+fn run_chain(file: &ChainFile, start: &Start) -> CliResult<Vec<Row>> {
+    let Start {
+        lengths,
+        perimeter,
+        targets,
+        ..
+    } = *start;
     let c = &file.chain;
     let mean_length = lengths.iter().sum::<f64>() / lengths.len() as f64;
     let mass = c.density * mean_length;
@@ -357,8 +362,8 @@ fn run_chain(
         c: c.sound_speed,
         rho: c.density,
         perimeter,
-        positions: positions.to_vec(),
-        velocities: velocities.to_vec(),
+        positions: start.positions.clone(),
+        velocities: start.velocities.clone(),
         c_h: c.step,
         global_step: true,
     })
@@ -442,20 +447,18 @@ fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution
 
 /// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
 /// modes at the chain's initial mode temperature.
-fn run_ed_mc(
-    c: &ChainSection,
-    law: Box<dyn Restitution>,
-    lengths: &[f64],
-    perimeter: f64,
-    positions: &[f64],
-    velocities: &[f64],
-    targets: &[f64],
-) -> CliResult<Vec<Row>> {
+fn run_ed_mc(c: &ChainSection, law: Box<dyn Restitution>, start: &Start) -> CliResult<Vec<Row>> {
+    let Start {
+        lengths,
+        perimeter,
+        targets,
+        ..
+    } = *start;
     let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
     let system = gas::System::<1> {
         length: perimeter,
-        positions: positions.iter().map(|x| [*x]).collect(),
-        velocities: velocities.iter().map(|v| [*v]).collect(),
+        positions: start.positions.iter().map(|x| [*x]).collect(),
+        velocities: start.velocities.iter().map(|v| [*v]).collect(),
         radii: lengths.iter().map(|l| 0.5 * l).collect(),
         masses: masses.clone(),
     };
