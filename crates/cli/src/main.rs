@@ -248,6 +248,28 @@ enum BenchCommand {
     Emd(BenchEmdArgs),
     /// Throughput of homogeneous DSMC in 3D (all cores).
     Dsmc(BenchDsmcArgs),
+    /// Throughput of the rod-chain MD (two rods of Giese's Fig. 1).
+    Rods(BenchRodsArgs),
+}
+
+/// Arguments of `haff bench rods`.
+#[derive(Debug, Args)]
+pub struct BenchRodsArgs {
+    /// Modes per rod.
+    #[arg(long, default_value = "75", allow_hyphen_values = true)]
+    pub modes: String,
+    /// kappa = alpha l V0 / c.
+    #[arg(long, default_value = "4000", allow_hyphen_values = true)]
+    pub kappa: String,
+    /// Collisions timed per repeat.
+    #[arg(long, default_value = "300", allow_hyphen_values = true)]
+    pub collisions: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 /// Arguments of `haff bench emd`.
@@ -453,6 +475,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Cor(args)) => bench::cor(&args),
         Command::Bench(BenchCommand::Emd(args)) => bench::emd(&args),
         Command::Bench(BenchCommand::Dsmc(args)) => bench::dsmc(&args),
+        Command::Bench(BenchCommand::Rods(args)) => bench::rods(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),

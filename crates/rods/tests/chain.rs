@@ -374,6 +374,12 @@ fn energy_vs_c_h() {
                 st.checks / n as u64,
                 st.step_seconds * 1e9 / st.fine_steps as f64
             );
+            // Measured: <= 2.8e-10 for c_h <= 0.25; 4.8e-6 (M = 8), 1.3e-5 (M = 75) at 0.5.
+            if c_h <= 0.25 {
+                assert!(run.energy_drift < 1e-9, "c_h = {c_h}: {}", run.energy_drift);
+            } else {
+                assert!(run.energy_drift > 1e-7, "c_h = {c_h}: {}", run.energy_drift);
+            }
         }
     }
 }
@@ -458,8 +464,8 @@ fn two_rods_on_a_tight_ring() {
 }
 
 #[test]
-#[ignore] // cargo test --release -p haff-rods --test chain -- --ignored --nocapture ring_costs
-fn ring_costs() {
+#[ignore] // cargo test --release -p haff-rods --test chain -- --ignored --nocapture ring_energy
+fn ring_energy() {
     for (n, m, global) in [
         (10, 8, true),
         (10, 8, false),
@@ -489,6 +495,14 @@ fn ring_costs() {
             st.checks / k as u64,
             secs * 1e6 / k as f64
         );
+        // Measured: global step 2.8e-11 (N = 10), 4.2e-10 (N = 100, 22 contacts open at the
+        // end); per-cluster steps 1.6e-5 and 4.0e-5: changing h mid-contact shifts the
+        // modified Hamiltonian (documented limitation of `global_step: false`).
+        if global {
+            assert!((c.energy() - e0).abs() < 1e-8 * e0);
+        } else {
+            assert!((c.energy() - e0).abs() > 1e-7 * e0);
+        }
     }
 }
 
@@ -509,12 +523,17 @@ fn other_gammas() {
                 c_h: 0.25,
             };
             let run = run_two_rods(&s, 200, 0).unwrap();
+            let scaled = m as f64 * (run.records[0].eps - det);
             println!(
-                "gamma {g} M {m}: eps1 {:.5} det {det:.5} M*diff {:.3}; drift {:.1e}",
-                run.records[0].eps,
-                m as f64 * (run.records[0].eps - det),
-                run.energy_drift
+                "gamma {g} M {m}: eps1 {:.5} det {det:.5} M*diff {scaled:.3}; drift {:.1e}",
+                run.records[0].eps, run.energy_drift
             );
+            // The finite-M error ~ -0.15/M .. -0.3/M: the MD converges to Eq. (3).
+            assert!(
+                (-0.32..-0.13).contains(&scaled),
+                "gamma {g}, M {m}: {scaled}"
+            );
+            assert!(run.energy_drift < 1e-9);
         }
     }
 }
