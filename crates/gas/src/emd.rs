@@ -802,8 +802,15 @@ impl<const D: usize> EventDriven<D> {
     /// bath temperature, the bath taking up the difference (Giese's steps (2)-(4)).
     fn impulse(&mut self, i: usize, j: usize, reduced: f64, approach: f64) -> (f64, f64) {
         let e_tr = 0.5 * reduced * approach * approach;
-        match (self.law.stochastic(), &mut self.baths) {
-            (Some(law), Some(baths)) => {
+        // Baths exist iff the law is stochastic: test the field first, so that
+        // deterministic laws pay no extra virtual call per collision.
+        let law = &self.law;
+        let stochastic = self
+            .baths
+            .as_mut()
+            .and_then(|b| Some((b, law.stochastic()?)));
+        match stochastic {
+            Some((baths, law)) => {
                 let approach = approach.max(0.0);
                 let t = &mut baths.temperatures;
                 let (mut ti, mut tj) = (t[i], t[j]);
@@ -813,7 +820,7 @@ impl<const D: usize> EventDriven<D> {
                 let separation = (2.0 * e_after / reduced).sqrt();
                 (reduced * (approach + separation), e_tr - e_after)
             }
-            _ => {
+            None => {
                 let eps = self.law.eps(approach.max(0.0));
                 ((1.0 + eps) * reduced * approach, (1.0 - eps * eps) * e_tr)
             }
