@@ -39,6 +39,7 @@ pub use two_rods::{
 
 use cluster::{Cluster, Geom};
 use rand::Rng;
+use serde::{Deserialize, Serialize};
 use rand_distr::StandardNormal;
 use rod::Rod;
 
@@ -79,7 +80,7 @@ pub struct ChainConfig {
 
 /// One completed contact episode of contact `contact` (between rod `contact` and
 /// rod `contact + 1` mod N).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CollisionRecord {
     pub contact: usize,
     /// Time the contact became active (α r < z_cut + 2).
@@ -102,7 +103,7 @@ impl CollisionRecord {
 }
 
 /// Cost counters.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ChainStats {
     /// Fine (Strang) steps taken by all clusters.
     pub fine_steps: u64,
@@ -116,7 +117,10 @@ pub struct ChainStats {
 }
 
 /// The rod chain of Eq. (2) of Giese. See the module documentation.
-#[derive(Clone, Debug)]
+///
+/// It serializes completely (open contact episodes included), so that a run saved with
+/// serde and loaded again continues bit for bit.
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Chain {
     rods: Vec<Rod>,
     geom: Geom,
@@ -130,11 +134,27 @@ pub struct Chain {
     member: Vec<usize>,
     clusters: Vec<Cluster>,
     /// Per contact: next time it must be checked (∞ if internal to a cluster).
+    #[serde(with = "infinity_as_null")]
     check: Vec<f64>,
     time: f64,
     collisions: usize,
     records: Vec<CollisionRecord>,
     stats: ChainStats,
+}
+
+/// JSON has no infinity: +∞ is written as null.
+mod infinity_as_null {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(values: &[f64], s: S) -> Result<S::Ok, S::Error> {
+        let v: Vec<Option<f64>> = values.iter().map(|x| x.is_finite().then_some(*x)).collect();
+        v.serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+        let v: Vec<Option<f64>> = Vec::deserialize(d)?;
+        Ok(v.into_iter().map(|x| x.unwrap_or(f64::INFINITY)).collect())
+    }
 }
 
 fn positive(name: &str, x: f64) -> Result<(), String> {

@@ -9,7 +9,7 @@
 use super::rod::Rod;
 
 /// Ring geometry and contact law shared by all clusters.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Geom {
     pub n: usize,
     pub alpha: f64,
@@ -37,7 +37,7 @@ impl Geom {
 }
 
 /// Rods in contact, integrated together.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Cluster {
     /// Member rods in ring order; member m+1 is rod rods[m]+1 (mod N).
     pub rods: Vec<usize>,

@@ -9,7 +9,7 @@
 use std::f64::consts::{PI, SQRT_2};
 
 /// State and constants of one rod (lazy clock `t`: the state is valid at time `t`).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Rod {
     pub len: f64,
     pub mass: f64,
