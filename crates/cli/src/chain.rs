@@ -94,7 +94,7 @@ fn samples() -> usize {
 }
 
 /// One row of a timeseries: energies summed over the rods.
-#[derive(Debug, Clone, Copy, Default, Serialize)]
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
 struct Row {
     time: f64,
     collisions_per_particle: f64,
@@ -246,33 +246,113 @@ fn translational(velocities: &[f64], masses: &[f64]) -> f64 {
         .sum()
 }
 
+/// Where a run stands: saved as `DIR/checkpoint.json` after a sample of the chain MD.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct Checkpoint {
+    file: ChainFile,
+    /// The repeat in progress (0-based).
+    repeat: usize,
+    /// Its chain MD rows so far, and the chain after the last one.
+    rows: Vec<Row>,
+    chain: Chain,
+    impacts: Impacts,
+    /// Sums of the completed repeats (curve 0: chain MD; then one per compared law).
+    curves: Vec<(String, Vec<Row>)>,
+    chain_seconds: f64,
+    /// Check-point interval in samples (reused on resume).
+    every: Option<usize>,
+}
+
+/// The chain MD of one repeat in progress.
+struct ChainRun {
+    rows: Vec<Row>,
+    chain: Chain,
+    impacts: Impacts,
+}
+
+/// What the sample loop needs besides the chain.
+struct Saving<'a> {
+    out: &'a Path,
+    every: Option<usize>,
+    /// Stop (after a check-point) once this many samples were taken in this process.
+    stop_after: Option<usize>,
+    taken: usize,
+}
+
+/// The rods and their common start, shared by the chain MD and the ED + MC runs.
+struct Start<'a> {
+    lengths: &'a [f64],
+    perimeter: f64,
+    positions: Vec<f64>,
+    velocities: Vec<f64>,
+    /// Sampling times.
+    targets: &'a [f64],
+}
+
+fn parse_file(path: &Path) -> CliResult<ChainFile> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| bad("RUN.toml", format!("{}: {e}", path.display())))?;
+    toml::from_str(&text).map_err(|e| {
+        let one_line = e
+            .to_string()
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        bad("RUN.toml", one_line)
+    })
+}
+
+fn read_checkpoint(dir: &Path) -> CliResult<Checkpoint> {
+    let path = dir.join("checkpoint.json");
+    let fail = |e: String| bad("--resume", format!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+    serde_json::from_str(&text).map_err(|e| fail(e.to_string()))
+}
+
 /// `haff rods chain`.
 pub fn run(args: &RodsChainArgs) -> CliResult {
-    let text = std::fs::read_to_string(&args.file)
-        .map_err(|e| bad("RUN.toml", format!("{}: {e}", args.file.display())))?;
-    let file: ChainFile = toml::from_str(&text).map_err(|e| {
-        bad(
-            "RUN.toml",
-            e.to_string()
-                .split_whitespace()
-                .collect::<Vec<_>>()
-                .join(" "),
-        )
-    })?;
+    let count = |flag: &str, text: &Option<String>| {
+        text.as_ref()
+            .map(|t| crate::output::parse_count(flag, t, 1, 1_000_000))
+            .transpose()
+    };
+    let (file, out, mut resume) = match (&args.file, &args.resume) {
+        (Some(path), None) => {
+            let out = args.out.clone().unwrap_or_else(|| path.with_extension(""));
+            (parse_file(path)?, out, None)
+        }
+        (None, Some(dir)) => {
+            let c = read_checkpoint(dir)?;
+            let out = args.out.clone().unwrap_or_else(|| dir.clone());
+            (c.file.clone(), out, Some(c))
+        }
+        _ => {
+            return Err(bad(
+                "RUN.toml",
+                "give a run file or --resume DIR (exactly one)",
+            ))
+        }
+    };
     let (lengths, perimeter) = validate(&file)?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| args.file.with_extension(""));
     std::fs::create_dir_all(&out).map_err(|e| bad("--out", format!("{}: {e}", out.display())))?;
+    let every = count("--checkpoint-every", &args.checkpoint_every)?
+        .or(resume.as_ref().and_then(|c| c.every));
+    let mut saving = Saving {
+        out: &out,
+        every,
+        stop_after: count("--stop-after-samples", &args.stop_after_samples)?,
+        taken: 0,
+    };
     let targets: Vec<f64> = (0..file.run.samples)
         .map(|k| file.run.end_time * k as f64 / (file.run.samples - 1) as f64)
         .collect();
     let started = Instant::now();
-    // Curve 0: the chain MD; then one per ED + MC law; each averaged over the repeats.
-    let mut curves: Vec<(String, Vec<Row>)> = Vec::new();
-    let mut chain_seconds = 0.0;
-    for repeat in 0..file.run.repeats {
+    let first = resume.as_ref().map_or(0, |c| c.repeat);
+    let (mut curves, mut chain_seconds) = match &resume {
+        Some(c) => (c.curves.clone(), c.chain_seconds),
+        None => (Vec::new(), 0.0),
+    };
+    for repeat in first..file.run.repeats {
         let mut one = file.clone();
         one.chain.seed = file.chain.seed.wrapping_add(repeat as u64);
         let c = &one.chain;
@@ -285,8 +365,34 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
             targets: &targets,
         };
         let clock = Instant::now();
-        let mut runs = vec![("rod-chain MD".to_string(), run_chain(&one, &start)?)];
+        let mut progress = match resume.take() {
+            Some(c) => ChainRun {
+                rows: c.rows,
+                chain: c.chain,
+                impacts: c.impacts,
+            },
+            None => new_chain_run(&one, &start)?,
+        };
+        let finished = sample_chain(&mut progress, &start, &mut saving, |run| Checkpoint {
+            file: file.clone(),
+            repeat,
+            rows: run.rows.clone(),
+            chain: run.chain.clone(),
+            impacts: run.impacts.clone(),
+            curves: curves.clone(),
+            chain_seconds: chain_seconds + clock.elapsed().as_secs_f64(),
+            every,
+        })?;
         chain_seconds += clock.elapsed().as_secs_f64();
+        if !finished {
+            eprintln!(
+                "haff rods chain: stopped after {} samples; continue with --resume {}",
+                saving.taken,
+                out.display()
+            );
+            return Ok(());
+        }
+        let mut runs = vec![("rod-chain MD".to_string(), progress.rows)];
         for name in &file.run.compare {
             let law = stochastic_law(name, &one)?;
             let rows = run_ed_mc(c, law, &start)?;
@@ -294,11 +400,22 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
         }
         accumulate(&mut curves, runs, file.run.repeats);
     }
+    write_outputs(&file, &out, perimeter, &curves, chain_seconds, started)
+}
+
+fn write_outputs(
+    file: &ChainFile,
+    out: &Path,
+    perimeter: f64,
+    curves: &[(String, Vec<Row>)],
+    chain_seconds: f64,
+    started: Instant,
+) -> CliResult {
     write_rows(&out.join("timeseries.csv"), &curves[0].1)?;
     for (name, (_, rows)) in file.run.compare.iter().zip(&curves[1..]) {
         write_rows(&out.join(format!("ed_mc_{name}.csv")), rows)?;
     }
-    let chain_rows = curves[0].1.clone();
+    let chain_rows = &curves[0].1;
     let c = &file.chain;
     let n = c.rods as f64;
     // Equipartition: (N - 1)/2 translational quadratic terms (momentum is conserved),
@@ -308,7 +425,7 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
         .iter()
         .map(|r| (r.time, share * r.total_energy))
         .collect();
-    plot_cooling(&out.join("cooling.png"), &curves, equilibrium)?;
+    plot_cooling(&out.join("cooling.png"), curves, equilibrium)?;
     let last = chain_rows.last().copied();
     let summary = serde_json::json!({
         "parameters": file,
@@ -331,24 +448,9 @@ pub fn run(args: &RodsChainArgs) -> CliResult {
     Ok(())
 }
 
-/// The rods and their common start, shared by the chain MD and the ED + MC runs.
-struct Start<'a> {
-    lengths: &'a [f64],
-    perimeter: f64,
-    positions: Vec<f64>,
-    velocities: Vec<f64>,
-    /// Sampling times.
-    targets: &'a [f64],
-}
-
-fn run_chain(file: &ChainFile, start: &Start) -> CliResult<Vec<Row>> {
-    let Start {
-        lengths,
-        perimeter,
-        targets,
-        ..
-    } = *start;
-    let c = &file.chain;
+/// The chain of one repeat at t = 0 (modes thermalized if `chain.bath_temperature` > 0).
+fn new_chain_run(file: &ChainFile, start: &Start) -> CliResult<ChainRun> {
+    let (lengths, c) = (start.lengths, &file.chain);
     let mean_length = lengths.iter().sum::<f64>() / lengths.len() as f64;
     let mass = c.density * mean_length;
     let strength = c
@@ -361,7 +463,7 @@ fn run_chain(file: &ChainFile, start: &Start) -> CliResult<Vec<Row>> {
         b: positive("chain.strength", strength)?,
         c: c.sound_speed,
         rho: c.density,
-        perimeter,
+        perimeter: start.perimeter,
         positions: start.positions.clone(),
         velocities: start.velocities.clone(),
         c_h: c.step,
@@ -374,34 +476,72 @@ fn run_chain(file: &ChainFile, start: &Start) -> CliResult<Vec<Row>> {
             .thermalize_modes(c.bath_temperature, &mut rng)
             .map_err(|e| bad("chain.bath_temperature", e))?;
     }
-    let masses = chain.masses();
-    let n = lengths.len() as f64;
-    let progress = indicatif::ProgressBar::new(targets.len() as u64);
-    let mut rows = Vec::with_capacity(targets.len());
-    let mut impacts = Impacts::new(lengths.len());
-    for &t in targets {
-        impacts.count(&chain.run_until(t));
-        let kinetic = translational(&chain.velocities(), &masses);
-        let bath: f64 = (0..lengths.len())
+    Ok(ChainRun {
+        rows: Vec::new(),
+        chain,
+        impacts: Impacts::new(lengths.len()),
+    })
+}
+
+/// Takes the remaining samples of `run`, writing check-points as `saving` says; false if
+/// it stopped early (`--stop-after-samples`).
+fn sample_chain(
+    run: &mut ChainRun,
+    start: &Start,
+    saving: &mut Saving,
+    checkpoint: impl Fn(&ChainRun) -> Checkpoint,
+) -> CliResult<bool> {
+    let masses = run.chain.masses();
+    let n = start.lengths.len();
+    let progress = indicatif::ProgressBar::new(start.targets.len() as u64);
+    progress.set_position(run.rows.len() as u64);
+    for &t in &start.targets[run.rows.len()..] {
+        let chain = &mut run.chain;
+        run.impacts.count(&chain.run_until(t));
+        let bath: f64 = (0..n)
             .map(|i| chain.modal_energies(i).iter().sum::<f64>())
             .sum();
-        rows.push(Row {
+        run.rows.push(Row {
             time: chain.time(),
-            collisions_per_particle: 2.0 * impacts.collisions as f64 / n,
-            translational_energy: kinetic,
+            collisions_per_particle: 2.0 * run.impacts.collisions as f64 / n as f64,
+            translational_energy: translational(&chain.velocities(), &masses),
             bath_energy: bath,
             total_energy: chain.energy(),
         });
         progress.inc(1);
+        saving.taken += 1;
+        let stop = saving.stop_after.is_some_and(|k| saving.taken >= k);
+        if stop || saving.every.is_some_and(|k| saving.taken.is_multiple_of(k)) {
+            write_checkpoint(saving.out, &checkpoint(run))?;
+        }
+        if stop {
+            progress.finish_and_clear();
+            return Ok(false);
+        }
     }
     progress.finish_and_clear();
-    Ok(rows)
+    Ok(true)
+}
+
+/// Writes then renames, so that an interrupted write never destroys the last check-point.
+fn write_checkpoint(out: &Path, checkpoint: &Checkpoint) -> CliResult {
+    let (path, partial) = (
+        out.join("checkpoint.json"),
+        out.join("checkpoint.json.partial"),
+    );
+    let mut f = std::io::BufWriter::new(std::fs::File::create(&partial)?);
+    serde_json::to_writer(&mut f, checkpoint)?;
+    f.flush()?;
+    drop(f);
+    std::fs::rename(&partial, &path)?;
+    Ok(())
 }
 
 /// Counts impacts from contact episodes: with finitely many modes the rod ends ring, so
 /// one impact opens and closes its contact several times. An episode of contact k (rods k
 /// and k+1) starts a new impact unless both rods' previous episode was at contact k too
 /// (in 1D a pair can only meet again after one of them hit its other neighbour).
+#[derive(Debug, Clone, Serialize, Deserialize)]
 struct Impacts {
     last_contact: Vec<usize>,
     collisions: u64,

@@ -1282,3 +1282,62 @@ fn ed_mc_against_rod_chain() {
     );
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// `haff rods chain` in chunks (stopped inside the first repeat, then inside the second,
+/// resumed) repeats the uninterrupted run bit for bit, ED + MC included.
+#[test]
+fn resumed_rod_chain_repeats_the_uninterrupted_one() {
+    let dir = std::env::temp_dir().join(format!("haff-rods-resume-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let toml =
+        "[chain]\nrods = 8\nlengths = [0.8, 1.3]\nmodes = 4\nalpha = 2000.0\ntemperature = 1e-4\n\
+                [run]\nend_time = 1500.0\nsamples = 5\nrepeats = 2\ncompare = [\"glauber\"]\n";
+    let file = dir.join("chain.toml");
+    std::fs::write(&file, toml).unwrap();
+    let (full, chunked) = (dir.join("full"), dir.join("chunked"));
+    let ok = |args: &[&str]| {
+        let mut all = vec!["rods", "chain"];
+        all.extend_from_slice(args);
+        let out = haff(&all);
+        assert!(
+            out.status.success(),
+            "{all:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let f = file.to_str().unwrap();
+    ok(&[f, "--out", full.to_str().unwrap()]);
+    let c = chunked.to_str().unwrap();
+    ok(&[
+        f,
+        "--out",
+        c,
+        "--checkpoint-every",
+        "2",
+        "--stop-after-samples",
+        "3",
+    ]);
+    assert!(!chunked.join("timeseries.csv").exists());
+    let saved = |repeat: u64, rows: usize| {
+        let v: Value = serde_json::from_str(&read(&chunked, "checkpoint.json")).unwrap();
+        assert_eq!(v["repeat"].as_u64(), Some(repeat));
+        assert_eq!(v["rows"].as_array().map(Vec::len), Some(rows));
+    };
+    saved(0, 3);
+    ok(&["--resume", c, "--stop-after-samples", "4"]);
+    saved(1, 2);
+    ok(&["--resume", c]);
+    for name in ["timeseries.csv", "ed_mc_glauber.csv"] {
+        assert_eq!(read(&full, name), read(&chunked, name), "{name}");
+    }
+    assert_rejected(
+        &[
+            "rods",
+            "chain",
+            "--resume",
+            dir.join("none").to_str().unwrap(),
+        ],
+        "--resume",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -39,9 +39,9 @@ pub use two_rods::{
 
 use cluster::{Cluster, Geom};
 use rand::Rng;
-use serde::{Deserialize, Serialize};
 use rand_distr::StandardNormal;
 use rod::Rod;
+use serde::{Deserialize, Serialize};
 
 const FREE: usize = usize::MAX;
 /// ln of the relative size (4e-18) of the potential neglected outside clusters.
