@@ -512,7 +512,7 @@ fn sample_chain(
         saving.taken += 1;
         let stop = saving.stop_after.is_some_and(|k| saving.taken >= k);
         if stop || saving.every.is_some_and(|k| saving.taken.is_multiple_of(k)) {
-            write_checkpoint(saving.out, &checkpoint(run))?;
+            crate::output::write_checkpoint(saving.out, &checkpoint(run))?;
         }
         if stop {
             progress.finish_and_clear();
@@ -521,20 +521,6 @@ fn sample_chain(
     }
     progress.finish_and_clear();
     Ok(true)
-}
-
-/// Writes then renames, so that an interrupted write never destroys the last check-point.
-fn write_checkpoint(out: &Path, checkpoint: &Checkpoint) -> CliResult {
-    let (path, partial) = (
-        out.join("checkpoint.json"),
-        out.join("checkpoint.json.partial"),
-    );
-    let mut f = std::io::BufWriter::new(std::fs::File::create(&partial)?);
-    serde_json::to_writer(&mut f, checkpoint)?;
-    f.flush()?;
-    drop(f);
-    std::fs::rename(&partial, &path)?;
-    Ok(())
 }
 
 /// Counts impacts from contact episodes: with finitely many modes the rod ends ring, so

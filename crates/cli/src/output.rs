@@ -256,6 +256,21 @@ pub fn write_table<W: Write>(
     Ok(())
 }
 
+/// Writes `value` as `dir/checkpoint.json`: first to a partial file, then renamed, so that
+/// an interrupted write never destroys the last check-point.
+pub fn write_checkpoint<T: Serialize>(dir: &std::path::Path, value: &T) -> CliResult {
+    let (path, partial) = (
+        dir.join("checkpoint.json"),
+        dir.join("checkpoint.json.partial"),
+    );
+    let mut f = BufWriter::new(std::fs::File::create(&partial)?);
+    serde_json::to_writer(&mut f, value)?;
+    f.flush()?;
+    drop(f);
+    std::fs::rename(&partial, &path)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -985,15 +985,7 @@ fn write_checkpoint<const D: usize>(
             draws: b.draws,
         }),
     };
-    // Write then rename, so that an interrupted write never destroys the last check-point.
-    let path = context.out.join("checkpoint.json");
-    let partial = context.out.join("checkpoint.json.partial");
-    let mut f = std::io::BufWriter::new(std::fs::File::create(&partial)?);
-    serde_json::to_writer(&mut f, &checkpoint)?;
-    f.flush()?;
-    drop(f);
-    std::fs::rename(&partial, &path)?;
-    Ok(())
+    crate::output::write_checkpoint(context.out, &checkpoint)
 }
 
 fn simulate<const D: usize>(
