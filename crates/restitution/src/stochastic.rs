@@ -28,7 +28,8 @@ pub trait StochasticRestitution: Send + Sync + fmt::Debug {
 /// the pair's bath temperature is the mean of the two (equal numbers of modes, so this is
 /// the energy-weighted mean), eps^2 is drawn, and both baths leave the collision at
 /// T' = T + (1 - eps^2) E_tr / (2 N_modes) (Giese, text after Eq. (4)), so that
-/// E_tr + 2 N_modes T is conserved exactly. E'_tr is capped at E_tr + 2 N_modes T: a bath
+/// E_tr + 2 N_modes T is conserved exactly. (Giese leaves the update of step (4) open;
+/// one temperature for both is our choice: it is the state Eq. (3) assumes.) E'_tr is capped at E_tr + 2 N_modes T: a bath
 /// cannot give more energy than it holds. Returns E'_tr.
 pub fn collide_with_baths(
     law: &dyn StochasticRestitution,
