@@ -164,8 +164,12 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
     let realizations = parse_count("--realizations", &args.realizations, 2, 10_000_000)?;
     let seed = parse_count("--seed", &args.seed, 0, usize::MAX)? as u64;
     let ratios = Table::log_grid(min, max, count as usize);
-    let table =
-        Table::build(gamma, kappa, &ratios, realizations, seed).map_err(library("--gamma"))?;
+    let progress = indicatif::ProgressBar::new(ratios.len() as u64);
+    let table = Table::build_reporting(gamma, kappa, &ratios, realizations, seed, |_| {
+        progress.inc(1)
+    })
+    .map_err(library("--gamma"))?;
+    progress.finish_and_clear();
     let text = serde_json::to_string_pretty(&table)?;
     std::fs::write(&args.out, text + "\n")
         .map_err(|e| CliError::argument("--out", format!("{}: {e}", args.out.display())))?;

@@ -53,6 +53,18 @@ impl Table {
         realizations: usize,
         seed: u64,
     ) -> Result<Self, String> {
+        Self::build_reporting(gamma, kappa, ratios, realizations, seed, |_| {})
+    }
+
+    /// [`Table::build`], calling `row_done(i)` after ratio i (for progress bars).
+    pub fn build_reporting(
+        gamma: f64,
+        kappa: f64,
+        ratios: &[f64],
+        realizations: usize,
+        seed: u64,
+        mut row_done: impl FnMut(usize),
+    ) -> Result<Self, String> {
         if ratios.is_empty() {
             return Err("ratios must be a non-empty increasing grid of values > 0".into());
         }
@@ -101,6 +113,7 @@ impl Table {
             let m_bot = bot.iter().sum::<f64>() / bot.len() as f64;
             q[0] = (2.0 * m_bot - q[1]).clamp(0.0, q[1]);
             quantiles.push(q);
+            row_done(i);
         }
         Ok(Self {
             gamma,
