@@ -5,7 +5,7 @@
 
 use crate::error::{CliError, CliResult};
 use crate::plot::{self, Axes};
-use crate::RodsChainArgs;
+use crate::RunArgs;
 use gas::EventDriven;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
@@ -310,7 +310,7 @@ fn read_checkpoint(dir: &Path) -> CliResult<Checkpoint> {
 }
 
 /// `haff rods chain`.
-pub fn run(args: &RodsChainArgs) -> CliResult {
+pub fn run(args: &RunArgs) -> CliResult {
     let count = |flag: &str, text: &Option<String>| {
         text.as_ref()
             .map(|t| crate::output::parse_count(flag, t, 1, 1_000_000))

@@ -59,7 +59,7 @@ enum RodsCommand {
     /// Two cold rods colliding on a ring (Figs. 1 and 2 of Giese): energy, entropy, spectrum.
     TwoRods(RodsTwoRodsArgs),
     /// Rod-chain MD of Eq. (2) from a TOML file, optionally against ED + Monte Carlo.
-    Chain(RodsChainArgs),
+    Chain(RunArgs),
 }
 
 /// Arguments of `haff rods two-rods`.
@@ -87,26 +87,6 @@ pub struct RodsTwoRodsArgs {
     /// spectrum.png.
     #[arg(long)]
     pub out: std::path::PathBuf,
-}
-
-/// Arguments of `haff rods chain`.
-#[derive(Debug, Args)]
-pub struct RodsChainArgs {
-    /// The run file (schema in the README); not with --resume.
-    pub file: Option<std::path::PathBuf>,
-    /// Output directory [default: the run file's name without extension; with --resume
-    /// the check-point's directory].
-    #[arg(long)]
-    pub out: Option<std::path::PathBuf>,
-    /// Save the state every K samples of the chain MD to DIR/checkpoint.json.
-    #[arg(long, value_name = "K", allow_hyphen_values = true)]
-    pub checkpoint_every: Option<String>,
-    /// Continue the run saved in DIR/checkpoint.json.
-    #[arg(long, value_name = "DIR", conflicts_with = "file")]
-    pub resume: Option<std::path::PathBuf>,
-    /// End after this many samples, with a check-point (continue with --resume).
-    #[arg(long, value_name = "K", allow_hyphen_values = true)]
-    pub stop_after_samples: Option<String>,
 }
 
 /// Arguments of `haff rods deterministic`.

@@ -1324,7 +1324,14 @@ fn resumed_rod_chain_repeats_the_uninterrupted_one() {
         assert_eq!(v["rows"].as_array().map(Vec::len), Some(rows));
     };
     saved(0, 3);
-    ok(&["--resume", c, "--stop-after-samples", "4"]);
+    ok(&[
+        "--resume",
+        c,
+        "--checkpoint-every",
+        "2",
+        "--stop-after-samples",
+        "4",
+    ]);
     saved(1, 2);
     ok(&["--resume", c]);
     for name in ["timeseries.csv", "ed_mc_glauber.csv"] {
