@@ -10,8 +10,12 @@
 //! - [`trajectory`]: x(tau; A) as an exact series in sqrt(tau) with polynomial coefficients
 //!   in A (Appendix A).
 //! - [`power`]: truncated power series over rationals or floats.
+//! - [`pade`]: Padé approximants of the series in high precision (MP2011, Eqs. 11–12).
+//! - [`sturm`]: exact isolation of the real zeros of a polynomial (poles and zeros of an
+//!   approximant).
 
 pub mod chain;
 pub mod pade;
 pub mod power;
+pub mod sturm;
 pub mod trajectory;
