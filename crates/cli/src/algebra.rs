@@ -3,7 +3,7 @@
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, write_csv};
 use crate::{CoefficientsArgs, PadeArgs};
-use series::chain::{compute, compute_naive, decimal, Kind, Settings};
+use series::coefficients::{compute, compute_naive, decimal, Kind, Settings};
 use std::io::Write;
 
 /// Largest index K accepted by `cor coefficients` (h_100 takes about a minute).

@@ -3,7 +3,7 @@
 //! the exact large-v* law eps -> (3/2)^(2/3) v*^(-10/3) = (3/2)^(2/3) w^(-10).
 //! `cargo run --release -p haff-restitution --example pade_table`
 use restitution::exact::{solve, Criterion};
-use series::chain::{compute, Settings};
+use series::coefficients::{compute, Settings};
 use series::pade::{pade, pade_with_asymptote, Approximant};
 use series::power::{ratio, Real, Scalar};
 

@@ -129,8 +129,8 @@ pub(crate) fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
     match cache.as_ref() {
         Some(h) if h.len() > order => h.clone(),
         _ => {
-            let settings = series::chain::Settings::for_order(order.max(2));
-            let h: Arc<[series::power::Real]> = series::chain::compute(settings).h.into();
+            let settings = series::coefficients::Settings::for_order(order.max(2));
+            let h: Arc<[series::power::Real]> = series::coefficients::compute(settings).h.into();
             *cache = Some(h.clone());
             h
         }

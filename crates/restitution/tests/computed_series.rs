@@ -37,7 +37,7 @@ fn computed_series_20_is_exact_at_small_vstar() {
 /// compression of the numerically integrated elastic collision.
 #[test]
 fn elastic_turning_time_matches_the_integration() {
-    let chain = series::chain::compute(series::chain::Settings::for_order(4));
+    let chain = series::coefficients::compute(series::coefficients::Settings::for_order(4));
     let tau0 = chain.tau_max0.to_f64().value();
     let ode = solve_with_tolerance(0.0, Criterion::Improved, 1e-14).unwrap();
     assert!((tau0 - ode.time_of_max_compression).abs() < 1e-13, "{tau0}");

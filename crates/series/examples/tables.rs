@@ -1,6 +1,6 @@
 //! Compares Tables III and V of SP2008 with the computed coefficients.
 //! `cargo run --release -p haff-series --example tables`
-use series::chain::{compute, decimal, Settings};
+use series::coefficients::{compute, decimal, Settings};
 
 const TABLE_III: [(f64, f64, f64); 11] = [
     (f64::NAN, 1.093362074, f64::NAN),

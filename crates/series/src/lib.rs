@@ -10,11 +10,13 @@
 //! - [`trajectory`]: x(tau; A) as an exact series in sqrt(tau) with polynomial coefficients
 //!   in A (Appendix A).
 //! - [`power`]: truncated power series over rationals or floats.
+//! - [`coefficients`]: the chain of Appendices B–C, from the trajectory to the coefficients
+//!   a_n, b_n, c_n (Table III) and h_k (Table V) of SP2008.
 //! - [`pade`]: Padé approximants of the series in high precision (MP2011, Eqs. 11–12).
 //! - [`sturm`]: exact isolation of the real zeros of a polynomial (poles and zeros of an
 //!   approximant).
 
-pub mod chain;
+pub mod coefficients;
 pub mod pade;
 pub mod power;
 pub mod sturm;

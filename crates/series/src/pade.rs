@@ -334,7 +334,7 @@ fn solve(mut a: Vec<Vec<Real>>, mut r: Vec<Real>, bits: usize) -> Result<Vec<Rea
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::chain::{compute, Settings};
+    use crate::coefficients::{compute, Settings};
     use crate::power::real;
     use dashu_ratio::RBig;
     use std::sync::OnceLock;

@@ -2,7 +2,7 @@
 //! trajectory order N and the working precision, closed forms, and the papers' digits.
 
 use dashu_ratio::RBig;
-use series::chain::{compute, decimal, premature_end, Settings};
+use series::coefficients::{compute, decimal, premature_end, Settings};
 use series::power::Real;
 use series::trajectory::Trajectory;
 

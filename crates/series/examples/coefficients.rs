@@ -1,5 +1,8 @@
+//! The coefficients a, b, c, h and G of SP2008 at chosen order K, trajectory order N and
+//! precision, to compare runs for convergence.
+//! `cargo run --release -p haff-series --example coefficients -- K N BITS` (default 20 150 256)
 use dashu_ratio::RBig;
-use series::chain::{compute, premature_end, Settings};
+use series::coefficients::{compute, premature_end, Settings};
 use series::trajectory::Trajectory;
 fn main() {
     let k: usize = std::env::args()

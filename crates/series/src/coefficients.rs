@@ -1,6 +1,7 @@
-//! The chain of Appendices B and C of SP2008: from the exact trajectory to the time and
-//! value of maximal compression (a_n, b_n), the naive coefficient of restitution (c_n), the
-//! premature end of contact (Eqs. C4, C5) and the delayed-recovery series h_k (Eq. C7).
+//! The coefficients h, c, a, b of SP2008 by the chain of their Appendices B and C: from the
+//! exact trajectory to the time and value of maximal compression (a_n, b_n), the naive
+//! coefficient of restitution (c_n), the premature end of contact (Eqs. C4, C5) and the
+//! delayed-recovery series h_k (Eq. C7).
 //!
 //! All in the natural units of Eq. (9) of MP2011 (impact speed 1, A = v*^2):
 //!
