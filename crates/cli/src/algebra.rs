@@ -18,7 +18,7 @@ pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
         .kind
         .trim()
         .parse()
-        .map_err(|m| CliError::argument("--kind", m))?;
+        .map_err(|e: series::Error| CliError::argument("--kind", e))?;
     let order = parse_count("--order", &args.order, 0, MAX_ORDER)?;
     let digits = parse_count("--digits", &args.digits, 1, MAX_DIGITS)?;
     let mut settings = Settings::for_order(kind.chain_order(order).max(2));

@@ -23,6 +23,7 @@
 
 use crate::power::{real, Real, Scalar, Series};
 use crate::trajectory::Trajectory;
+use crate::Error;
 use dashu_ratio::RBig;
 
 /// How far and how precisely to compute.
@@ -368,19 +369,32 @@ pub enum Kind {
 }
 
 impl std::str::FromStr for Kind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "h" => Ok(Kind::H),
-            "c" => Ok(Kind::C),
-            "a" => Ok(Kind::A),
-            "b" => Ok(Kind::B),
-            _ => Err(format!("'{s}' (allowed: h, c, a, b)")),
-        }
+    type Err = Error;
+    /// One of the names of [`Kind::name`]; anything else is [`Error::UnknownKind`].
+    fn from_str(s: &str) -> Result<Self, Error> {
+        Kind::ALL
+            .into_iter()
+            .find(|kind| kind.name() == s)
+            .ok_or_else(|| Error::UnknownKind {
+                given: s.to_string(),
+            })
     }
 }
 
 impl Kind {
+    /// Every family, in the order error messages list them.
+    pub const ALL: [Kind; 4] = [Kind::H, Kind::C, Kind::A, Kind::B];
+
+    /// The name that parses to this family: "h", "c", "a" or "b".
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::H => "h",
+            Kind::C => "c",
+            Kind::A => "a",
+            Kind::B => "b",
+        }
+    }
+
     /// The chain order K needed for coefficients 0..=k of this family.
     pub fn chain_order(self, k: usize) -> usize {
         match self {

@@ -15,9 +15,15 @@
 //! - [`pade`]: Padé approximants of the series in high precision (MP2011, Eqs. 11–12).
 //! - [`sturm`]: exact isolation of the real zeros of a polynomial (poles and zeros of an
 //!   approximant).
+//!
+//! [`Error`] is the crate's error type: an unknown coefficient kind, or a
+//! [`pade::PadeError`] when an approximant cannot be built.
 
 pub mod coefficients;
+mod error;
 pub mod pade;
 pub mod power;
 pub mod sturm;
 pub mod trajectory;
+
+pub use error::Error;

@@ -33,15 +33,19 @@
 //! denominator: [2/5] has no pole on the positive axis, it changes sign there instead.
 
 use crate::power::{Real, Scalar, Series};
-use std::fmt;
 
 // The poles and zeros of an approximant are found by it; re-exported for callers of `pade`.
 pub use crate::sturm::positive_real_roots;
 
 /// Why an approximant could not be built.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum PadeError {
     /// Fewer series coefficients than the approximant needs.
+    #[error(
+        "the [{m}/{n}] Padé approximant needs {needed} series coefficients \
+         (h_0..h_{last}), but only {available} were given",
+        last = needed.saturating_sub(1)
+    )]
     TooFewCoefficients {
         m: usize,
         n: usize,
@@ -51,6 +55,11 @@ pub enum PadeError {
     },
     /// The linear system for b_1..b_n is singular to the working precision: the [m/n]
     /// approximant does not exist (or is degenerate, i.e. reducible to a lower order).
+    #[error(
+        "the [{m}/{n}] Padé approximant does not exist or is degenerate: the linear \
+         system for the denominator is singular to the working precision \
+         (no pivot in column {column})"
+    )]
     Singular {
         m: usize,
         n: usize,
@@ -59,32 +68,6 @@ pub enum PadeError {
         column: usize,
     },
 }
-
-impl fmt::Display for PadeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            PadeError::TooFewCoefficients {
-                m,
-                n,
-                needed,
-                available,
-            } => write!(
-                f,
-                "the [{m}/{n}] Padé approximant needs {needed} series coefficients \
-                 (h_0..h_{}), but only {available} were given",
-                needed.saturating_sub(1)
-            ),
-            PadeError::Singular { m, n, column } => write!(
-                f,
-                "the [{m}/{n}] Padé approximant does not exist or is degenerate: the linear \
-                 system for the denominator is singular to the working precision \
-                 (no pivot in column {column})"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for PadeError {}
 
 /// The rational function numerator(x) / denominator(x), coefficients in ascending powers;
 /// denominator[0] = 1.
