@@ -4,7 +4,6 @@
 //! cooling of the translational energy can be compared.
 
 use crate::error::{CliError, CliResult};
-use crate::plot::{self, Axes};
 use crate::RunArgs;
 use gas::EventDriven;
 use rand::SeedableRng;
@@ -12,6 +11,7 @@ use rand_distr::{Distribution, StandardNormal};
 use restitution::{Glauber, Restitution};
 use rods::chain::{Chain, ChainConfig};
 use serde::{Deserialize, Serialize};
+use sim::plot::{self, Axes};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -568,7 +568,7 @@ fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution
         .table
         .as_ref()
         .ok_or_else(|| bad("run.table", "missing"))?;
-    crate::run::tabulated_law(path, modes, "run.table")
+    Ok(sim::law::tabulated(path, modes, "run.table")?)
 }
 
 /// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
@@ -687,5 +687,5 @@ fn plot_cooling(
         log_x: false,
         log_y: true,
     };
-    plot::lines(path, axes, &series)
+    Ok(plot::lines(path, axes, &series)?)
 }

@@ -78,6 +78,32 @@ impl From<io::Error> for CliError {
     }
 }
 
+impl From<sim::Error> for CliError {
+    /// Input errors (exit 2) name the key; failures to write outputs exit 1.
+    fn from(error: sim::Error) -> Self {
+        CliError {
+            message: error.to_string(),
+            exit_code: if error.is_input() {
+                EXIT_BAD_INPUT
+            } else {
+                EXIT_FAILURE
+            },
+            quiet: false,
+        }
+    }
+}
+
+impl CliError {
+    /// An error of `haff ... --resume DIR`: a check-point that cannot be read is named by
+    /// the flag.
+    pub fn resume(error: sim::Error) -> Self {
+        match error {
+            sim::Error::Checkpoint { .. } => CliError::argument("--resume", error),
+            other => other.into(),
+        }
+    }
+}
+
 impl From<serde_json::Error> for CliError {
     fn from(error: serde_json::Error) -> Self {
         match error.io_error_kind() {

@@ -10,10 +10,9 @@ mod bench;
 mod chain;
 mod cor;
 mod demo;
-mod engine;
 mod error;
 mod output;
-mod plot;
+mod progress;
 mod rods;
 mod run;
 

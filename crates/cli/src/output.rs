@@ -1,14 +1,10 @@
-//! Reading numbers and lists from the command line, and writing CSV, JSON and aligned
-//! tables.
-//!
-//! Number format of the machine-readable outputs (CSV and JSON): every f64 is written with
-//! the shortest digits that parse back to the same f64 (Rust's `{}`/`{:e}`; serde_json's
-//! ryu for JSON). In CSV, magnitudes in [1e-5, 1e16) are written positionally (`0.25`), all
-//! others in exponent form (`5.158381704267411e-30`), so no number is written with dozens
-//! of zeros. Non-finite values are `inf`, `-inf` and `NaN` in CSV and `null` in JSON.
+//! Reading numbers and lists from the command line, and writing aligned tables for people.
+//! CSV and JSON go through the run driver's writers (`sim::output`: one number format for
+//! every machine-readable output).
 
 use crate::error::{CliError, CliResult};
 use serde::Serialize;
+pub use sim::output::{number, write_csv};
 use std::io::{self, BufWriter, StdoutLock, Write};
 
 /// Output format of the data commands.
@@ -174,16 +170,6 @@ pub fn parse_count(flag: &str, text: &str, min: usize, max: usize) -> CliResult<
     Ok(value)
 }
 
-/// A number for CSV: shortest round-trip digits (see the module documentation).
-pub fn number(x: f64) -> String {
-    let positional = (1e-5..1e16).contains(&x.abs());
-    if positional || x == 0.0 || !x.is_finite() {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
-
 /// A number for tables read by people: `digits` significant digits, positional for
 /// magnitudes in [1e-4, 1e6) (after rounding), exponent form otherwise.
 pub fn significant(x: f64, digits: usize) -> String {
@@ -206,19 +192,6 @@ pub fn significant(x: f64, digits: usize) -> String {
 /// Buffered, locked standard output.
 pub fn stdout() -> BufWriter<StdoutLock<'static>> {
     BufWriter::new(io::stdout().lock())
-}
-
-/// Writes a CSV header line and one line per row (cells contain no commas).
-pub fn write_csv<W: Write>(
-    out: &mut W,
-    header: &[&str],
-    rows: impl IntoIterator<Item = Vec<String>>,
-) -> io::Result<()> {
-    writeln!(out, "{}", header.join(","))?;
-    for row in rows {
-        writeln!(out, "{}", row.join(","))?;
-    }
-    Ok(())
 }
 
 /// Writes `value` as pretty-printed JSON followed by a newline.
@@ -259,38 +232,16 @@ pub fn write_table<W: Write>(
 /// Writes `value` as `dir/checkpoint.json`: first to a partial file, then renamed, so that
 /// an interrupted write never destroys the last check-point.
 pub fn write_checkpoint<T: Serialize>(dir: &std::path::Path, value: &T) -> CliResult {
-    let (path, partial) = (
-        dir.join("checkpoint.json"),
-        dir.join("checkpoint.json.partial"),
-    );
-    let mut f = BufWriter::new(std::fs::File::create(&partial)?);
-    serde_json::to_writer(&mut f, value)?;
-    f.flush()?;
-    drop(f);
-    std::fs::rename(&partial, &path)?;
+    let path = dir.join("checkpoint.json");
+    sim::output::write_file(&path, |out| {
+        serde_json::to_writer(out, value).map_err(io::Error::from)
+    })?;
     Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_round_trip() {
-        for x in [
-            0.0,
-            1.0,
-            0.27063202542608993,
-            5.158381704267411e-30,
-            1e300,
-            3.5e-6,
-        ] {
-            assert_eq!(number(x).parse::<f64>().unwrap(), x);
-        }
-        assert_eq!(number(f64::INFINITY), "inf");
-        assert_eq!(number(0.25), "0.25");
-        assert_eq!(number(1e-30), "1e-30");
-    }
 
     #[test]
     fn lists_reject_empty_items_and_out_of_range_values() {

@@ -3,10 +3,10 @@
 
 use crate::error::{CliError, CliResult};
 use crate::output::{number, parse_count, parse_list, parse_number, stdout, write_csv, Allowed};
-use crate::plot::{self, Axes};
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs};
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
 use rods::stochastic::{sample_eps, Resolution, Table};
+use sim::plot::{self, Axes};
 use std::io::Write;
 use std::path::Path;
 
@@ -129,14 +129,14 @@ fn plot_distribution(path: &Path, title: &str, histogram: &[(f64, f64, f64)]) ->
         log_x: false,
         log_y: false,
     };
-    plot::lines(
+    Ok(plot::lines(
         path,
         axes,
         &[
             ("density p(eps^2)".into(), density),
             ("distribution function".into(), cdf),
         ],
-    )
+    )?)
 }
 
 /// `haff rods table`: the quantiles of eps^2 on a log grid of E_tr/T_bath, as JSON for
@@ -381,7 +381,7 @@ fn plot_spectrum(path: &Path, summaries: &[TwoRodSummary], dir: &Path) -> CliRes
     };
     let [a, b] = rods;
     let equal = vec![(1.0, flat), (last.modes as f64, flat)];
-    plot::lines(
+    Ok(plot::lines(
         path,
         axes,
         &[
@@ -389,5 +389,5 @@ fn plot_spectrum(path: &Path, summaries: &[TwoRodSummary], dir: &Path) -> CliRes
             ("rod 2".into(), b),
             ("equilibrium 1/(2M)".into(), equal),
         ],
-    )
+    )?)
 }

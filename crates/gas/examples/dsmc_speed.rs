@@ -37,13 +37,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let system = point_gas::<3>(n, 1.0, 1.0, 1.0, 1.0, 1)?;
             let mut engine = HomogeneousDsmc::new(system, 0.05, law.clone(), 7, Scheme::default())?;
             engine.run_collisions(n as u64 / 2);
-            let before = engine.tally();
+            let before = engine.counters();
             let start = Instant::now();
             engine.run_collisions((per_particle * n as f64 / 2.0) as u64);
             let seconds = start.elapsed().as_secs_f64();
-            let after = engine.tally();
+            let after = engine.counters();
             let collisions = after.collisions - before.collisions;
-            let candidates = after.candidates - before.candidates;
+            let candidates = after.events - before.events;
             println!(
                 "{n},{name},{collisions},{seconds:.3},{:.4e},{:.3},{:.1}",
                 collisions as f64 / seconds,

@@ -10,11 +10,11 @@ fn main() {
     let system = monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1).unwrap();
     let mut e = EventDriven::new(system, Box::new(Constant::new(1.0).unwrap())).unwrap();
     e.run_collisions(n as u64); // warm up
-    let (c0, ev0) = (e.tally().collisions, e.tally().events);
+    let (c0, ev0) = (e.counters().collisions, e.counters().events);
     let t = std::time::Instant::now();
     e.run_collisions(10 * n as u64);
     let dt = t.elapsed().as_secs_f64();
-    let (c, ev) = (e.tally().collisions - c0, e.tally().events - ev0);
+    let (c, ev) = (e.counters().collisions - c0, e.counters().events - ev0);
     println!(
         "N={n} phi={phi}: {:.3e} collisions/s, {:.3e} events/s",
         c as f64 / dt,

@@ -20,14 +20,12 @@
 //! Both engines give results independent of the number of threads: every block or cell in
 //! every step draws from its own random stream, a hash of (seed, step, block or cell), and
 //! sums are reduced in a fixed order. See [`kernel`] for the collision scheme and its
-//! exactness, [`theory`] for the kinetic theory the tests compare with.
+//! exactness, [`crate::theory`] for the kinetic theory the tests compare with.
 
 mod homogeneous;
 pub mod kernel;
-pub(crate) mod rng;
 mod spatial;
 mod species;
-pub mod theory;
 
 pub use homogeneous::HomogeneousDsmc;
 pub use spatial::{
@@ -36,36 +34,19 @@ pub use spatial::{
 };
 pub use species::MAX_SPECIES;
 
+use crate::engine::{Checkpoint, Counters, Engine};
+use crate::error::{require_positive, Error, Result};
+use crate::serde_util;
 use crate::system::{System, Vector};
+use crate::theory;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
-
-/// Counters and accumulators of a run.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Tally {
-    /// Collisions (accepted candidates).
-    pub collisions: u64,
-    /// Candidate collisions drawn from the majorant process.
-    pub candidates: u64,
-    /// Kinetic energy dissipated, sum of (1 - eps^2) m_red (g.e)^2 / 2.
-    pub energy_lost: f64,
-    /// Sum over collisions of the momentum transfer times the contact distance (the
-    /// collisional virial: P = n T + weight * virial / (D V t) over a time t in a stationary
-    /// state, `weight` the particles each simulated particle stands for).
-    pub virial: f64,
-}
-
-impl Tally {
-    fn add(&mut self, other: &Tally) {
-        self.collisions += other.collisions;
-        self.candidates += other.candidates;
-        self.energy_lost += other.energy_lost;
-        self.virial += other.virial;
-    }
-}
+use restitution::Restitution;
+use serde::{Deserialize, Serialize};
 
 /// How long a step of a stepped scheme is.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum StepSize {
     /// The engine's default (see [`Scheme::Blocks`] and [`SpatialOptions`]).
     #[default]
@@ -79,15 +60,16 @@ pub enum StepSize {
 }
 
 impl StepSize {
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<()> {
         match *self {
             StepSize::Auto => Ok(()),
             StepSize::CollisionsPerParticle(x) if x.is_finite() && x > 0.0 && x <= 100.0 => Ok(()),
-            StepSize::CollisionsPerParticle(x) => Err(format!(
-                "collisions_per_step = {x}: allowed 0 < collisions per particle per step <= 100"
+            StepSize::CollisionsPerParticle(x) => Err(Error::out_of_range(
+                "collisions_per_step",
+                x,
+                "0 < collisions per particle per step <= 100",
             )),
-            StepSize::Fixed(dt) if dt.is_finite() && dt > 0.0 => Ok(()),
-            StepSize::Fixed(dt) => Err(format!("time_step = {dt}: allowed a finite number > 0")),
+            StepSize::Fixed(dt) => require_positive("time_step", dt).map(|_| ()),
         }
     }
 }
@@ -101,7 +83,8 @@ pub const DEFAULT_BLOCK_SIZE: usize = 4096;
 pub const DEFAULT_BLOCK_COLLISIONS_PER_STEP: f64 = 1.0;
 
 /// How the homogeneous engine samples collisions.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Scheme {
     /// One exact Poisson process over all N(N-1)/2 pairs, serial. Time advances by the
     /// exponential waiting times: no time-step error. Reference for the other scheme.
@@ -138,7 +121,8 @@ impl Default for Scheme {
 
 /// Everything needed to continue a run bit for bit (together with the law): the state, the
 /// position of the random streams and the options. Fields are plain data for check-points.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Snapshot<const D: usize, O> {
     /// Particles in the engine's current order (positions zero for the homogeneous engine).
     pub system: System<D>,
@@ -148,10 +132,11 @@ pub struct Snapshot<const D: usize, O> {
     pub time: f64,
     /// Steps of a stepped scheme so far (each step's streams derive from its number).
     pub steps: u64,
-    pub tally: Tally,
+    pub counters: Counters,
     /// The velocity speed bounds are measured from (the mean velocity when the exact scheme
     /// last recomputed its bound, or at the end of the last block step; unused by the
     /// spatial engine, whose cells use their own mean).
+    #[serde(with = "serde_util::vector")]
     pub reference_velocity: Vector<D>,
     /// [`Scheme::Exact`]: the running bound on |v - reference_velocity|.
     pub speed_bound: f64,
@@ -177,10 +162,10 @@ pub fn point_gas<const D: usize>(
     mass: f64,
     temperature: f64,
     seed: u64,
-) -> Result<System<D>, String> {
+) -> Result<System<D>> {
     theory::check_dimension::<D>()?;
     if n < 2 {
-        return Err(format!("particles = {n}: need at least 2"));
+        return Err(Error::out_of_range("particles", n, "at least 2"));
     }
     for (name, value) in [
         ("length", length),
@@ -188,9 +173,7 @@ pub fn point_gas<const D: usize>(
         ("mass", mass),
         ("temperature", temperature),
     ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(format!("{name} = {value}: allowed a finite number > 0"));
-        }
+        require_positive(name, value)?;
     }
     let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
     let positions = (0..n)
@@ -221,30 +204,41 @@ pub fn point_gas<const D: usize>(
 }
 
 /// Checks what both engines need of their input.
-fn check_input<const D: usize>(system: &System<D>, phi: f64) -> Result<(), String> {
+fn check_input<const D: usize>(system: &System<D>, phi: f64) -> Result<()> {
     theory::check_dimension::<D>()?;
     let n = system.velocities.len();
     if n < 2 {
-        return Err(format!("particles = {n}: need at least 2"));
+        return Err(Error::out_of_range("particles", n, "at least 2"));
     }
     if n > u32::MAX as usize {
-        return Err(format!("particles = {n}: allowed at most {}", u32::MAX));
+        return Err(Error::out_of_range(
+            "particles",
+            n,
+            format!("at most {}", u32::MAX),
+        ));
     }
     if system.radii.len() != n || system.masses.len() != n {
-        return Err("velocities, radii and masses differ in number".into());
+        return Err(Error::LengthMismatch {
+            what: "velocities, radii and masses".into(),
+        });
     }
     let max = theory::close_packing::<D>();
     if !(phi > 0.0 && phi < max) {
-        return Err(format!(
-            "packing_fraction = {phi}: allowed 0 < phi < {max} (close packing)"
+        return Err(Error::out_of_range(
+            "packing_fraction",
+            phi,
+            format!("0 < phi < {max} (close packing)"),
         ));
     }
-    if let Some(i) = system
+    if let Some(index) = system
         .velocities
         .iter()
         .position(|v| v.iter().any(|x| !x.is_finite()))
     {
-        return Err(format!("velocities[{i}]: not finite"));
+        return Err(Error::NotFinite {
+            what: "velocities",
+            index,
+        });
     }
     Ok(())
 }
@@ -275,3 +269,49 @@ fn frequency_estimate<const D: usize>(
 fn positive(x: f64) -> bool {
     x > 0.0
 }
+
+/// The engine interface, forwarded to the inherent methods of both DSMC engines.
+macro_rules! dsmc_engine {
+    ($engine:ident, $snapshot:ident, $weight:expr) => {
+        impl<const D: usize> Engine<D> for $engine<D> {
+            fn run_until(&mut self, t: f64) {
+                $engine::run_until(self, t)
+            }
+            fn run_collisions(&mut self, collisions: u64) {
+                $engine::run_collisions(self, collisions)
+            }
+            fn time(&self) -> f64 {
+                $engine::time(self)
+            }
+            fn counters(&self) -> Counters {
+                $engine::counters(self)
+            }
+            fn particles(&self) -> usize {
+                self.len()
+            }
+            fn system(&mut self) -> &System<D> {
+                $engine::system(self)
+            }
+            fn weight(&self) -> f64 {
+                let weight: fn(&Self) -> f64 = $weight;
+                weight(self)
+            }
+            fn memory_bytes(&self) -> usize {
+                $engine::memory_bytes(self)
+            }
+        }
+
+        impl<const D: usize> Checkpoint<D> for $engine<D> {
+            type State = $snapshot<D>;
+            fn save(&mut self) -> Self::State {
+                self.snapshot()
+            }
+            fn restore(state: Self::State, law: Box<dyn Restitution>) -> Result<Self> {
+                $engine::restore(state, law)
+            }
+        }
+    };
+}
+
+dsmc_engine!(HomogeneousDsmc, HomogeneousSnapshot, |_| 1.0);
+dsmc_engine!(SpatialDsmc, SpatialSnapshot, SpatialDsmc::weight);

@@ -8,13 +8,19 @@
 //! 1993). At each collision eps comes from the `Restitution` law with the normal impact
 //! speed.
 
-use crate::calendar::CalendarQueue;
 use crate::cells::{Grid, NONE};
-use crate::dsmc::rng::{Purpose, Stream};
-use crate::queue::EventQueue;
+use crate::engine::Counters;
+use crate::error::{Error, Result};
+use crate::sorter::{Sorter, SorterKind};
 use crate::system::{dot, wrap, System, Vector};
-use restitution::stochastic::collide_with_baths;
 use restitution::Restitution;
+
+mod models;
+mod state;
+
+pub use models::BathState;
+use models::{Baths, TcModel};
+pub use state::{EventDrivenState, TcState};
 
 /// Everything the engine keeps per particle, in two cache lines (D = 3). The first line
 /// is all a neighbour scan reads about a neighbour: position at `valid_at`, velocity,
@@ -59,95 +65,6 @@ impl<const D: usize> Particle<D> {
     }
 }
 
-/// The data structure of the event calendar (one entry per particle either way).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum Calendar {
-    /// Indexed 4-ary heap: O(log N) per update.
-    #[default]
-    Heap,
-    /// Calendar queue (Paul 2007): O(1) per update.
-    Buckets,
-}
-
-impl std::str::FromStr for Calendar {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "heap" => Ok(Calendar::Heap),
-            "buckets" => Ok(Calendar::Buckets),
-            other => Err(format!("'{other}': allowed: heap, buckets")),
-        }
-    }
-}
-
-enum Scheduler {
-    Heap(EventQueue),
-    Buckets(CalendarQueue),
-}
-
-impl Scheduler {
-    fn new(kind: Calendar, n: usize) -> Self {
-        match kind {
-            Calendar::Heap => Scheduler::Heap(EventQueue::new(n)),
-            Calendar::Buckets => Scheduler::Buckets(CalendarQueue::new(n)),
-        }
-    }
-
-    #[inline]
-    fn peek(&mut self) -> Option<(usize, f64)> {
-        match self {
-            Scheduler::Heap(q) => q.peek(),
-            Scheduler::Buckets(q) => q.peek(),
-        }
-    }
-
-    #[inline]
-    fn update(&mut self, i: usize, t: f64) {
-        match self {
-            Scheduler::Heap(q) => q.update(i, t),
-            Scheduler::Buckets(q) => q.update(i, t),
-        }
-    }
-
-    /// The particle probably next after the earliest (for prefetching), if known.
-    #[inline]
-    fn runner_up(&self) -> Option<usize> {
-        match self {
-            Scheduler::Heap(q) => q.runner_up(),
-            Scheduler::Buckets(_) => None,
-        }
-    }
-
-    fn time_of(&self, i: usize) -> f64 {
-        match self {
-            Scheduler::Heap(q) => q.time_of(i),
-            Scheduler::Buckets(q) => q.time_of(i),
-        }
-    }
-
-    fn memory_bytes(&self) -> usize {
-        match self {
-            Scheduler::Heap(q) => q.memory_bytes(),
-            Scheduler::Buckets(q) => q.memory_bytes(),
-        }
-    }
-}
-
-/// Counters and accumulators of a run.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Tally {
-    /// Collisions processed.
-    pub collisions: u64,
-    /// All events processed (collisions, cell crossings, stale predictions).
-    pub events: u64,
-    /// Kinetic energy dissipated.
-    pub energy_lost: f64,
-    /// Sum over collisions of the momentum transfer times the contact distance (virial).
-    pub virial: f64,
-    /// Collisions the TC model made elastic.
-    pub tc_elastic: u64,
-}
-
 /// Collisions per particle without time advancing (relative 1e-12) after which the engine
 /// declares inelastic collapse and stops, instead of looping at a fixed time forever.
 pub const COLLAPSE_COLLISIONS_PER_PARTICLE: u64 = 1000;
@@ -162,14 +79,16 @@ pub struct EventDriven<const D: usize> {
     uniform_sigma: Option<f64>,
     law: Box<dyn Restitution>,
     time: f64,
-    queue: Scheduler,
+    queue: Sorter,
+    /// The smallest cell width asked for (see [`EventDriven::with_cell_width`]).
+    min_cell_width: f64,
     grid: Grid<D>,
     /// First particle of each cell.
     heads: Vec<u32>,
     /// One bit per cell: set if the cell holds a particle. In a dilute gas most cells are
     /// empty, and this bitmap (N/8 bytes or less) stays in cache where `heads` would not.
     occupied: Vec<u64>,
-    tally: Tally,
+    tally: Counters,
     tc: Option<TcModel>,
     /// Per-particle bath temperatures, present iff the law is stochastic.
     baths: Option<Baths>,
@@ -179,50 +98,9 @@ pub struct EventDriven<const D: usize> {
     collapsed: Option<f64>,
 }
 
-/// The internal state of Giese's event-driven + Monte Carlo algorithm: each particle's bath
-/// temperature, and one counted random stream (restored by jumping ahead) for eps.
-#[derive(Debug, Clone)]
-struct Baths {
-    temperatures: Vec<f64>,
-    seed: u64,
-    stream: Stream,
-}
-
-impl Baths {
-    fn new(temperatures: Vec<f64>, seed: u64) -> Self {
-        Baths {
-            temperatures,
-            seed,
-            stream: Stream::new(seed, Purpose::Baths, 0, 0),
-        }
-    }
-}
-
-/// A snapshot of the baths of a stochastic law (see [`EventDriven::bath_state`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BathState {
-    /// Bath temperature of each particle (energy per internal mode).
-    pub temperatures: Vec<f64>,
-    /// Seed of the stream that draws eps.
-    pub seed: u64,
-    /// Numbers drawn from it so far.
-    pub draws: u64,
-}
-
-/// The TC model of Luding & McNamara (Granular Matter 1, 113 (1998)) against inelastic
-/// collapse: a collision is elastic if either partner has collided less than `duration`
-/// ago (a contact still "in progress"), so that no finite-time singularity of infinitely
-/// many collisions can form.
-#[derive(Debug, Clone)]
-struct TcModel {
-    duration: f64,
-    /// Time of each particle's last collision (-inf before the first).
-    last: Vec<f64>,
-}
-
 impl<const D: usize> EventDriven<D> {
     /// An engine at time 0 with cells one diameter wide; fails if spheres overlap.
-    pub fn new(system: System<D>, law: Box<dyn Restitution>) -> Result<Self, String> {
+    pub fn new(system: System<D>, law: Box<dyn Restitution>) -> Result<Self> {
         Self::with_cell_width(system, law, 0.0)
     }
 
@@ -235,22 +113,23 @@ impl<const D: usize> EventDriven<D> {
         mut system: System<D>,
         law: Box<dyn Restitution>,
         min_width: f64,
-    ) -> Result<Self, String> {
+    ) -> Result<Self> {
         let n = system.len();
         if system.velocities.len() != n || system.radii.len() != n || system.masses.len() != n {
-            return Err("positions, velocities, radii and masses differ in number".into());
+            return Err(Error::LengthMismatch {
+                what: "positions, velocities, radii and masses".into(),
+            });
         }
         let max_diameter = 2.0 * system.radii.iter().cloned().fold(0.0, f64::max);
         if max_diameter <= 0.0 {
-            return Err("particles need a positive radius".into());
+            return Err(Error::out_of_range("radii", "all 0", "a positive radius"));
         }
         let grid = Grid::new(system.length, max_diameter.max(min_width));
         if grid.per_side < 4 {
-            return Err(format!(
-                "the box (side {}) must hold at least 4 cells of width {} per side",
-                system.length,
-                max_diameter.max(min_width)
-            ));
+            return Err(Error::BoxTooSmall {
+                length: system.length,
+                width: max_diameter.max(min_width),
+            });
         }
         let length = system.length;
         let particles: Vec<Particle<D>> = system
@@ -294,11 +173,12 @@ impl<const D: usize> EventDriven<D> {
             uniform_sigma,
             law,
             time: 0.0,
-            queue: Scheduler::new(Calendar::default(), n),
+            queue: Sorter::new(SorterKind::default(), n),
+            min_cell_width: min_width,
             grid,
             heads: vec![NONE; grid.cells()],
             occupied: vec![0; grid.cells().div_ceil(64)],
-            tally: Tally::default(),
+            tally: Counters::default(),
             tc: None,
             baths: law_is_stochastic.then(|| Baths::new(vec![0.0; n], 0)),
             stall: (0.0, 0),
@@ -315,7 +195,7 @@ impl<const D: usize> EventDriven<D> {
         Ok(engine)
     }
 
-    fn check_overlaps(&self) -> Result<(), String> {
+    fn check_overlaps(&self) -> Result<()> {
         for i in 0..self.particles.len() {
             let mut overlap = None;
             let pi = self.particles[i].position_at(self.time);
@@ -329,7 +209,7 @@ impl<const D: usize> EventDriven<D> {
                 }
             });
             if let Some(j) = overlap {
-                return Err(format!("particles {i} and {j} overlap"));
+                return Err(Error::Overlap(i, j));
             }
         }
         Ok(())
@@ -339,93 +219,17 @@ impl<const D: usize> EventDriven<D> {
         self.time
     }
 
-    /// Switches the event calendar's data structure (the events stay the same).
-    pub fn set_calendar(&mut self, kind: Calendar) {
-        let mut queue = Scheduler::new(kind, self.particles.len());
+    /// Switches the sorter (the events stay the same).
+    pub fn set_sorter(&mut self, kind: SorterKind) {
+        let mut queue = Sorter::new(kind, self.particles.len());
         for (i, p) in self.particles.iter().enumerate() {
             queue.update(i, p.next_event());
         }
         self.queue = queue;
     }
 
-    /// Switches on the TC model with contact duration `duration` (0 switches it off).
-    /// `last_collisions` restores each particle's last collision time from a snapshot;
-    /// None starts with no recent collision.
-    pub fn set_tc_model(
-        &mut self,
-        duration: f64,
-        last_collisions: Option<Vec<f64>>,
-    ) -> Result<(), String> {
-        if !(duration.is_finite() && duration >= 0.0) {
-            return Err(format!("tc = {duration}: allowed a finite number >= 0"));
-        }
-        let n = self.particles.len();
-        let last = last_collisions.unwrap_or_else(|| vec![f64::NEG_INFINITY; n]);
-        if last.len() != n {
-            return Err("snapshot: last collision times and particles differ in number".into());
-        }
-        self.tc = (duration > 0.0).then_some(TcModel { duration, last });
-        Ok(())
-    }
-
-    /// The TC model's contact duration and last collision times, if it is on.
-    pub fn tc_model(&self) -> Option<(f64, &[f64])> {
-        self.tc.as_ref().map(|tc| (tc.duration, tc.last.as_slice()))
-    }
-
     /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
-    /// calendar, cell lists, and the snapshot of [`EventDriven::system`] once taken).
-    /// Sets the bath temperatures of a stochastic law (one per particle, >= 0) and the
-    /// seed of its random stream; fails if the law is deterministic.
-    pub fn set_baths(&mut self, temperatures: Vec<f64>, seed: u64) -> Result<(), String> {
-        self.set_bath_state(BathState {
-            temperatures,
-            seed,
-            draws: 0,
-        })
-    }
-
-    /// Restores baths saved by [`EventDriven::bath_state`].
-    pub fn set_bath_state(&mut self, state: BathState) -> Result<(), String> {
-        if self.baths.is_none() {
-            return Err(format!("the law '{}' has no baths", self.law.describe()));
-        }
-        if state.temperatures.len() != self.particles.len() {
-            return Err(format!(
-                "bath temperatures: {} given for {} particles",
-                state.temperatures.len(),
-                self.particles.len()
-            ));
-        }
-        if let Some(k) = state
-            .temperatures
-            .iter()
-            .position(|t| !(t.is_finite() && *t >= 0.0))
-        {
-            return Err(format!(
-                "bath temperature of particle {k} must be finite and >= 0"
-            ));
-        }
-        let mut baths = Baths::new(state.temperatures, state.seed);
-        baths.stream = Stream::at(state.seed, Purpose::Baths, 0, 0, state.draws);
-        self.baths = Some(baths);
-        Ok(())
-    }
-
-    /// Bath temperature of each particle, if the law is stochastic.
-    pub fn bath_temperatures(&self) -> Option<&[f64]> {
-        self.baths.as_ref().map(|b| b.temperatures.as_slice())
-    }
-
-    /// The baths and the position of their random stream (for check-points).
-    pub fn bath_state(&self) -> Option<BathState> {
-        self.baths.as_ref().map(|b| BathState {
-            temperatures: b.temperatures.clone(),
-            seed: b.seed,
-            draws: b.stream.draws(),
-        })
-    }
-
+    /// sorter, cell lists, and the snapshot of [`EventDriven::system`] once taken).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let s = &self.system;
@@ -438,7 +242,7 @@ impl<const D: usize> EventDriven<D> {
         snapshot + state + self.queue.memory_bytes()
     }
 
-    pub fn tally(&self) -> Tally {
+    pub fn counters(&self) -> Counters {
         self.tally
     }
 
@@ -652,57 +456,8 @@ impl<const D: usize> EventDriven<D> {
         self.queue.update(i, t);
     }
 
-    /// Brings every particle to the current time, rebuilds the cell lists and predicts
-    /// every event afresh: the state is then a function of (positions, velocities, time)
-    /// alone, so a run restored from a snapshot taken here continues bit for bit.
-    pub fn synchronize(&mut self) {
-        let n = self.particles.len();
-        self.heads.iter_mut().for_each(|h| *h = NONE);
-        self.occupied.iter_mut().for_each(|w| *w = 0);
-        for i in 0..n {
-            self.bring_to_now(i);
-            let p = &mut self.particles[i];
-            p.collision = f64::INFINITY;
-            p.crossing = f64::INFINITY;
-            p.partner = NONE;
-            let c = self.grid.coords_of(&p.position);
-            self.insert(i, c);
-        }
-        for i in 0..n {
-            self.predict(i);
-        }
-    }
-
-    /// A synchronized engine from a snapshot: state at `time`, collision counts, tally.
-    pub fn restore(
-        system: System<D>,
-        law: Box<dyn Restitution>,
-        time: f64,
-        counts: Vec<u64>,
-        tally: Tally,
-    ) -> Result<Self, String> {
-        if counts.len() != system.len() {
-            return Err("snapshot: counts and particles differ in number".into());
-        }
-        let mut engine = Self::new(system, law)?;
-        engine.time = time;
-        for (p, count) in engine.particles.iter_mut().zip(counts) {
-            p.valid_at = time;
-            // Counts are kept modulo 2^32 (see `Particle::count`).
-            p.count = count as u32;
-        }
-        engine.tally = tally;
-        engine.synchronize();
-        Ok(engine)
-    }
-
-    /// Collision counts per particle modulo 2^32 (for snapshots).
-    pub fn counts(&self) -> Vec<u64> {
-        self.particles.iter().map(|p| p.count as u64).collect()
-    }
-
     /// A pair whose next collision is earlier than both particles' scheduled events
-    /// (which the calendar must never allow), with that collision time. O(N^2): for tests.
+    /// (which the sorter must never allow), with that collision time. O(N^2): for tests.
     pub fn missed_collision(&self) -> Option<(usize, usize, f64)> {
         let n = self.particles.len();
         for i in 0..n {
@@ -795,36 +550,6 @@ impl<const D: usize> EventDriven<D> {
         self.watch_for_collapse();
         self.tally.energy_lost += lost;
         self.tally.virial += impulse * distance;
-    }
-
-    /// The normal impulse on j (minus that on i) and the translational energy lost: from
-    /// eps of the law, or, for a stochastic law, from the energy E' drawn at the pair's
-    /// bath temperature, the bath taking up the difference (Giese's steps (2)-(4)).
-    fn impulse(&mut self, i: usize, j: usize, reduced: f64, approach: f64) -> (f64, f64) {
-        let e_tr = 0.5 * reduced * approach * approach;
-        // Baths exist iff the law is stochastic: test the field first, so that
-        // deterministic laws pay no extra virtual call per collision.
-        let law = &self.law;
-        let stochastic = self
-            .baths
-            .as_mut()
-            .and_then(|b| Some((b, law.stochastic()?)));
-        match stochastic {
-            Some((baths, law)) => {
-                let approach = approach.max(0.0);
-                let t = &mut baths.temperatures;
-                let (mut ti, mut tj) = (t[i], t[j]);
-                let u = baths.stream.uniform();
-                let e_after = collide_with_baths(law, e_tr, (&mut ti, &mut tj), u);
-                (t[i], t[j]) = (ti, tj);
-                let separation = (2.0 * e_after / reduced).sqrt();
-                (reduced * (approach + separation), e_tr - e_after)
-            }
-            None => {
-                let eps = self.law.eps(approach.max(0.0));
-                ((1.0 + eps) * reduced * approach, (1.0 - eps * eps) * e_tr)
-            }
-        }
     }
 
     /// Counts collisions at a standing time; declares collapse after too many.

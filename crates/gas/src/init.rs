@@ -3,7 +3,8 @@
 //! sphere ([`monodisperse`]) or a mixture of several ([`polydisperse`]).
 
 use crate::cells::CellGrid;
-use crate::system::{ball_volume, dot, System, Vector};
+use crate::error::{require_positive, Error, Result};
+use crate::system::{ball_volume, box_side, dot, monodisperse_box_side, System, Vector};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
@@ -22,9 +23,9 @@ pub fn monodisperse<const D: usize>(
     mass: f64,
     temperature: f64,
     seed: u64,
-) -> Result<System<D>, String> {
+) -> Result<System<D>> {
     check_count_and_packing::<D>(n, phi)?;
-    let length = (n as f64 * ball_volume::<D>(0.5 * diameter) / phi).powf(1.0 / D as f64);
+    let length = monodisperse_box_side::<D>(n, diameter, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
     let positions = if phi <= RANDOM_ADDITION_LIMIT {
         random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?
@@ -63,21 +64,30 @@ pub struct Species {
 /// and the particles left over given to the largest remainders (the earlier species on a
 /// tie), so that the counts sum to `n`. Fails for a bad fraction or a species without a
 /// particle.
-pub fn species_counts(n: usize, species: &[Species]) -> Result<Vec<usize>, String> {
+pub fn species_counts(n: usize, species: &[Species]) -> Result<Vec<usize>> {
     if species.is_empty() {
-        return Err("species: need at least one".into());
+        return Err(Error::out_of_range(
+            "species",
+            "an empty list",
+            "at least one species",
+        ));
     }
     for (s, x) in species.iter().enumerate() {
         if !(x.fraction.is_finite() && x.fraction > 0.0) {
-            return Err(format!(
-                "species[{s}].fraction = {}: allowed a finite number > 0",
-                x.fraction
+            return Err(Error::out_of_range(
+                format!("species[{s}].fraction"),
+                x.fraction,
+                "a finite number > 0",
             ));
         }
     }
     let total: f64 = species.iter().map(|x| x.fraction).sum();
     if !total.is_finite() {
-        return Err("species: the fractions sum to infinity".into());
+        return Err(Error::out_of_range(
+            "species",
+            "fractions that sum to infinity",
+            "finite fractions",
+        ));
     }
     let exact: Vec<f64> = species
         .iter()
@@ -99,9 +109,12 @@ pub fn species_counts(n: usize, species: &[Species]) -> Result<Vec<usize>, Strin
         counts[largest] -= 1;
     }
     if let Some(s) = counts.iter().position(|&c| c == 0) {
-        return Err(format!(
-            "species[{s}].fraction = {}: no particle of {n} (fractions are normalized)",
-            species[s].fraction
+        return Err(Error::out_of_range(
+            format!("species[{s}].fraction"),
+            species[s].fraction,
+            format!(
+                "a fraction that gives at least one particle of {n} (fractions are normalized)"
+            ),
         ));
     }
     Ok(counts)
@@ -125,20 +138,12 @@ pub fn polydisperse<const D: usize>(
     species: &[Species],
     temperature: f64,
     seed: u64,
-) -> Result<System<D>, String> {
+) -> Result<System<D>> {
     check_count_and_packing::<D>(n, phi)?;
-    if !(temperature.is_finite() && temperature > 0.0) {
-        return Err(format!(
-            "temperature = {temperature}: allowed a finite number > 0"
-        ));
-    }
+    require_positive("temperature", temperature)?;
     for (s, x) in species.iter().enumerate() {
         for (name, value) in [("diameter", x.diameter), ("mass", x.mass)] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(format!(
-                    "species[{s}].{name} = {value}: allowed a finite number > 0"
-                ));
-            }
+            require_positive(&format!("species[{s}].{name}"), value)?;
         }
     }
     let counts = species_counts(n, species)?;
@@ -155,20 +160,14 @@ pub fn polydisperse<const D: usize>(
         .iter()
         .map(|&s| ball_volume::<D>(0.5 * species[s].diameter))
         .sum();
-    let length = (volume / phi).powf(1.0 / D as f64);
+    let length = box_side::<D>(volume, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
     let dense = phi > RANDOM_ADDITION_LIMIT;
     let positions = if dense {
         let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
         let spacing = length / side as f64;
         if spacing < max_diameter {
-            return Err(format!(
-                "packing_fraction = {phi} is too high for a simple lattice of the largest \
-                 diameter {max_diameter} (spacing {spacing}); lower it to at most {} or \
-                 reduce the size ratio",
-                RANDOM_ADDITION_LIMIT
-                    .max((phi * (spacing / max_diameter).powi(D as i32) * 1e4).floor() / 1e4)
-            ));
+            return Err(lattice_too_dense::<D>(phi, max_diameter, spacing));
         }
         kind.shuffle(&mut rng);
         lattice::<D>(n, length, max_diameter)?
@@ -237,34 +236,53 @@ pub const MELTING_COLLISIONS_PER_PARTICLE: u64 = 10;
 /// Runs elastic event-driven MD for `per_particle` collisions per particle (energy and
 /// momentum are conserved exactly up to round-off, so T stays the initial temperature)
 /// and returns the state: the lattice order is gone, the velocities are Maxwellian.
-pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<System<D>, String> {
+pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<System<D>> {
     let n = system.len() as u64;
-    let elastic = restitution::Constant::new(1.0).map_err(|e| e.to_string())?;
+    let elastic = restitution::Constant::new(1.0)?;
     let mut engine = crate::EventDriven::new(system, Box::new(elastic))?;
     engine.run_collisions(per_particle * n / 2);
     Ok(engine.system().clone())
 }
 
 /// At least two particles, and a packing fraction the initializer accepts.
-fn check_count_and_packing<const D: usize>(n: usize, phi: f64) -> Result<(), String> {
+fn check_count_and_packing<const D: usize>(n: usize, phi: f64) -> Result<()> {
     if n < 2 {
-        return Err(format!("particles = {n}: need at least 2"));
+        return Err(Error::out_of_range("particles", n, "at least 2"));
     }
     if !(phi > 0.0 && phi <= max_packing::<D>()) {
-        return Err(format!(
-            "packing_fraction = {phi}: allowed 0 < phi <= {}",
-            max_packing::<D>()
+        return Err(Error::out_of_range(
+            "packing_fraction",
+            phi,
+            format!("0 < phi <= {}", max_packing::<D>()),
         ));
     }
     Ok(())
 }
 
-/// Packing fractions the initializer accepts.
+/// Packing fractions the initializer accepts in D dimensions.
 pub fn max_packing<const D: usize>() -> f64 {
-    match D {
+    packing_limit(D)
+}
+
+/// Packing fractions the initializer accepts in `dimension` dimensions (1, 2, 3): 0.9,
+/// 0.7, 0.45 (the lattice start then melts within [`MELTING_COLLISIONS_PER_PARTICLE`]).
+pub fn packing_limit(dimension: usize) -> f64 {
+    match dimension {
         1 => 0.9,
         2 => 0.7,
         _ => 0.45,
+    }
+}
+
+/// The error of a simple lattice of spacing `spacing` that cannot hold spheres of
+/// `diameter`, with the highest packing fraction that would fit.
+fn lattice_too_dense<const D: usize>(phi: f64, diameter: f64, spacing: f64) -> Error {
+    Error::LatticeTooDense {
+        phi,
+        diameter,
+        spacing,
+        max_phi: RANDOM_ADDITION_LIMIT
+            .max((phi * (spacing / diameter).powi(D as i32) * 1e4).floor() / 1e4),
     }
 }
 
@@ -275,7 +293,7 @@ fn random_addition<const D: usize>(
     diameters: &[f64],
     max_diameter: f64,
     rng: &mut Pcg64,
-) -> Result<Vec<Vector<D>>, String> {
+) -> Result<Vec<Vector<D>>> {
     let n = diameters.len();
     let mut grid = CellGrid::<D>::new(length, max_diameter, n);
     let mut positions: Vec<Vector<D>> = Vec::with_capacity(n);
@@ -305,7 +323,7 @@ fn random_addition<const D: usize>(
             }
         }
         if !placed {
-            return Err(format!("could not place particle {i} by random addition"));
+            return Err(Error::Placement { particle: i });
         }
     }
     Ok(positions)
@@ -321,11 +339,12 @@ fn contact(di: f64, dj: f64) -> f64 {
     }
 }
 
-fn lattice<const D: usize>(n: usize, length: f64, diameter: f64) -> Result<Vec<Vector<D>>, String> {
+fn lattice<const D: usize>(n: usize, length: f64, diameter: f64) -> Result<Vec<Vector<D>>> {
     let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
     let spacing = length / side as f64;
     if spacing < diameter {
-        return Err(format!("packing fraction too high for a simple lattice (spacing {spacing} < diameter {diameter})"));
+        let phi = n as f64 * ball_volume::<D>(0.5 * diameter) / length.powi(D as i32);
+        return Err(lattice_too_dense::<D>(phi, diameter, spacing));
     }
     Ok((0..n)
         .map(|i| {

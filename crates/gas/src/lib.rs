@@ -1,20 +1,29 @@
 //! # haff-gas — engines over many particles
 //!
-//! The state of a gas of smooth hard spheres in a periodic box of dimension `D` (1, 2 or 3),
-//! initial conditions, cell lists, the event calendars, the event-driven engine
-//! ([`EventDriven`], docs/event-driven.md) and DSMC ([`dsmc`]). The engines take their
-//! coefficient of restitution through `restitution::Restitution` and never read files;
-//! the `haff` binary (crates/cli) drives them from TOML.
+//! The state of a gas of smooth hard spheres in a periodic box of dimension `D` (1, 2 or 3)
+//! ([`system`]), initial conditions ([`init`]), cell lists ([`cells`]), the sorters of future
+//! events ([`sorter`]), the engines behind one interface ([`Engine`], [`Checkpoint`]): the
+//! event-driven engine ([`EventDriven`], docs/event-driven.md) and DSMC ([`dsmc`]), the
+//! observables ([`observe`]) and the kinetic theory they are compared with ([`theory`]). The
+//! engines take their coefficient of restitution through `restitution::Restitution` and
+//! never read files; the run driver (crate `haff-sim`) builds and drives them.
 
-pub mod calendar;
 pub mod cells;
 pub mod dsmc;
 pub mod emd;
+pub mod engine;
+pub mod error;
 pub mod init;
 pub mod observe;
-pub mod queue;
+pub(crate) mod rng;
+mod serde_util;
+pub mod sorter;
 pub mod system;
+pub mod theory;
 
 pub use dsmc::{HomogeneousDsmc, SpatialDsmc};
-pub use emd::{BathState, Calendar, EventDriven};
+pub use emd::{BathState, EventDriven, EventDrivenState};
+pub use engine::{Checkpoint, Counters, Engine};
+pub use error::{Error, Result};
+pub use sorter::SorterKind;
 pub use system::System;

@@ -1,10 +1,15 @@
-//! The state: positions, velocities, radii and masses of N spheres in a periodic box.
+//! The state: positions, velocities, radii and masses of N spheres in a periodic box, and
+//! the geometry of the box.
+
+use serde::{Deserialize, Serialize};
 
 /// A vector in D dimensions.
 pub type Vector<const D: usize> = [f64; D];
 
-/// N smooth spheres in the periodic box [0, L)^D.
-#[derive(Debug, Clone, PartialEq)]
+/// N smooth spheres in the periodic box [0, L)^D. Serialized with vectors as lists (see
+/// [`SystemRecord`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(into = "SystemRecord", try_from = "SystemRecord")]
 pub struct System<const D: usize> {
     /// Side of the periodic box.
     pub length: f64,
@@ -37,6 +42,75 @@ impl<const D: usize> System<D> {
     pub fn packing_fraction(&self) -> f64 {
         self.radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / self.volume()
     }
+}
+
+/// A [`System`] of any dimension as serde data: each vector a list of D numbers.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SystemRecord {
+    pub length: f64,
+    pub positions: Vec<Vec<f64>>,
+    pub velocities: Vec<Vec<f64>>,
+    pub radii: Vec<f64>,
+    pub masses: Vec<f64>,
+}
+
+impl<const D: usize> From<System<D>> for SystemRecord {
+    fn from(s: System<D>) -> Self {
+        SystemRecord {
+            length: s.length,
+            positions: s.positions.iter().map(|p| p.to_vec()).collect(),
+            velocities: s.velocities.iter().map(|v| v.to_vec()).collect(),
+            radii: s.radii,
+            masses: s.masses,
+        }
+    }
+}
+
+impl<const D: usize> TryFrom<SystemRecord> for System<D> {
+    type Error = crate::Error;
+
+    /// Fails if a vector has other than D components or the arrays differ in length.
+    fn try_from(r: SystemRecord) -> crate::Result<Self> {
+        let vectors = |what: &'static str, list: Vec<Vec<f64>>| {
+            list.into_iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    <[f64; D]>::try_from(v).map_err(|v| {
+                        crate::Error::out_of_range(
+                            format!("{what}[{i}]"),
+                            format!("a vector of {} components", v.len()),
+                            format!("{D} components (the dimension)"),
+                        )
+                    })
+                })
+                .collect::<crate::Result<Vec<_>>>()
+        };
+        let n = r.positions.len();
+        if [r.velocities.len(), r.radii.len(), r.masses.len()] != [n; 3] {
+            return Err(crate::Error::LengthMismatch {
+                what: "positions, velocities, radii and masses".into(),
+            });
+        }
+        Ok(System {
+            length: r.length,
+            positions: vectors("positions", r.positions)?,
+            velocities: vectors("velocities", r.velocities)?,
+            radii: r.radii,
+            masses: r.masses,
+        })
+    }
+}
+
+/// The side of the periodic box in which spheres of total volume `sphere_volume` fill the
+/// packing fraction `phi`: (sphere_volume / phi)^(1/D). The one place this is computed.
+pub fn box_side<const D: usize>(sphere_volume: f64, phi: f64) -> f64 {
+    (sphere_volume / phi).powf(1.0 / D as f64)
+}
+
+/// The box side of `n` equal spheres of diameter `diameter` at packing fraction `phi`.
+pub fn monodisperse_box_side<const D: usize>(n: usize, diameter: f64, phi: f64) -> f64 {
+    box_side::<D>(n as f64 * ball_volume::<D>(0.5 * diameter), phi)
 }
 
 /// x wrapped into [-L/2, L/2].

@@ -4,13 +4,13 @@
 //! `cargo test --release -p haff-gas --test dsmc` (the heavy validations:
 //! `cargo test --release -p haff-gas --test dsmc -- --ignored --nocapture`).
 
-use gas::dsmc::theory::{
-    collision_frequency, haff_collisions_per_particle, haff_time, mean_free_path,
-    van_noije_ernst_a2,
-};
 use gas::dsmc::{point_gas, HomogeneousDsmc, Scheme, SpatialDsmc, SpatialOptions, StepSize};
 use gas::observe::{kinetic_energy, mean_velocity, sonine_a2, temperature};
 use gas::system::{ball_volume, System};
+use gas::theory::{
+    collision_frequency, haff_collisions_per_particle, haff_time, mean_free_path,
+    van_noije_ernst_a2,
+};
 use restitution::{Constant, Restitution};
 
 fn law(eps: f64) -> Box<dyn Restitution> {
@@ -84,7 +84,7 @@ fn elastic_relaxation<const D: usize>(scheme: Scheme) {
     assert!(p.iter().all(|x| x.abs() < 1e-10), "momentum {p:?}");
     // a2 of N Maxwellian velocities: standard deviation sqrt(8 / (D (D + 2) N)) < 0.007.
     assert!(a2.abs() < 0.03, "a2 = {a2}");
-    assert_eq!(e.tally().energy_lost, 0.0);
+    assert_eq!(e.counters().energy_lost, 0.0);
 }
 
 /// Elastic gas: energy conserved to round-off, momentum conserved, one speed relaxes to a
@@ -122,7 +122,7 @@ fn dissipated_energy_is_the_kinetic_energy_lost() {
         let e0 = kinetic_energy(e.system());
         e.run_collisions(20_000);
         let s = e.system().clone();
-        let lost = e.tally().energy_lost;
+        let lost = e.counters().energy_lost;
         assert!(lost > 0.1 * e0, "D = {D}: lost {lost}");
         let balance = (e0 - kinetic_energy(&s) - lost).abs() / e0;
         assert!(balance < 1e-12, "D = {D}, {scheme:?}: {balance}");
@@ -150,7 +150,7 @@ fn collision_frequency_is_enskog_in_every_dimension() {
         let measured = e.collisions_per_particle() / e.time();
         let t_now = temperature(e.system());
         let theory = omega_of(&e, phi, t_now);
-        let sigma = (2.0 * e.tally().collisions as f64).sqrt() / e.tally().collisions as f64;
+        let sigma = (2.0 * e.counters().collisions as f64).sqrt() / e.counters().collisions as f64;
         eprintln!(
             "D = {D}, {scheme:?}: omega / omega_Enskog = {:.4} (+- {sigma:.4})",
             measured / theory
@@ -514,7 +514,9 @@ fn elastic_mixture_reaches_equipartition() {
 /// Bad parameters are errors naming the parameter, never panics.
 #[test]
 fn bad_parameters_are_errors() {
-    let e = |r: Result<HomogeneousDsmc<3>, String>| r.err().unwrap_or_default();
+    let e = |r: Result<HomogeneousDsmc<3>, gas::Error>| {
+        r.err().map(|e| e.to_string()).unwrap_or_default()
+    };
     let s = gas::<3>(100, 1);
     assert!(e(HomogeneousDsmc::new(
         s.clone(),
@@ -580,6 +582,7 @@ fn bad_parameters_are_errors() {
     let spatial = |options: SpatialOptions| {
         SpatialDsmc::new(s.clone(), 0.1, law(0.9), 1, options)
             .err()
+            .map(|e| e.to_string())
             .unwrap_or_default()
     };
     assert!(spatial(SpatialOptions {
@@ -594,6 +597,7 @@ fn bad_parameters_are_errors() {
     .contains("cell_width"));
     assert!(point_gas::<3>(10, 0.0, 1.0, 1.0, 1.0, 1)
         .unwrap_err()
+        .to_string()
         .contains("length"));
     assert!(HomogeneousDsmc::<4>::new(
         System {
@@ -609,6 +613,7 @@ fn bad_parameters_are_errors() {
         Scheme::Exact
     )
     .err()
+    .map(|e| e.to_string())
     .unwrap_or_default()
     .contains("dimension"));
 }
@@ -622,7 +627,7 @@ fn a_gas_at_rest_does_nothing() {
         let mut e = HomogeneousDsmc::new(s.clone(), 0.1, law(0.9), 1, scheme).unwrap();
         e.run_collisions(100);
         e.run_until(10.0);
-        assert_eq!(e.tally().collisions, 0);
+        assert_eq!(e.counters().collisions, 0);
         assert_eq!(e.time(), 10.0);
     }
 }

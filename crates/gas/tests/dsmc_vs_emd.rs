@@ -38,7 +38,7 @@ fn emd_log_temperatures(
 
 /// ln T at the given times from one large homogeneous DSMC run (blocks scheme).
 fn dsmc_log_temperatures(law: &dyn Restitution, n: usize, phi: f64, times: &[f64]) -> Vec<f64> {
-    let length = (n as f64 * std::f64::consts::PI / 6.0 / phi).cbrt();
+    let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
     let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 99).unwrap();
     let mut d = HomogeneousDsmc::new(system, phi, law.box_clone(), 99, Scheme::default()).unwrap();
     times

@@ -34,7 +34,7 @@ fn elastic_gas_conserves_energy_and_momentum() {
             closest > 1.0 - 1e-9,
             "phi = {phi}: overlap, closest pair at {closest}"
         );
-        assert!(e.tally().events > e.tally().collisions);
+        assert!(e.counters().events > e.counters().collisions);
     }
 }
 
@@ -96,7 +96,7 @@ fn cell_size_changes_only_crossings() {
         }
     }
     assert!(
-        cells.tally().events > pairs.tally().events,
+        cells.counters().events > pairs.counters().events,
         "cells add crossing events"
     );
 }
@@ -108,9 +108,9 @@ fn cell_size_changes_only_crossings() {
 fn enskog_check(phi: f64, n: usize, per_particle: u64, tolerance: f64) {
     let mut e = engine::<3>(n, phi, 1.0, 21);
     e.run_collisions(30 * n as u64 / 2); // equilibrate (melts the lattice above phi = 0.3)
-    let (t0, tally0) = (e.time(), e.tally());
+    let (t0, tally0) = (e.time(), e.counters());
     e.run_collisions(per_particle * n as u64 / 2);
-    let (dt, tally) = (e.time() - t0, e.tally());
+    let (dt, tally) = (e.time() - t0, e.counters());
     let temperature = temperature(e.system());
     let s = e.system();
     let density = n as f64 / s.volume();
@@ -304,7 +304,7 @@ fn sonine_a2_study() {
             ));
         }
         let big = 200_000;
-        let length = (big as f64 * std::f64::consts::PI / 6.0 / phi).cbrt();
+        let length = gas::system::monodisperse_box_side::<3>(big, 1.0, phi);
         let system = point_gas::<3>(big, length, 1.0, 1.0, 1.0, 7).unwrap();
         let law = Box::new(Constant::new(eps).unwrap());
         let d = std::cell::RefCell::new(

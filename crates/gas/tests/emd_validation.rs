@@ -163,8 +163,8 @@ fn constant(eps: f64) -> Box<dyn Restitution> {
 
 /// Steps until one more collision has been processed (false if nothing moves).
 fn next_collision<const D: usize>(e: &mut EventDriven<D>) -> bool {
-    let target = e.tally().collisions + 1;
-    while e.tally().collisions < target {
+    let target = e.counters().collisions + 1;
+    while e.counters().collisions < target {
         if !e.step() {
             return false;
         }
@@ -457,10 +457,10 @@ fn elastic_run(n: usize, phi: f64, calibration: u64, total: u64) {
         "N = {n}, phi = {phi}, {total} collisions ({} per particle) in {:.1} s: |dE|/E = {energy:.2e}, |dP|/sum m|v| = {momentum:.2e}, energy lost (tally) {}",
         e.collisions_per_particle(),
         clock.elapsed().as_secs_f64(),
-        e.tally().energy_lost
+        e.counters().energy_lost
     );
-    assert_eq!(e.tally().collisions, total);
-    assert_eq!(e.tally().energy_lost, 0.0);
+    assert_eq!(e.counters().collisions, total);
+    assert_eq!(e.counters().energy_lost, 0.0);
 }
 
 /// N = 2000, phi = 0.1, 1e5 collisions (every 20th for the calibration). Measured:
@@ -487,7 +487,7 @@ fn elastic_energy_over_1e7_collisions() {
 
 /// Every bit of the state, the time and the tally.
 fn fingerprint<const D: usize>(e: &mut EventDriven<D>) -> Vec<u64> {
-    let t = e.tally();
+    let t = e.counters();
     let mut bits = vec![
         e.time().to_bits(),
         t.collisions,
@@ -526,7 +526,7 @@ fn tc_zero_is_the_engine_without_tc_bit_for_bit() {
     let reference = fingerprint(&mut plain);
     assert_eq!(reference, fingerprint(&mut zero));
     assert_eq!(reference, fingerprint(&mut toggled));
-    assert!(plain.tally().energy_lost > 0.0);
+    assert!(plain.counters().energy_lost > 0.0);
 }
 
 /// The rate of collisions of a particle that has just collided, over the mean rate, in an
@@ -604,17 +604,17 @@ fn tc_much_smaller_than_the_free_time_changes_nothing_measurable() {
         let mut b = EventDriven::new(system.clone(), constant(eps)).unwrap();
         b.set_tc_model(tc, None).unwrap();
         loop {
-            let lost = b.tally().energy_lost;
+            let lost = b.counters().energy_lost;
             assert!(a.step() && b.step());
             assert_eq!(a.time().to_bits(), b.time().to_bits());
-            assert_eq!(a.tally().collisions, b.tally().collisions);
-            assert_eq!(a.tally().events, b.tally().events);
-            if a.tally().energy_lost != b.tally().energy_lost {
+            assert_eq!(a.counters().collisions, b.counters().collisions);
+            assert_eq!(a.counters().events, b.counters().events);
+            if a.counters().energy_lost != b.counters().energy_lost {
                 // The first difference: a collision that the TC run made elastic. Up to it
                 // the states are identical: same positions, velocities different for the
                 // colliding pair only.
-                assert_eq!(b.tally().energy_lost, lost, "seed {seed}");
-                assert!(a.tally().energy_lost > lost);
+                assert_eq!(b.counters().energy_lost, lost, "seed {seed}");
+                assert!(a.counters().energy_lost > lost);
                 let (sa, sb) = (a.system().clone(), b.system().clone());
                 assert_eq!(sa.positions, sb.positions);
                 let differ = (0..n)
@@ -624,7 +624,7 @@ fn tc_much_smaller_than_the_free_time_changes_nothing_measurable() {
                 break;
             }
             assert!(
-                b.tally().collisions < 20_000,
+                b.counters().collisions < 20_000,
                 "seed {seed}: no TC collision"
             );
         }
@@ -637,26 +637,26 @@ fn tc_much_smaller_than_the_free_time_changes_nothing_measurable() {
         let mut seed_count = 0u64;
         for (k, &c) in per_particle.iter().enumerate() {
             let target = (c * n as f64 / 2.0) as u64;
-            plain.run_collisions(target - plain.tally().collisions);
+            plain.run_collisions(target - plain.counters().collisions);
             p.push(temperature(plain.system()).ln());
-            while with.tally().collisions < target {
-                let lost = with.tally().energy_lost;
+            while with.counters().collisions < target {
+                let lost = with.counters().energy_lost;
                 assert!(next_collision(&mut with));
-                if with.tally().energy_lost == lost {
+                if with.counters().energy_lost == lost {
                     seed_count += 1;
                 }
-                if with.tally().collisions % 500 == 0 {
+                if with.counters().collisions % 500 == 0 {
                     let (t0, c0) = chunk_start;
-                    let dc = with.tally().collisions - c0;
+                    let dc = with.counters().collisions - c0;
                     let omega = 2.0 * dc as f64 / (n as f64 * (with.time() - t0));
                     predicted += 2.0 * kappa * omega * tc * dc as f64;
-                    chunk_start = (with.time(), with.tally().collisions);
+                    chunk_start = (with.time(), with.counters().collisions);
                 }
             }
             w.push(temperature(with.system()).ln());
             tc_at[k] += seed_count as f64;
         }
-        collisions += with.tally().collisions;
+        collisions += with.counters().collisions;
         tc_count += seed_count;
         plain_runs.push(p);
         tc_runs.push(w);
@@ -708,8 +708,8 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
     let e0 = twice_energy(&e.system().velocities, &vec![1.0; n], 0..n).value() / 2.0;
     let mut shadow = vec![f64::NEG_INFINITY; n];
     let (mut times, mut elastic, mut elastic_with_loss) = (Vec::new(), 0, 0);
-    while e.tally().collisions < budget && e.tally().events < 20 * budget {
-        let (collisions, lost) = (e.tally().collisions, e.tally().energy_lost);
+    while e.counters().collisions < budget && e.counters().events < 20 * budget {
+        let (collisions, lost) = (e.counters().collisions, e.counters().energy_lost);
         if !e.step() {
             assert!(
                 e.collapsed().is_some(),
@@ -717,7 +717,7 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
             );
             break;
         }
-        if e.tally().collisions == collisions {
+        if e.counters().collisions == collisions {
             continue;
         }
         let t = e.time();
@@ -729,7 +729,7 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
             assert!(changed.len() <= 2 && changed.iter().all(|&i| last[i] == t));
             if changed.len() < 2 || changed.iter().any(|&i| t - shadow[i] < tc) {
                 elastic += 1;
-                if e.tally().energy_lost != lost {
+                if e.counters().energy_lost != lost {
                     elastic_with_loss += 1;
                 }
             }
@@ -743,7 +743,7 @@ fn run_1d(n: usize, phi: f64, eps: f64, tc: f64, budget: u64, seed: u64) -> Run1
         times,
         elastic,
         elastic_with_loss,
-        energy: (e0, e1, e.tally().energy_lost),
+        energy: (e0, e1, e.counters().energy_lost),
         collapsed: e.collapsed(),
     }
 }

@@ -126,7 +126,9 @@ fn dense_binary_mixture_from_a_melted_lattice() {
     let species = binary();
     let s = polydisperse::<3>(1000, 0.35, &species, 1.0, 5).unwrap();
     check_mixture(&s, 0.35, 1.0, &species);
-    let error = polydisperse::<3>(1000, 0.4, &species, 1.0, 5).unwrap_err();
+    let error = polydisperse::<3>(1000, 0.4, &species, 1.0, 5)
+        .unwrap_err()
+        .to_string();
     assert!(
         error.contains("packing_fraction") && error.contains("lattice"),
         "{error}"
@@ -174,7 +176,7 @@ fn species_counts_sum_to_n() {
     assert_eq!(species_counts(5, &[third]).unwrap(), vec![5]);
     let mut rare = [third; 2];
     rare[1].fraction = 1e-3;
-    let error = species_counts(100, &rare).unwrap_err();
+    let error = species_counts(100, &rare).unwrap_err().to_string();
     assert!(error.contains("species[1].fraction"), "{error}");
     rare[1].fraction = 0.0;
     assert!(species_counts(100, &rare).is_err());
@@ -185,12 +187,18 @@ fn species_counts_sum_to_n() {
 fn bad_species_are_rejected() {
     let mut species = binary();
     species[1].mass = -1.0;
-    let error = polydisperse::<3>(100, 0.1, &species, 1.0, 1).unwrap_err();
+    let error = polydisperse::<3>(100, 0.1, &species, 1.0, 1)
+        .unwrap_err()
+        .to_string();
     assert!(error.contains("species[1].mass"), "{error}");
     let mut species = binary();
     species[0].diameter = f64::NAN;
-    let error = polydisperse::<3>(100, 0.1, &species, 1.0, 1).unwrap_err();
+    let error = polydisperse::<3>(100, 0.1, &species, 1.0, 1)
+        .unwrap_err()
+        .to_string();
     assert!(error.contains("species[0].diameter"), "{error}");
-    let error = polydisperse::<3>(100, 0.5, &binary(), 1.0, 1).unwrap_err();
+    let error = polydisperse::<3>(100, 0.5, &binary(), 1.0, 1)
+        .unwrap_err()
+        .to_string();
     assert!(error.contains("packing_fraction"), "{error}");
 }

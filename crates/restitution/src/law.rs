@@ -183,42 +183,135 @@ impl FromStr for ScaledForm {
     /// `exact`, `exact-naive`, `fast`, `fast-naive`, `pade:M/N`, `series:K` (coefficients
     /// computed by `haff-series`), `pade-paper:M/N`, `series-paper:K` (printed in the papers).
     fn from_str(s: &str) -> Result<Self> {
+        s.parse::<FormName>()?.build()
+    }
+}
+
+/// Where the coefficients of a Padé or series form come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Coefficients {
+    /// Computed by `haff-series` to any order.
+    Computed,
+    /// Printed in the papers (Table I of MP2011, Table V of SP2008).
+    Paper,
+}
+
+/// The name of a [`ScaledForm`], parsed but not built (building a Padé approximant or the
+/// fast table takes time): what a run description stores. Displays as the name it parses
+/// from, and serializes as that string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FormName {
+    Exact(Criterion),
+    Fast(Criterion),
+    Pade {
+        m: usize,
+        n: usize,
+        coefficients: Coefficients,
+    },
+    Series {
+        order: usize,
+        coefficients: Coefficients,
+    },
+}
+
+impl FormName {
+    /// Builds the form (fails for orders the coefficients do not provide).
+    pub fn build(&self) -> Result<ScaledForm> {
+        Ok(match *self {
+            FormName::Exact(c) => ScaledForm::Exact(c),
+            FormName::Fast(c) => ScaledForm::Fast(Fast::new(c)),
+            FormName::Pade { m, n, coefficients } => ScaledForm::Pade(match coefficients {
+                Coefficients::Computed => Pade::computed(m, n)?,
+                Coefficients::Paper => Pade::table_i(m, n)?,
+            }),
+            FormName::Series {
+                order,
+                coefficients,
+            } => ScaledForm::Series(match coefficients {
+                Coefficients::Computed => Series::computed(order)?,
+                Coefficients::Paper => Series::table_v(order)?,
+            }),
+        })
+    }
+}
+
+impl fmt::Display for FormName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let naive = |c: &Criterion| if *c == Criterion::Naive { "-naive" } else { "" };
+        let paper = |c: &Coefficients| match c {
+            Coefficients::Computed => "",
+            Coefficients::Paper => "-paper",
+        };
+        match self {
+            FormName::Exact(c) => write!(f, "exact{}", naive(c)),
+            FormName::Fast(c) => write!(f, "fast{}", naive(c)),
+            FormName::Pade { m, n, coefficients } => {
+                write!(f, "pade{}:{m}/{n}", paper(coefficients))
+            }
+            FormName::Series {
+                order,
+                coefficients,
+            } => write!(f, "series{}:{order}", paper(coefficients)),
+        }
+    }
+}
+
+impl FromStr for FormName {
+    type Err = Error;
+    /// `exact`, `exact-naive`, `fast`, `fast-naive`, `pade:M/N`, `series:K`,
+    /// `pade-paper:M/N`, `series-paper:K`.
+    fn from_str(s: &str) -> Result<Self> {
         let bad = |m: &str| Error::parse("law", format!("'{s}': {m}"));
         match s {
-            "exact" => return Ok(ScaledForm::Exact(Criterion::Improved)),
-            "exact-naive" => return Ok(ScaledForm::Exact(Criterion::Naive)),
-            "fast" => return Ok(ScaledForm::Fast(Fast::new(Criterion::Improved))),
-            "fast-naive" => return Ok(ScaledForm::Fast(Fast::new(Criterion::Naive))),
+            "exact" => return Ok(FormName::Exact(Criterion::Improved)),
+            "exact-naive" => return Ok(FormName::Exact(Criterion::Naive)),
+            "fast" => return Ok(FormName::Fast(Criterion::Improved)),
+            "fast-naive" => return Ok(FormName::Fast(Criterion::Naive)),
             _ => {}
         }
-        if let Some(order) = s.strip_prefix("series-paper:") {
-            let k: usize = order
-                .parse()
-                .map_err(|_| bad("series-paper:K needs an integer K"))?;
-            return Ok(ScaledForm::Series(Series::table_v(k)?));
-        }
-        if let Some(order) = s.strip_prefix("series:") {
-            let k: usize = order
+        let series = |order: &str, coefficients| {
+            let order = order
                 .parse()
                 .map_err(|_| bad("series:K needs an integer K"))?;
-            return Ok(ScaledForm::Series(Series::computed(k)?));
+            Ok(FormName::Series {
+                order,
+                coefficients,
+            })
+        };
+        if let Some(order) = s.strip_prefix("series-paper:") {
+            return series(order, Coefficients::Paper);
         }
-        let orders = |text: &str| {
+        if let Some(order) = s.strip_prefix("series:") {
+            return series(order, Coefficients::Computed);
+        }
+        let pade = |text: &str, coefficients| {
             text.split_once('/')
                 .and_then(|(m, n)| Some((m.parse().ok()?, n.parse().ok()?)))
+                .map(|(m, n)| FormName::Pade { m, n, coefficients })
                 .ok_or_else(|| bad("pade:M/N needs integers M and N"))
         };
         if let Some(text) = s.strip_prefix("pade-paper:") {
-            let (m, n) = orders(text)?;
-            return Ok(ScaledForm::Pade(Pade::table_i(m, n)?));
+            return pade(text, Coefficients::Paper);
         }
         if let Some(text) = s.strip_prefix("pade:") {
-            let (m, n) = orders(text)?;
-            return Ok(ScaledForm::Pade(Pade::computed(m, n)?));
+            return pade(text, Coefficients::Computed);
         }
         Err(bad(
             "allowed: exact, exact-naive, fast, fast-naive, pade:M/N, pade-paper:M/N, series:K, series-paper:K",
         ))
+    }
+}
+
+impl serde::Serialize for FormName {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for FormName {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse().map_err(serde::de::Error::custom)
     }
 }
 

@@ -25,5 +25,5 @@ pub mod stochastic;
 pub use error::{Error, Result};
 pub use exact::Criterion;
 
-pub use law::{Constant, Dashpot, Restitution, ScaledForm, Viscoelastic};
+pub use law::{Coefficients, Constant, Dashpot, FormName, Restitution, ScaledForm, Viscoelastic};
 pub use stochastic::{Glauber, StochasticRestitution, Tabulated};

@@ -1,13 +1,16 @@
 //! The homogeneous DSMC engine: velocities only, exact serial or blocked parallel.
 
 use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
-use super::rng::{Purpose, Stream};
 use super::species::Species;
 use super::{
-    check_input, frequency_estimate, mean_velocity, positive, theory, HomogeneousSnapshot, Scheme,
-    StepSize, Tally, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
+    check_input, frequency_estimate, mean_velocity, positive, HomogeneousSnapshot, Scheme,
+    StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
 };
+use crate::engine::Counters;
+use crate::error::{Error, Result};
+use crate::rng::{Purpose, Stream};
 use crate::system::{dot, System, Vector};
+use crate::theory;
 use rayon::prelude::*;
 use restitution::Restitution;
 
@@ -33,7 +36,7 @@ struct Core<const D: usize> {
     reference: Vector<D>,
     time: f64,
     steps: u64,
-    tally: Tally,
+    tally: Counters,
     /// The velocity speed bounds are measured from: the mean velocity when the exact
     /// scheme last recomputed its bound, or at the end of the last block step.
     /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
@@ -64,7 +67,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         law: Box<dyn Restitution>,
         seed: u64,
         scheme: Scheme,
-    ) -> Result<Self, String> {
+    ) -> Result<Self> {
         check_input(&system, phi)?;
         check_scheme(&scheme)?;
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
@@ -80,7 +83,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             reference,
             time: 0.0,
             steps: 0,
-            tally: Tally::default(),
+            tally: Counters::default(),
             speed_bound: 0.0,
             stream: Stream::new(seed, Purpose::Exact, 0, 0),
             temperature: 0.0,
@@ -106,10 +109,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
     }
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
-    pub fn restore(
-        snapshot: HomogeneousSnapshot<D>,
-        law: Box<dyn Restitution>,
-    ) -> Result<Self, String> {
+    pub fn restore(snapshot: HomogeneousSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
         let HomogeneousSnapshot {
             system,
             packing_fraction,
@@ -117,7 +117,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             options,
             time,
             steps,
-            tally,
+            counters: tally,
             reference_velocity,
             speed_bound,
             draws,
@@ -149,7 +149,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             options: scheme,
             time,
             steps,
-            tally,
+            counters: tally,
             reference_velocity: reference,
             speed_bound,
             draws,
@@ -161,7 +161,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         self.core.time
     }
 
-    pub fn tally(&self) -> Tally {
+    pub fn counters(&self) -> Counters {
         self.core.tally
     }
 
@@ -253,14 +253,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
     }
 }
 
-fn check_scheme(scheme: &Scheme) -> Result<(), String> {
+fn check_scheme(scheme: &Scheme) -> Result<()> {
     match scheme {
         Scheme::Exact => Ok(()),
         Scheme::Blocks { block_size, step } => {
             if *block_size < 2 || *block_size > u32::MAX as usize {
-                return Err(format!(
-                    "block_size = {block_size}: allowed 2 ..= {}",
-                    u32::MAX
+                return Err(Error::out_of_range(
+                    "block_size",
+                    block_size,
+                    format!("2 ..= {}", u32::MAX),
                 ));
             }
             step.check()
@@ -463,7 +464,7 @@ fn block_step<const D: usize, R: Record<D>>(
     spare: &mut Vec<R>,
     layout: &Blocks,
     dt: f64,
-) -> (Tally, Vector<D>, f64) {
+) -> (Counters, Vector<D>, f64) {
     let n = now.len();
     if spare.len() != n {
         spare.clear();
@@ -482,14 +483,14 @@ fn block_step<const D: usize, R: Record<D>>(
     let base_rate =
         theory::cross_section_factor::<D>() * core.species.max_weight * (n as f64 - 1.0)
             / core.volume;
-    let results: Vec<(Tally, Moments<D>)> = layout
+    let results: Vec<(Counters, Moments<D>)> = layout
         .split(spare)
         .into_par_iter()
         .enumerate()
         .map(|(b, block)| {
             let mut bound = gather(now, layout, &offsets, b, block, &reference).sqrt();
             let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
-            let mut tally = Tally::default();
+            let mut tally = Counters::default();
             // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
             let pair_rate = base_rate / (block.len() as f64 - 1.0);
             collider.run_for(
@@ -505,7 +506,7 @@ fn block_step<const D: usize, R: Record<D>>(
             (tally, kernel::sums_about(block, species, &reference))
         })
         .collect();
-    let mut tally = Tally::default();
+    let mut tally = Counters::default();
     for (t, _) in &results {
         tally.add(t);
     }

@@ -21,9 +21,10 @@
 //! fewer rejected candidates. The collision then follows the inelastic hard-sphere rule
 //! with eps from the law at the normal impact speed g.e (Brilliantov & Pöschel 2004, Ch. 1).
 
-use super::rng::Stream;
+use super::positive;
 use super::species::Species;
-use super::{positive, Tally};
+use crate::engine::Counters;
+use crate::rng::Stream;
 use crate::system::{dot, Vector};
 use rand_distr::{Beta, Distribution, Poisson};
 use restitution::Restitution;
@@ -127,7 +128,7 @@ impl Collider<'_> {
         window: Window,
         bound: &mut f64,
         rng: &mut Stream,
-        tally: &mut Tally,
+        tally: &mut Counters,
     ) -> f64 {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
@@ -156,7 +157,7 @@ impl Collider<'_> {
                 }
             }
         };
-        tally.candidates += candidates;
+        tally.events += candidates;
         reached
     }
 
@@ -177,7 +178,7 @@ impl Collider<'_> {
         (start, end): (f64, f64),
         bound: &mut f64,
         rng: &mut Stream,
-        tally: &mut Tally,
+        tally: &mut Counters,
     ) {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
@@ -188,7 +189,7 @@ impl Collider<'_> {
         let mut from = start;
         let mut left = poisson(rate * (end - from), rng);
         let mut since = 0u64;
-        tally.candidates += left;
+        tally.events += left;
         while left > 0 {
             left -= 1;
             since += 1;
@@ -200,7 +201,7 @@ impl Collider<'_> {
                 *bound = fastest.sqrt();
                 let raised = pairs * pair_rate * 2.0 * *bound;
                 let extra = poisson((raised - rate) * (end - at), rng);
-                tally.candidates += extra;
+                tally.events += extra;
                 left += extra;
                 (from, since, rate) = (at, 0, raised);
             }
@@ -217,7 +218,7 @@ impl Collider<'_> {
         reference: &Vector<D>,
         bound: f64,
         rng: &mut Stream,
-        tally: &mut Tally,
+        tally: &mut Counters,
     ) -> Option<f64> {
         let (i, j) = rng.pair(group.len() as u32);
         let (mut a, mut b) = (group[i], group[j]);
@@ -249,7 +250,7 @@ impl Collider<'_> {
         g2: f64,
         reference: &Vector<D>,
         rng: &mut Stream,
-        tally: &mut Tally,
+        tally: &mut Counters,
     ) -> f64 {
         let e = impact_direction(g, g2.sqrt(), rng);
         let approach = dot(g, &e).max(0.0);
@@ -461,8 +462,8 @@ pub(crate) fn shuffle<T>(group: &mut [T], rng: &mut Stream) {
 
 #[cfg(test)]
 mod tests {
-    use super::super::rng::Purpose;
     use super::*;
+    use crate::rng::Purpose;
 
     /// The impact directions have density proportional to cos theta on the hemisphere
     /// around g: <cos theta> = 2/3 in 3D, pi/4 in 2D.

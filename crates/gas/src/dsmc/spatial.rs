@@ -2,10 +2,13 @@
 //! majorant process inside each collision cell.
 
 use super::kernel::{self, Collider, Moments, Simulator};
-use super::rng::{Purpose, Stream};
 use super::species::Species;
-use super::{check_input, frequency_estimate, positive, theory, SpatialSnapshot, StepSize, Tally};
+use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
+use crate::engine::Counters;
+use crate::error::{require_positive, Error, Result};
+use crate::rng::{Purpose, Stream};
 use crate::system::{wrap, System, Vector};
+use crate::theory;
 use rayon::prelude::*;
 use restitution::Restitution;
 
@@ -16,7 +19,8 @@ pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
 pub const DEFAULT_MIN_PARTICLES_PER_CELL: f64 = 10.0;
 
 /// Options of [`SpatialDsmc`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpatialOptions {
     /// Width of the collision cells, widened to the nearest width that divides the box
     /// side. None: [`DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS`] mean free paths
@@ -70,7 +74,7 @@ pub struct SpatialDsmc<const D: usize> {
     weight: f64,
     time: f64,
     steps: u64,
-    tally: Tally,
+    tally: Counters,
     temperature: f64,
     system: System<D>,
 }
@@ -86,22 +90,25 @@ impl<const D: usize> SpatialDsmc<D> {
         law: Box<dyn Restitution>,
         seed: u64,
         options: SpatialOptions,
-    ) -> Result<Self, String> {
+    ) -> Result<Self> {
         check_input(&system, phi)?;
         let length = system.length;
-        if !(length.is_finite() && length > 0.0) {
-            return Err(format!("length = {length}: allowed a finite number > 0"));
-        }
+        require_positive("length", length)?;
         let n = system.velocities.len();
         if system.positions.len() != n {
-            return Err("positions and velocities differ in number".into());
+            return Err(Error::LengthMismatch {
+                what: "positions and velocities".into(),
+            });
         }
         if let Some(i) = system
             .positions
             .iter()
             .position(|x| x.iter().any(|c| !c.is_finite()))
         {
-            return Err(format!("positions[{i}]: not finite"));
+            return Err(Error::NotFinite {
+                what: "positions",
+                index: i,
+            });
         }
         options.step.check()?;
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
@@ -120,16 +127,20 @@ impl<const D: usize> SpatialDsmc<D> {
             }
             Some(w) if w.is_finite() && w > 0.0 && w <= length => w,
             Some(w) => {
-                return Err(format!(
-                    "cell_width = {w}: allowed 0 < width <= box side {length}"
+                return Err(Error::out_of_range(
+                    "cell_width",
+                    w,
+                    format!("0 < width <= box side {length}"),
                 ))
             }
         };
         // The largest number of cells that are at least `width` wide (floor).
         let cells_per_side = (length / width * (1.0 + 1e-12)).floor().max(1.0);
         if cells_per_side.powi(D as i32) > (1u64 << 62) as f64 {
-            return Err(format!(
-                "cell_width = {width}: at most 2^62 cells (box side {length})"
+            return Err(Error::out_of_range(
+                "cell_width",
+                width,
+                format!("at most 2^62 cells (box side {length})"),
             ));
         }
         let simulators: Vec<Simulator<D>> = system
@@ -156,7 +167,7 @@ impl<const D: usize> SpatialDsmc<D> {
             weight,
             time: 0.0,
             steps: 0,
-            tally: Tally::default(),
+            tally: Counters::default(),
             temperature,
             system: System {
                 length,
@@ -169,10 +180,7 @@ impl<const D: usize> SpatialDsmc<D> {
     }
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
-    pub fn restore(
-        snapshot: SpatialSnapshot<D>,
-        law: Box<dyn Restitution>,
-    ) -> Result<Self, String> {
+    pub fn restore(snapshot: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
         let mut engine = Self::new(
             snapshot.system,
             snapshot.packing_fraction,
@@ -182,7 +190,7 @@ impl<const D: usize> SpatialDsmc<D> {
         )?;
         engine.time = snapshot.time;
         engine.steps = snapshot.steps;
-        engine.tally = snapshot.tally;
+        engine.tally = snapshot.counters;
         engine.temperature = snapshot.temperature;
         Ok(engine)
     }
@@ -205,7 +213,7 @@ impl<const D: usize> SpatialDsmc<D> {
             options,
             time,
             steps,
-            tally,
+            counters: tally,
             reference_velocity: [0.0; D],
             speed_bound: 0.0,
             draws: 0,
@@ -217,7 +225,7 @@ impl<const D: usize> SpatialDsmc<D> {
         self.time
     }
 
-    pub fn tally(&self) -> Tally {
+    pub fn counters(&self) -> Counters {
         self.tally
     }
 
@@ -355,10 +363,10 @@ impl<const D: usize> SpatialDsmc<D> {
         let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
             / width.powi(D as i32);
         let (seed, step, species) = (self.seed, self.steps, &self.species);
-        let results: Vec<(Tally, Moments<D>)> = groups
+        let results: Vec<(Counters, Moments<D>)> = groups
             .into_par_iter()
             .map(|cell| {
-                let mut tally = Tally::default();
+                let mut tally = Counters::default();
                 if cell.len() >= 2 {
                     let mean = Moments::of(cell, species).mean();
                     let mut bound = kernel::speed_bound(cell, &mean);

@@ -1,7 +1,8 @@
 //! The kinds of particle in a DSMC gas and what a collision needs to know about a pair.
 
-use super::theory::{contact_value, mixture_contact_value};
+use crate::error::{Error, Result};
 use crate::system::ball_volume;
+use crate::theory::{contact_value, mixture_contact_value};
 
 /// Distinct (radius, mass) pairs the engines accept (pair data is a table of this squared).
 pub const MAX_SPECIES: usize = 256;
@@ -43,17 +44,25 @@ impl Species {
         radii: &[f64],
         masses: &[f64],
         phi: f64,
-    ) -> Result<(Species, Vec<u32>), String> {
+    ) -> Result<(Species, Vec<u32>)> {
         let mut kinds: Vec<(f64, f64)> = Vec::new();
         let mut counts: Vec<usize> = Vec::new();
         let mut index = Vec::with_capacity(radii.len());
         let mut last = usize::MAX;
         for (i, (&r, &m)) in radii.iter().zip(masses).enumerate() {
             if !(r.is_finite() && r > 0.0) {
-                return Err(format!("radii[{i}] = {r}: allowed a finite number > 0"));
+                return Err(Error::out_of_range(
+                    format!("radii[{i}]"),
+                    r,
+                    "a finite number > 0",
+                ));
             }
             if !(m.is_finite() && m > 0.0) {
-                return Err(format!("masses[{i}] = {m}: allowed a finite number > 0"));
+                return Err(Error::out_of_range(
+                    format!("masses[{i}]"),
+                    m,
+                    "a finite number > 0",
+                ));
             }
             if last == usize::MAX || kinds[last] != (r, m) {
                 last = match kinds.iter().position(|&k| k == (r, m)) {
@@ -64,8 +73,10 @@ impl Species {
                         kinds.len() - 1
                     }
                     None => {
-                        return Err(format!(
-                            "species: more than {MAX_SPECIES} distinct (radius, mass) pairs"
+                        return Err(Error::out_of_range(
+                            "species",
+                            format!("more than {MAX_SPECIES} distinct (radius, mass) pairs"),
+                            format!("at most {MAX_SPECIES}"),
                         ))
                     }
                 };

@@ -1,5 +1,6 @@
-//! The Enskog–Boltzmann kinetic theory the DSMC engines sample, for smooth hard spheres of
-//! diameter sigma, mass m, number density n and packing fraction phi in D = 1, 2, 3.
+//! The Enskog–Boltzmann kinetic theory of granular gases (DSMC samples it; the event-driven
+//! engine and DSMC are compared with it), for smooth hard spheres of diameter sigma, mass m,
+//! number density n and packing fraction phi in D = 1, 2, 3.
 //!
 //! Collision rate of a pair with relative velocity g (Enskog, homogeneous):
 //! g2(phi) sigma^(D-1) / V times the integral over impact directions e of (g.e)^+, which is
@@ -24,11 +25,11 @@
 use std::f64::consts::PI;
 
 /// The dimensions the engines support.
-pub fn check_dimension<const D: usize>() -> Result<(), String> {
+pub fn check_dimension<const D: usize>() -> crate::Result<()> {
     if (1..=3).contains(&D) {
         Ok(())
     } else {
-        Err(format!("dimension = {D}: allowed 1, 2, 3"))
+        Err(crate::Error::out_of_range("dimension", D, "1, 2, 3"))
     }
 }
 
@@ -125,6 +126,27 @@ pub fn mean_free_path<const D: usize>(density: f64, diameter: f64, phi: f64) -> 
 /// cooling rate, a2 = 0).
 pub fn haff_time<const D: usize>(eps: f64, omega0: f64) -> f64 {
     2.0 * D as f64 / ((1.0 - eps * eps) * omega0)
+}
+
+/// Haff's law T(t) = T0 / (1 + t/tau)^2 with tau from [`haff_time`].
+pub fn haff_temperature(t0: f64, tau: f64, t: f64) -> f64 {
+    t0 / (1.0 + t / tau).powi(2)
+}
+
+/// Haff's time of a monodisperse gas of `n` spheres of diameter `diameter` and mass `mass`
+/// in the volume `volume` at packing fraction `phi` and temperature `t0`, with the Enskog
+/// collision frequency ([`collision_frequency`]).
+pub fn enskog_haff_time<const D: usize>(
+    eps: f64,
+    n: usize,
+    volume: f64,
+    diameter: f64,
+    mass: f64,
+    t0: f64,
+    phi: f64,
+) -> f64 {
+    let omega0 = collision_frequency::<D>(n as f64 / volume, diameter, mass, t0, phi);
+    haff_time::<D>(eps, omega0)
 }
 
 /// Collisions per particle by time t under Haff's law: omega0 tau ln(1 + t/tau)

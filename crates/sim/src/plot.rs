@@ -1,6 +1,6 @@
 //! PNG figures of a run (plotters).
 
-use crate::error::{CliError, CliResult};
+use crate::error::{Error, Result};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -9,7 +9,7 @@ pub fn temperature(
     path: &Path,
     samples: &[(f64, f64)],
     reference: Option<(&str, &dyn Fn(f64) -> f64)>,
-) -> CliResult {
+) -> Result<()> {
     let points: Vec<(f64, f64)> = samples
         .iter()
         .copied()
@@ -22,7 +22,7 @@ pub fn temperature(
     let (lo, hi) = points
         .iter()
         .fold((f64::MAX, f64::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
+    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
         let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
         root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
@@ -58,7 +58,10 @@ pub fn temperature(
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| CliError::argument("--out", format!("writing {}: {e}", path.display())))
+    draw().map_err(|e| Error::Plot {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
 }
 
 /// Axis scales of [`lines`].
@@ -73,7 +76,7 @@ pub struct Axes<'a> {
 
 /// Several named curves on one chart as a PNG; curves named "theory..." or
 /// "equilibrium..." are thin reference lines in the colour of the curve before them.
-pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> CliResult {
+pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> Result<()> {
     let keep = |&(x, y): &(f64, f64)| {
         x.is_finite() && y.is_finite() && (!axes.log_x || x > 0.0) && (!axes.log_y || y > 0.0)
     };
@@ -100,7 +103,7 @@ pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> C
         }
     };
     let ((x0, x1), (y0, y1)) = (pad(x0, x1, axes.log_x), pad(y0, y1, axes.log_y));
-    let draw = || -> Result<(), Box<dyn std::error::Error>> {
+    let draw = || -> std::result::Result<(), Box<dyn std::error::Error>> {
         let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
         root.fill(&WHITE)?;
         let mut builder = ChartBuilder::on(&root);
@@ -150,5 +153,8 @@ pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> C
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| CliError::argument("--out", format!("writing {}: {e}", path.display())))
+    draw().map_err(|e| Error::Plot {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
 }

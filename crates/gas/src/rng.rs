@@ -1,4 +1,5 @@
-//! Random streams of the DSMC engines.
+//! Counted random streams of the engines (DSMC blocks and cells, the baths of the
+//! event-driven engine).
 //!
 //! Every stream is a PCG-64 (128-bit multiplicative congruential generator with the XSL-RR
 //! output, O'Neill 2014) whose state is a hash of (seed, purpose, step, index). A group of

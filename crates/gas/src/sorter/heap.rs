@@ -1,4 +1,4 @@
-//! The event calendar: an indexed min-heap with one entry per particle (its earliest
+//! The heap sorter of the event-driven engine: an indexed min-heap with one entry per particle (its earliest
 //! predicted event), as in Marín, Risso & Cordero, J. Comput. Phys. 109, 306 (1993).
 //! Memory is O(N) whatever the number of predictions; an update moves one entry.
 //!
@@ -18,15 +18,15 @@ const ARITY: usize = 8;
 
 /// Min-heap of (time, particle) with O(log N) update of any particle's time.
 #[derive(Debug, Clone)]
-pub struct EventQueue {
+pub struct HeapSorter {
     heap: Vec<Entry>,
     slot: Vec<u32>,
 }
 
-impl EventQueue {
+impl HeapSorter {
     /// All `n` particles at time +infinity.
     pub fn new(n: usize) -> Self {
-        EventQueue {
+        HeapSorter {
             heap: (0..n as u32)
                 .map(|particle| Entry {
                     time: f64::INFINITY,
@@ -134,7 +134,7 @@ mod tests {
     #[test]
     fn orders_random_updates() {
         for n in [1, 2, 5, 100] {
-            let mut q = EventQueue::new(n);
+            let mut q = HeapSorter::new(n);
             let mut x = 12345u64;
             let mut times = vec![f64::INFINITY; n];
             for _ in 0..3000 {

@@ -1,5 +1,5 @@
-//! A calendar queue for the event calendar (after G. Paul, J. Comput. Phys. 221, 615
-//! (2007)): one entry per particle, as the heap of [`crate::queue`], but O(1) per update.
+//! A calendar queue ("buckets") sorter of the event-driven engine (after G. Paul, J. Comput. Phys. 221, 615
+//! (2007)): one entry per particle, as the heap of [`super::heap`], but O(1) per update.
 //!
 //! Time is cut into `buckets` intervals of width `width` starting at bucket `first`;
 //! every entry due before the end of the current bucket sits in a small binary heap, every
@@ -33,7 +33,7 @@ struct Record {
 
 /// The calendar queue.
 #[derive(Debug, Clone)]
-pub struct CalendarQueue {
+pub struct BucketSorter {
     records: Vec<Record>,
     /// First particle of each bucket list; the last entry is the overflow list.
     heads: Vec<u32>,
@@ -50,11 +50,11 @@ pub struct CalendarQueue {
     updates: usize,
 }
 
-impl CalendarQueue {
+impl BucketSorter {
     /// All `n` particles at time +infinity.
     pub fn new(n: usize) -> Self {
         let buckets = n.clamp(16, 1 << 26);
-        let mut q = CalendarQueue {
+        let mut q = BucketSorter {
             records: vec![
                 Record {
                     time: f64::INFINITY,
@@ -320,7 +320,7 @@ mod tests {
     #[test]
     fn orders_updates_like_a_heap() {
         for n in [1, 2, 5, 100, 1000] {
-            let mut q = CalendarQueue::new(n);
+            let mut q = BucketSorter::new(n);
             let mut times = vec![f64::INFINITY; n];
             let mut x = 987654321u64;
             let mut uniform = || {

@@ -1,0 +1,108 @@
+//! `haff bench dsmc`: throughput of homogeneous DSMC.
+
+use super::median_min_max;
+use crate::error::{CliError, CliResult};
+use crate::output::{parse_count, stdout, ReportFormat};
+use restitution::Restitution;
+use std::io::Write;
+use std::time::Instant;
+
+/// `haff bench dsmc`: accepted collisions per second of homogeneous DSMC in 3D (a cooling
+/// gas, T0 = 1), on all cores or `--threads`, medians of repeats, and memory per particle.
+pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
+    use gas::dsmc::{point_gas, Scheme};
+    use gas::HomogeneousDsmc;
+    use restitution::{Constant, ScaledForm, Viscoelastic};
+    let n = parse_count("--particles", &args.particles, 2, 1_000_000_000)?;
+    let phi = crate::output::parse_number(
+        "--packing-fraction",
+        &args.packing_fraction,
+        crate::output::Allowed::between("phi", 1e-6, 0.45),
+    )?;
+    let per_particle = crate::output::parse_number(
+        "--collisions",
+        &args.collisions,
+        crate::output::Allowed::between("collisions per particle", 1e-3, 1e4),
+    )?;
+    let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
+    let scheme = match args.scheme.as_str() {
+        "blocks" => Scheme::default(),
+        "exact" => Scheme::Exact,
+        other => {
+            return Err(CliError::argument(
+                "--scheme",
+                format!("'{other}': allowed: blocks, exact"),
+            ))
+        }
+    };
+    let law: Box<dyn Restitution> = if args.law == "fast" {
+        let beta = crate::output::parse_number(
+            "--beta",
+            &args.beta,
+            crate::output::Allowed::between("beta", 1e-12, 1e12),
+        )?;
+        let form: ScaledForm = "fast".parse().map_err(|e| CliError::library("--law", e))?;
+        Box::new(Viscoelastic::new(beta, form).map_err(|e| CliError::library("--beta", e))?)
+    } else {
+        let eps = crate::output::parse_number(
+            "--law",
+            &args.law,
+            crate::output::Allowed::between("fast, or a constant eps", 0.0, 1.0),
+        )?;
+        Box::new(Constant::new(eps).map_err(|e| CliError::library("--law", e))?)
+    };
+    let threads = match &args.threads {
+        Some(t) => parse_count("--threads", t, 1, 4096)?,
+        None => rayon::current_num_threads(),
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::argument("--threads", e.to_string()))?;
+    let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
+    let collisions = (per_particle * n as f64 / 2.0).round().max(1.0) as u64;
+    let (mut rates, mut bytes) = (Vec::new(), 0);
+    for repeat in 0..repeats {
+        let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 1 + repeat as u64)
+            .map_err(|e| CliError::argument("--particles", e))?;
+        let mut engine = HomogeneousDsmc::new(system, phi, law.box_clone(), 1, scheme)
+            .map_err(|e| CliError::argument("--particles", e))?;
+        pool.install(|| engine.run_collisions(n as u64 / 2));
+        let before = engine.counters().collisions;
+        let start = Instant::now();
+        pool.install(|| engine.run_collisions(collisions));
+        let seconds = start.elapsed().as_secs_f64();
+        rates.push((engine.counters().collisions - before) as f64 / seconds);
+        bytes = engine.memory_bytes();
+    }
+    let [median, min, max] = median_min_max(rates);
+    let report = serde_json::json!({
+        "particles": n,
+        "packing_fraction": phi,
+        "scheme": args.scheme,
+        "law": args.law,
+        "threads": threads,
+        "collisions_per_repeat": collisions,
+        "repeats": repeats,
+        "collisions_per_second": median,
+        "collisions_per_second_min": min,
+        "collisions_per_second_max": max,
+        "collisions_per_second_per_thread": median / threads as f64,
+        // One worker thread per core (the default uses all cores).
+        "collisions_per_second_per_core": median / threads as f64,
+        "bytes_per_particle": bytes as f64 / n as f64,
+    });
+    let mut out = stdout();
+    match args.format {
+        ReportFormat::Json => crate::output::write_json(&mut out, &report)?,
+        ReportFormat::Table => writeln!(
+            out,
+            "N = {n}, phi = {phi}, {} scheme, law {}: {median:.3e} collisions/s (min {min:.3e}, max {max:.3e}) on {threads} threads, {:.3e} per thread, {:.0} bytes/particle (median of {repeats})",
+            args.scheme,
+            args.law,
+            median / threads as f64,
+            bytes as f64 / n as f64
+        )?,
+    }
+    Ok(out.flush()?)
+}

@@ -1,0 +1,124 @@
+//! `haff bench emd`: throughput of the event-driven engine.
+
+use super::median_min_max;
+use crate::error::{CliError, CliResult};
+use crate::output::{parse_count, stdout, ReportFormat};
+use serde::Serialize;
+use std::io::Write;
+
+/// The timings of one calendar in `bench emd`.
+#[derive(Debug, Serialize)]
+struct EmdTiming {
+    calendar: &'static str,
+    collisions_per_second: f64,
+    collisions_per_second_min: f64,
+    collisions_per_second_max: f64,
+    events_per_second: f64,
+    bytes_per_particle: f64,
+}
+
+/// `haff bench emd`: collisions and events per second of an elastic 3D gas (one core),
+/// medians of repeats, and the engine's memory per particle. With `--calendar both` the
+/// repeats of the two calendars alternate, so that drifts of the machine hit both alike.
+pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
+    use gas::{init, EventDriven, SorterKind};
+    let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
+    let phi = crate::output::parse_number(
+        "--packing-fraction",
+        &args.packing_fraction,
+        crate::output::Allowed::between("phi", 1e-6, 0.45),
+    )?;
+    let width = crate::output::parse_number(
+        "--cell-width",
+        &args.cell_width,
+        crate::output::Allowed::between("width in diameters", 1.0, 1e6),
+    )?;
+    let events = parse_count("--events", &args.events, 1, 1_000_000_000_000)? as u64;
+    let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
+    let calendars: Vec<(&'static str, SorterKind)> = match args.calendar.as_str() {
+        "heap" => vec![("heap", SorterKind::Heap)],
+        "buckets" => vec![("buckets", SorterKind::Buckets)],
+        "both" => vec![("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)],
+        other => {
+            return Err(CliError::argument(
+                "--calendar",
+                format!("'{other}': allowed: heap, buckets, both"),
+            ))
+        }
+    };
+    let mut rates = vec![(vec![], vec![], 0usize); calendars.len()];
+    for repeat in 0..repeats {
+        for (&(_, kind), (collision_rates, event_rates, bytes)) in calendars.iter().zip(&mut rates)
+        {
+            let system = init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1 + repeat as u64)
+                .map_err(|e| CliError::argument("--particles", e))?;
+            let law =
+                Box::new(restitution::Constant::new(1.0).map_err(|e| CliError::library("law", e))?);
+            let mut engine = EventDriven::with_cell_width(system, law, width)
+                .map_err(|e| CliError::argument("--particles", e))?;
+            engine.set_sorter(kind);
+            for _ in 0..events {
+                engine.step();
+            }
+            let before = engine.counters();
+            let start = std::time::Instant::now();
+            for _ in 0..events {
+                engine.step();
+            }
+            let seconds = start.elapsed().as_secs_f64();
+            let after = engine.counters();
+            collision_rates.push((after.collisions - before.collisions) as f64 / seconds);
+            event_rates.push((after.events - before.events) as f64 / seconds);
+            *bytes = engine.memory_bytes();
+        }
+    }
+    let timings: Vec<EmdTiming> = calendars
+        .iter()
+        .zip(rates)
+        .map(|(&(calendar, _), (collision_rates, event_rates, bytes))| {
+            let [collisions, min, max] = median_min_max(collision_rates);
+            EmdTiming {
+                calendar,
+                collisions_per_second: collisions,
+                collisions_per_second_min: min,
+                collisions_per_second_max: max,
+                events_per_second: median_min_max(event_rates)[0],
+                bytes_per_particle: bytes as f64 / n as f64,
+            }
+        })
+        .collect();
+    let first = &timings[0];
+    let report = serde_json::json!({
+        "particles": n,
+        "packing_fraction": phi,
+        "cell_width": width,
+        "events_per_repeat": events,
+        "repeats": repeats,
+        "calendar": first.calendar,
+        "collisions_per_second": first.collisions_per_second,
+        "collisions_per_second_min": first.collisions_per_second_min,
+        "collisions_per_second_max": first.collisions_per_second_max,
+        "events_per_second": first.events_per_second,
+        "bytes_per_particle": first.bytes_per_particle,
+        "calendars": timings,
+    });
+    let mut out = stdout();
+    match args.format {
+        ReportFormat::Json => crate::output::write_json(&mut out, &report)?,
+        ReportFormat::Table => {
+            for t in &timings {
+                writeln!(
+                    out,
+                    "N = {n}, phi = {phi}, calendar {}: {:.3e} collisions/s (min {:.3e}, max {:.3e}), {:.3e} events/s, {:.0} bytes/particle (median of {repeats})",
+                    t.calendar,
+                    t.collisions_per_second,
+                    t.collisions_per_second_min,
+                    t.collisions_per_second_max,
+                    t.events_per_second,
+                    t.bytes_per_particle
+                )?;
+            }
+        }
+    }
+    Ok(out.flush()?)
+}

@@ -1,0 +1,167 @@
+//! The complete state of the event-driven engine, and the engine interface.
+
+use super::{BathState, EventDriven};
+use crate::cells::NONE;
+use crate::engine::{Checkpoint, Counters, Engine};
+use crate::error::{Error, Result};
+use crate::serde_util;
+use crate::sorter::SorterKind;
+use crate::system::System;
+use restitution::Restitution;
+use serde::{Deserialize, Serialize};
+
+impl<const D: usize> EventDriven<D> {
+    /// Brings every particle to the current time, rebuilds the cell lists and predicts
+    /// every event afresh: the state is then a function of (positions, velocities, time)
+    /// alone, so a run restored from a snapshot taken here continues bit for bit.
+    pub fn synchronize(&mut self) {
+        let n = self.particles.len();
+        self.heads.iter_mut().for_each(|h| *h = NONE);
+        self.occupied.iter_mut().for_each(|w| *w = 0);
+        for i in 0..n {
+            self.bring_to_now(i);
+            let p = &mut self.particles[i];
+            p.collision = f64::INFINITY;
+            p.crossing = f64::INFINITY;
+            p.partner = NONE;
+            let c = self.grid.coords_of(&p.position);
+            self.insert(i, c);
+        }
+        for i in 0..n {
+            self.predict(i);
+        }
+    }
+
+    /// Collision counts per particle modulo 2^32 (for snapshots).
+    pub fn counts(&self) -> Vec<u64> {
+        self.particles.iter().map(|p| p.count as u64).collect()
+    }
+}
+
+/// The TC model in a saved state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TcState {
+    /// Contact duration.
+    pub duration: f64,
+    /// Each particle's last collision time (null before its first).
+    #[serde(with = "serde_util::never_as_null")]
+    pub last: Vec<f64>,
+}
+
+/// Everything an [`EventDriven`] engine needs to continue bit for bit (with its law),
+/// taken after [`EventDriven::synchronize`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventDrivenState<const D: usize> {
+    pub time: f64,
+    /// Positions at `time`, velocities, radii and masses.
+    pub system: System<D>,
+    /// Collision count of each particle (modulo 2^32), which stamps predictions.
+    pub counts: Vec<u64>,
+    pub counters: Counters,
+    /// The smallest cell width asked for (0: one diameter).
+    pub min_cell_width: f64,
+    pub sorter: SorterKind,
+    /// The TC model, if on.
+    pub tc: Option<TcState>,
+    /// The baths of a stochastic law.
+    pub baths: Option<BathState>,
+    /// Collisions without time advancing since `stall_since` (collapse detection).
+    pub stall_since: f64,
+    pub stall_collisions: u64,
+}
+
+impl<const D: usize> Engine<D> for EventDriven<D> {
+    fn run_until(&mut self, t: f64) {
+        EventDriven::run_until(self, t)
+    }
+    fn run_collisions(&mut self, collisions: u64) {
+        EventDriven::run_collisions(self, collisions)
+    }
+    fn time(&self) -> f64 {
+        self.time
+    }
+    fn counters(&self) -> Counters {
+        self.tally
+    }
+    fn particles(&self) -> usize {
+        self.particles.len()
+    }
+    fn system(&mut self) -> &System<D> {
+        EventDriven::system(self)
+    }
+    fn bath_temperatures(&self) -> Option<&[f64]> {
+        EventDriven::bath_temperatures(self)
+    }
+    fn collapsed(&self) -> Option<f64> {
+        self.collapsed
+    }
+    fn memory_bytes(&self) -> usize {
+        EventDriven::memory_bytes(self)
+    }
+}
+
+impl<const D: usize> Checkpoint<D> for EventDriven<D> {
+    type State = EventDrivenState<D>;
+
+    /// Synchronizes the engine (see [`EventDriven::synchronize`]), then takes its state.
+    fn save(&mut self) -> EventDrivenState<D> {
+        self.synchronize();
+        EventDrivenState {
+            time: self.time,
+            system: self.system().clone(),
+            counts: self.counts(),
+            counters: self.tally,
+            min_cell_width: self.min_cell_width,
+            sorter: self.queue.kind(),
+            tc: self.tc.as_ref().map(|tc| TcState {
+                duration: tc.duration,
+                last: tc.last.clone(),
+            }),
+            baths: self.bath_state(),
+            stall_since: self.stall.0,
+            stall_collisions: self.stall.1,
+        }
+    }
+
+    fn restore(state: EventDrivenState<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        let EventDrivenState {
+            time,
+            system,
+            counts,
+            counters,
+            min_cell_width,
+            sorter,
+            tc,
+            baths,
+            stall_since,
+            stall_collisions,
+        } = state;
+        if counts.len() != system.len() {
+            return Err(Error::LengthMismatch {
+                what: "collision counts and particles".into(),
+            });
+        }
+        let mut engine = Self::with_cell_width(system, law, min_cell_width)?;
+        engine.time = time;
+        for (p, count) in engine.particles.iter_mut().zip(counts) {
+            p.valid_at = time;
+            // Counts are kept modulo 2^32 (see `Particle::count`).
+            p.count = count as u32;
+        }
+        engine.tally = counters;
+        engine.stall = (stall_since, stall_collisions);
+        if sorter != SorterKind::default() {
+            engine.set_sorter(sorter);
+        }
+        engine.synchronize();
+        if let Some(baths) = baths {
+            engine.set_bath_state(baths)?;
+        }
+        if let Some(tc) = tc {
+            engine.set_tc_model(tc.duration, Some(tc.last))?;
+        }
+        Ok(engine)
+    }
+}

@@ -1,0 +1,295 @@
+//! The run description: what a TOML run file (or a Python dict) says, typed. Every closed
+//! set of choices is an enum; values are checked by [`crate::validate`]. The serde form is
+//! the file's: the same keys, and the same JSON under `parameters` in `summary.json`.
+//!
+//! ```toml
+//! [system]
+//! dimension = 3            # 1, 2 or 3
+//! particles = 4000         # >= 2
+//! packing_fraction = 0.05  # 0 < phi <= 0.45 (3D), 0.7 (2D), 0.9 (1D)
+//! diameter = 1.0
+//! mass = 1.0
+//! # or, instead of diameter and mass, a mixture (number fractions, normalized):
+//! # species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 },
+//! #            { diameter = 1.4, mass = 2.744, fraction = 0.5 }]
+//! temperature = 1.0        # initial T = m <v^2> / d
+//! seed = 1
+//! [collision]
+//! law = "constant"         # constant | dashpot | viscoelastic | stochastic
+//! restitution = 0.9        # constant: 0 <= eps <= 1
+//! # dashpot: damping_ratio = R, criterion = "improved" | "naive"
+//! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K"
+//! # stochastic: modes = M, distribution = "glauber" | "tabulated", table = PATH,
+//! #             bath_temperature = 0.0
+//! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
+//! [run]
+//! engine = "event-driven"  # event-driven | dsmc
+//! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 4096 (blocks),
+//! #       collisions_per_step = 1 (blocks; spatial: 0.2) or time_step = DT,
+//! #       collision_cell_width = W (spatial)
+//! collisions_per_particle = 500   # or end_time = ...
+//! samples = 200
+//! spacing = "log"          # log | linear
+//! histogram_at = [0.0, 50.0, 500.0]  # velocity histograms (unit of the stop criterion)
+//! histogram_bins = 60      # 4 ..= 10000
+//! ```
+
+use crate::error::{Error, Result};
+use restitution::{Criterion, FormName};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A whole run file.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunDescription {
+    pub system: SystemSection,
+    pub collision: CollisionSection,
+    pub run: RunSection,
+}
+
+/// `[system]`: the particles and their initial state.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SystemSection {
+    #[serde(default = "three")]
+    pub dimension: u32,
+    pub particles: usize,
+    pub packing_fraction: f64,
+    /// 1.0 unless `species` is given (filled in by [`RunDescription::normalize`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub diameter: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// A mixture instead of `diameter` and `mass`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub species: Option<Vec<SpeciesEntry>>,
+    #[serde(default = "one")]
+    pub temperature: f64,
+    #[serde(default = "first_seed")]
+    pub seed: u64,
+}
+
+/// One entry of `system.species`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeciesEntry {
+    pub diameter: f64,
+    pub mass: f64,
+    /// Number fraction (normalized over the species).
+    pub fraction: f64,
+}
+
+/// `collision.law`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LawKind {
+    /// A constant coefficient of restitution (`restitution`).
+    Constant,
+    /// The linear dash-pot (`damping_ratio`, `criterion`).
+    Dashpot,
+    /// Viscoelastic spheres (`beta`, `form`).
+    Viscoelastic,
+    /// Giese's stochastic law with per-particle baths (`modes`, `distribution`, `table`,
+    /// `bath_temperature`).
+    Stochastic,
+}
+
+/// `collision.distribution` of the stochastic law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Distribution {
+    /// Eq. (7) of Giese.
+    Glauber,
+    /// p(eps^2) tabulated from Eq. (3) by `haff rods table`.
+    Tabulated,
+}
+
+/// `[collision]`: the law and its parameters. Keys of the other laws are refused by
+/// [`crate::validate`].
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSection {
+    pub law: LawKind,
+    // The four keys below are written as null when absent (summary.json has always
+    // listed them).
+    #[serde(default)]
+    pub restitution: Option<f64>,
+    #[serde(default)]
+    pub damping_ratio: Option<f64>,
+    #[serde(default)]
+    pub criterion: Option<Criterion>,
+    #[serde(default)]
+    pub beta: Option<f64>,
+    #[serde(default)]
+    pub form: Option<FormName>,
+    /// Contact duration of the TC model (0 or absent: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tc: Option<f64>,
+    /// Stochastic law: Glauber (default) or tabulated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub distribution: Option<Distribution>,
+    /// Stochastic law: internal vibration modes per particle.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modes: Option<u32>,
+    /// Stochastic law: initial bath temperature of every particle (default 0: cold).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bath_temperature: Option<f64>,
+    /// Stochastic tabulated law: a table written by `haff rods table` (a path relative to
+    /// the working directory).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<String>,
+}
+
+/// `run.engine`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EngineKind {
+    EventDriven,
+    Dsmc,
+}
+
+/// `run.dsmc_scheme`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DsmcScheme {
+    /// Homogeneous, the exact process in parallel blocks.
+    Blocks,
+    /// Homogeneous, the exact process over all pairs (serial).
+    Exact,
+    /// Collision cells and free streaming in the periodic box.
+    Spatial,
+}
+
+impl DsmcScheme {
+    /// The name in the run file.
+    pub fn name(self) -> &'static str {
+        match self {
+            DsmcScheme::Blocks => "blocks",
+            DsmcScheme::Exact => "exact",
+            DsmcScheme::Spatial => "spatial",
+        }
+    }
+}
+
+/// `run.spacing` of the samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Spacing {
+    Log,
+    Linear,
+}
+
+/// `[run]`: the engine, how far to go and what to record.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunSection {
+    #[serde(default = "event_driven")]
+    pub engine: EngineKind,
+    pub collisions_per_particle: Option<f64>,
+    pub end_time: Option<f64>,
+    #[serde(default = "two_hundred")]
+    pub samples: usize,
+    #[serde(default = "log")]
+    pub spacing: Spacing,
+    /// Where to take velocity histograms (unit of the stop criterion).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub histogram_at: Option<Vec<f64>>,
+    /// Bins of the velocity histograms (default [`crate::observer::HISTOGRAM_BINS`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub histogram_bins: Option<usize>,
+    /// DSMC: blocks (default), exact or spatial.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dsmc_scheme: Option<DsmcScheme>,
+    /// DSMC blocks: particles per block.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub block_size: Option<usize>,
+    /// DSMC blocks / spatial: collisions per particle per step (or `time_step`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collisions_per_step: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_step: Option<f64>,
+    /// Spatial DSMC: width of the collision cells.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub collision_cell_width: Option<f64>,
+}
+
+fn three() -> u32 {
+    3
+}
+fn one() -> f64 {
+    1.0
+}
+fn first_seed() -> u64 {
+    1
+}
+fn event_driven() -> EngineKind {
+    EngineKind::EventDriven
+}
+fn two_hundred() -> usize {
+    200
+}
+fn log() -> Spacing {
+    Spacing::Log
+}
+
+impl RunDescription {
+    /// Parses TOML text. A value of the wrong type or a name outside its choices is an
+    /// [`Error::Input`] naming the key (`collision.law: unknown variant ...`); text that is
+    /// not TOML is an [`Error::RunFile`] of `origin`.
+    pub fn from_toml(text: &str, origin: &Path) -> Result<Self> {
+        let syntax = |e: toml::de::Error| Error::RunFile {
+            path: origin.to_path_buf(),
+            message: one_line(&e.to_string()),
+        };
+        let deserializer = toml::de::Deserializer::parse(text).map_err(syntax)?;
+        serde_path_to_error::deserialize(deserializer).map_err(|e| {
+            let key = e.path().to_string();
+            let message = one_line(e.inner().message());
+            if key == "." {
+                Error::RunFile {
+                    path: origin.to_path_buf(),
+                    message,
+                }
+            } else {
+                Error::Input { key, message }
+            }
+        })
+    }
+
+    /// Reads and parses a TOML run file.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::RunFile {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml(&text, path)
+    }
+
+    /// Fills in the defaults that depend on other keys: diameter = mass = 1 without species
+    /// (so that summary.json names them).
+    pub fn normalize(&mut self) {
+        let s = &mut self.system;
+        if s.species.is_none() {
+            s.diameter.get_or_insert(1.0);
+            s.mass.get_or_insert(1.0);
+        }
+    }
+}
+
+/// The species of `system.species` as the initializer takes them.
+pub(crate) fn species(entries: &[SpeciesEntry]) -> Vec<gas::init::Species> {
+    entries
+        .iter()
+        .map(|x| gas::init::Species {
+            diameter: x.diameter,
+            mass: x.mass,
+            fraction: x.fraction,
+        })
+        .collect()
+}
+
+/// A multi-line message on one line.
+pub(crate) fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}

@@ -1,0 +1,48 @@
+//! The figures of a run, drawn with [`crate::plot`].
+
+use crate::error::Result;
+use crate::observer::Sample;
+use crate::validate::{LawSpec, Plan};
+use gas::system::ball_volume;
+use gas::theory::{collision_frequency, haff_temperature, haff_time};
+
+/// `temperature.png`: T(t) and, for a monodisperse gas with a constant eps < 1, Haff's law
+/// T0 / (1 + t/tau)^2 with the Enskog collision frequency at T0 (Haff 1983; Brilliantov &
+/// Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; see [`gas::theory`]).
+pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> Result<()> {
+    let points: Vec<(f64, f64)> = samples.iter().map(|s| (s.time, s.temperature)).collect();
+    let s = &plan.description.system;
+    let tau = match (&plan.law, &s.species, samples.first()) {
+        (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 => {
+            let (diameter, mass) = (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+            let phi = s.packing_fraction;
+            let t0 = first.temperature;
+            let omega0 = match s.dimension {
+                1 => enskog::<1>(phi, diameter, mass, t0),
+                2 => enskog::<2>(phi, diameter, mass, t0),
+                _ => enskog::<3>(phi, diameter, mass, t0),
+            };
+            let tau = match s.dimension {
+                1 => haff_time::<1>(*eps, omega0),
+                2 => haff_time::<2>(*eps, omega0),
+                _ => haff_time::<3>(*eps, omega0),
+            };
+            Some((t0, tau))
+        }
+        _ => None,
+    };
+    match tau {
+        Some((t0, tau)) => {
+            let haff = move |t: f64| haff_temperature(t0, tau, t);
+            crate::plot::temperature(path, &points, Some(("Haff's law (Enskog rate)", &haff)))
+        }
+        None => crate::plot::temperature(path, &points, None),
+    }
+}
+
+/// The Enskog collision frequency at packing fraction phi (number density phi over the
+/// sphere volume).
+fn enskog<const D: usize>(phi: f64, diameter: f64, mass: f64, temperature: f64) -> f64 {
+    let density = phi / ball_volume::<D>(0.5 * diameter);
+    collision_frequency::<D>(density, diameter, mass, temperature, phi)
+}

@@ -1,0 +1,37 @@
+//! # haff-sim — the run driver
+//!
+//! A run as a library, used by the `haff` command and by Python alike:
+//!
+//! TOML or Python dict -> [`RunDescription`] -> [`validate`] -> [`Plan`] -> system + law +
+//! engine ([`engines`], [`law`]) -> [`observer`]s -> writers ([`output`], [`plot`]),
+//! with [`checkpoint`]s to continue a run bit for bit.
+//!
+//! ```no_run
+//! # fn main() -> sim::Result<()> {
+//! let toml = "[system]\nparticles = 1000\npacking_fraction = 0.1\n\
+//!             [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+//!             [run]\ncollisions_per_particle = 20\nsamples = 10\n";
+//! let mut run = sim::Simulation::from_toml(toml, "example.toml".as_ref())?;
+//! run.run(&mut (), None)?;
+//! println!("T = {}", run.samples().last().unwrap().temperature);
+//! # Ok(())
+//! # }
+//! ```
+
+pub mod checkpoint;
+pub mod description;
+mod engines;
+pub mod error;
+mod figures;
+pub mod law;
+pub mod observer;
+pub mod output;
+pub mod plot;
+pub mod schedule;
+pub mod simulation;
+pub mod validate;
+
+pub use description::RunDescription;
+pub use error::{Error, Result};
+pub use simulation::{Outcome, Progress, Simulation};
+pub use validate::{validate, Plan};

@@ -1,0 +1,392 @@
+//! Checks a run description before anything runs, and turns it into a [`Plan`]: typed
+//! choices with every value in range. Errors name the key and the allowed range.
+
+use crate::description::{
+    species, Distribution, DsmcScheme, EngineKind, LawKind, RunDescription, RunSection, Spacing,
+};
+use crate::error::{positive, Error, Result};
+use gas::dsmc::{Scheme, SpatialOptions, StepSize};
+use restitution::{Criterion, FormName};
+use std::path::PathBuf;
+
+/// How far a run goes: collisions per particle or time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stop {
+    CollisionsPerParticle(f64),
+    Time(f64),
+}
+
+impl Stop {
+    /// The end value, in the unit of the criterion.
+    pub fn end(self) -> f64 {
+        match self {
+            Stop::CollisionsPerParticle(c) => c,
+            Stop::Time(t) => t,
+        }
+    }
+
+    /// The key that set it.
+    pub fn key(self) -> &'static str {
+        match self {
+            Stop::CollisionsPerParticle(_) => "run.collisions_per_particle",
+            Stop::Time(_) => "run.end_time",
+        }
+    }
+}
+
+/// The collision law, checked (built by [`crate::law::build`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum LawSpec {
+    Constant(f64),
+    Dashpot {
+        damping_ratio: f64,
+        criterion: Criterion,
+    },
+    Viscoelastic {
+        beta: f64,
+        form: FormName,
+    },
+    Stochastic {
+        modes: u32,
+        distribution: StochasticTable,
+        bath_temperature: f64,
+    },
+}
+
+/// Where a stochastic law draws eps^2 from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StochasticTable {
+    Glauber,
+    Tabulated(PathBuf),
+}
+
+/// The engine and its options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EngineSpec {
+    EventDriven,
+    HomogeneousDsmc(Scheme),
+    SpatialDsmc(SpatialOptions),
+}
+
+/// A checked run: the description (normalized) and its typed reading.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    pub description: RunDescription,
+    pub stop: Stop,
+    pub law: LawSpec,
+    pub engine: EngineSpec,
+    /// Contact duration of the TC model, if on.
+    pub tc: Option<f64>,
+}
+
+/// Checks every key of `description` and returns the plan of the run.
+pub fn validate(description: &RunDescription) -> Result<Plan> {
+    check_system(description)?;
+    let law = law_spec(description)?;
+    let c = &description.collision;
+    if let Some(tc) = c.tc {
+        if !(tc.is_finite() && tc >= 0.0) {
+            return Err(Error::out_of_range(
+                "collision.tc",
+                tc,
+                "a finite number >= 0 (0: off)",
+            ));
+        }
+    }
+    let r = &description.run;
+    let engine = match r.engine {
+        EngineKind::EventDriven => {
+            for (key, given) in [
+                ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
+                ("run.block_size", r.block_size.is_some()),
+                ("run.collisions_per_step", r.collisions_per_step.is_some()),
+                ("run.time_step", r.time_step.is_some()),
+                ("run.collision_cell_width", r.collision_cell_width.is_some()),
+            ] {
+                if given {
+                    return Err(Error::input(key, "only for run.engine = \"dsmc\""));
+                }
+            }
+            EngineSpec::EventDriven
+        }
+        EngineKind::Dsmc => {
+            if c.tc.is_some_and(|tc| tc > 0.0) {
+                return Err(Error::input(
+                    "collision.tc",
+                    "the TC model is for run.engine = \"event-driven\" (DSMC has no collapse)",
+                ));
+            }
+            dsmc_spec(r)?
+        }
+    };
+    if !(2..=1_000_000).contains(&r.samples) {
+        return Err(Error::out_of_range(
+            "run.samples",
+            r.samples,
+            "2 <= samples <= 1e6",
+        ));
+    }
+    let stop = match (r.collisions_per_particle, r.end_time) {
+        (Some(c), None) => Stop::CollisionsPerParticle(positive("run.collisions_per_particle", c)?),
+        (None, Some(t)) => Stop::Time(positive("run.end_time", t)?),
+        _ => {
+            return Err(Error::input(
+                "run.collisions_per_particle",
+                "give exactly one of run.collisions_per_particle and run.end_time",
+            ))
+        }
+    };
+    check_histograms(r, stop)?;
+    let mut description = description.clone();
+    description.normalize();
+    Ok(Plan {
+        description,
+        stop,
+        law,
+        engine,
+        tc: c.tc.filter(|&tc| tc > 0.0),
+    })
+}
+
+/// `[system]`.
+fn check_system(description: &RunDescription) -> Result<()> {
+    let s = &description.system;
+    if !(1..=3).contains(&s.dimension) {
+        return Err(Error::out_of_range(
+            "system.dimension",
+            s.dimension,
+            "1, 2 or 3",
+        ));
+    }
+    if s.particles < 2 || s.particles > 100_000_000 {
+        return Err(Error::out_of_range(
+            "system.particles",
+            s.particles,
+            "2 <= N <= 1e8",
+        ));
+    }
+    let max_phi = gas::init::packing_limit(s.dimension as usize);
+    if !(s.packing_fraction > 0.0 && s.packing_fraction <= max_phi) {
+        let allowed = format!("0 < phi <= {max_phi} in {} dimensions", s.dimension);
+        return Err(Error::out_of_range(
+            "system.packing_fraction",
+            s.packing_fraction,
+            &allowed,
+        ));
+    }
+    match &s.species {
+        None => {
+            positive("system.diameter", s.diameter.unwrap_or(1.0))?;
+            positive("system.mass", s.mass.unwrap_or(1.0))?;
+        }
+        Some(_) if s.diameter.is_some() || s.mass.is_some() => {
+            return Err(Error::input(
+                "system.species",
+                "give either system.species or system.diameter/system.mass, not both",
+            ));
+        }
+        Some(entries) => {
+            if entries.is_empty() {
+                return Err(Error::input("system.species", "give at least one species"));
+            }
+            for (k, x) in entries.iter().enumerate() {
+                positive(&format!("system.species[{k}].diameter"), x.diameter)?;
+                positive(&format!("system.species[{k}].mass"), x.mass)?;
+                positive(&format!("system.species[{k}].fraction"), x.fraction)?;
+            }
+            gas::init::species_counts(s.particles, &species(entries))
+                .map_err(|e| Error::input("system.species", e))?;
+        }
+    }
+    positive("system.temperature", s.temperature)?;
+    Ok(())
+}
+
+/// `[collision]` without the TC model: the law and its keys.
+fn law_spec(description: &RunDescription) -> Result<LawSpec> {
+    let c = &description.collision;
+    let need =
+        |key: &str, x: Option<f64>| x.ok_or_else(|| Error::input(key, "missing for this law"));
+    if c.law != LawKind::Stochastic {
+        for (key, given) in [
+            ("collision.distribution", c.distribution.is_some()),
+            ("collision.modes", c.modes.is_some()),
+            ("collision.bath_temperature", c.bath_temperature.is_some()),
+            ("collision.table", c.table.is_some()),
+        ] {
+            if given {
+                return Err(Error::input(key, "only for law = \"stochastic\""));
+            }
+        }
+    }
+    Ok(match c.law {
+        LawKind::Constant => LawSpec::Constant(need("collision.restitution", c.restitution)?),
+        LawKind::Dashpot => LawSpec::Dashpot {
+            damping_ratio: need("collision.damping_ratio", c.damping_ratio)?,
+            criterion: c.criterion.unwrap_or(Criterion::Improved),
+        },
+        LawKind::Viscoelastic => LawSpec::Viscoelastic {
+            beta: need("collision.beta", c.beta)?,
+            form: c.form.unwrap_or(FormName::Fast(Criterion::Improved)),
+        },
+        LawKind::Stochastic => stochastic_spec(description)?,
+    })
+}
+
+/// Giese's stochastic law: event-driven only, `modes`, `distribution` and, tabulated,
+/// `table`.
+fn stochastic_spec(description: &RunDescription) -> Result<LawSpec> {
+    let c = &description.collision;
+    if description.run.engine != EngineKind::EventDriven {
+        return Err(Error::input(
+            "run.engine",
+            "law = \"stochastic\" runs with engine = \"event-driven\" (Giese's ED + Monte Carlo)",
+        ));
+    }
+    let bath_temperature = c.bath_temperature.unwrap_or(0.0);
+    if !(bath_temperature.is_finite() && bath_temperature >= 0.0) {
+        return Err(Error::out_of_range(
+            "collision.bath_temperature",
+            bath_temperature,
+            "a finite number >= 0",
+        ));
+    }
+    let modes = c
+        .modes
+        .ok_or_else(|| Error::input("collision.modes", "missing for law = \"stochastic\""))?;
+    let distribution = match c.distribution.unwrap_or(Distribution::Glauber) {
+        Distribution::Glauber => {
+            if c.table.is_some() {
+                return Err(Error::input(
+                    "collision.table",
+                    "only for distribution = \"tabulated\"",
+                ));
+            }
+            StochasticTable::Glauber
+        }
+        Distribution::Tabulated => {
+            let path = c.table.as_deref().ok_or_else(|| {
+                Error::input("collision.table", "missing: a table from `haff rods table`")
+            })?;
+            StochasticTable::Tabulated(PathBuf::from(path))
+        }
+    };
+    Ok(LawSpec::Stochastic {
+        modes,
+        distribution,
+        bath_temperature,
+    })
+}
+
+/// The DSMC engine and options of the `[run]` section.
+fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
+    let step = match (r.collisions_per_step, r.time_step) {
+        (None, None) => StepSize::Auto,
+        (Some(c), None) => {
+            if !(c.is_finite() && c > 0.0 && c <= 100.0) {
+                return Err(Error::out_of_range(
+                    "run.collisions_per_step",
+                    c,
+                    "0 < value <= 100",
+                ));
+            }
+            StepSize::CollisionsPerParticle(c)
+        }
+        (None, Some(dt)) => StepSize::Fixed(positive("run.time_step", dt)?),
+        (Some(_), Some(_)) => {
+            return Err(Error::input(
+                "run.time_step",
+                "give at most one of run.collisions_per_step and run.time_step",
+            ))
+        }
+    };
+    let scheme = r.dsmc_scheme.unwrap_or(DsmcScheme::Blocks);
+    let exclusive = |key: &str, given: bool| -> Result<()> {
+        if given {
+            Err(Error::input(
+                key,
+                format!("not used by run.dsmc_scheme = \"{}\"", scheme.name()),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    match scheme {
+        DsmcScheme::Blocks => {
+            exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            let block_size = r.block_size.unwrap_or(gas::dsmc::DEFAULT_BLOCK_SIZE);
+            if !(2..=u32::MAX as usize).contains(&block_size) {
+                return Err(Error::out_of_range(
+                    "run.block_size",
+                    block_size,
+                    "2 <= block_size <= 2^32 - 1",
+                ));
+            }
+            Ok(EngineSpec::HomogeneousDsmc(Scheme::Blocks {
+                block_size,
+                step,
+            }))
+        }
+        DsmcScheme::Exact => {
+            exclusive("run.block_size", r.block_size.is_some())?;
+            exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            exclusive("run.collisions_per_step", r.collisions_per_step.is_some())?;
+            exclusive("run.time_step", r.time_step.is_some())?;
+            Ok(EngineSpec::HomogeneousDsmc(Scheme::Exact))
+        }
+        DsmcScheme::Spatial => {
+            exclusive("run.block_size", r.block_size.is_some())?;
+            let cell_width = r
+                .collision_cell_width
+                .map(|w| positive("run.collision_cell_width", w))
+                .transpose()?;
+            Ok(EngineSpec::SpatialDsmc(SpatialOptions { cell_width, step }))
+        }
+    }
+}
+
+/// `run.histogram_at` and `run.histogram_bins`.
+fn check_histograms(r: &RunSection, stop: Stop) -> Result<()> {
+    if let Some(bins) = r.histogram_bins {
+        if !(4..=10_000).contains(&bins) {
+            return Err(Error::out_of_range(
+                "run.histogram_bins",
+                bins,
+                "4 <= bins <= 10000",
+            ));
+        }
+    }
+    let Some(at) = &r.histogram_at else {
+        return Ok(());
+    };
+    let end = stop.end();
+    if at.len() > 10_000 {
+        return Err(Error::out_of_range(
+            "run.histogram_at",
+            format!("a list of {}", at.len()),
+            "at most 10000 values",
+        ));
+    }
+    for &x in at {
+        if !(0.0..=end).contains(&x) {
+            let allowed = format!("0 <= value <= {end} (the end of the run, {})", stop.key());
+            return Err(Error::out_of_range("run.histogram_at", x, &allowed));
+        }
+    }
+    let mut sorted = at.clone();
+    sorted.sort_by(f64::total_cmp);
+    if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
+        return Err(Error::input(
+            "run.histogram_at",
+            format!("{} appears twice", w[0]),
+        ));
+    }
+    Ok(())
+}
+
+impl Plan {
+    /// Whether the samples are log-spaced.
+    pub fn log_spacing(&self) -> bool {
+        self.description.run.spacing == Spacing::Log
+    }
+}
