@@ -10,7 +10,7 @@ use rods::stochastic::{sample_eps, Resolution, Table};
 use std::io::Write;
 use std::path::Path;
 
-fn library(flag: &str) -> impl Fn(String) -> CliError + '_ {
+fn library(flag: &str) -> impl Fn(rods::Error) -> CliError + '_ {
     move |e| CliError::argument(flag, e)
 }
 

@@ -555,7 +555,7 @@ pub fn tabulated_law(path: &Path, modes: u32, key: &str) -> CliResult<Box<dyn Re
     let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
     let table: rods::stochastic::Table =
         serde_json::from_str(&text).map_err(|e| fail(e.to_string()))?;
-    Ok(Box::new(table.law(modes).map_err(fail)?))
+    Ok(Box::new(table.law(modes).map_err(|e| fail(e.to_string()))?))
 }
 
 /// One row of timeseries.csv.

@@ -1,4 +1,7 @@
 //! Giese's one-dimensional elastic rods with internal vibration modes.
 pub mod chain;
 pub mod deterministic;
+mod error;
 pub mod stochastic;
+
+pub use error::{Error, Result};

@@ -5,6 +5,7 @@
 //! so that κ = α l V0/c as in Giese and E0 = μ V0²/2 = μ/2.
 
 use super::{Chain, ChainConfig, ChainStats};
+use crate::error::{positive, Error, Result};
 
 /// Parameters of the two-rod experiment.
 #[derive(Clone, Copy, Debug)]
@@ -60,13 +61,9 @@ impl TwoRodSetup {
     }
 
     /// The chain at t = 0.
-    pub fn chain(&self) -> Result<Chain, String> {
-        if !(self.gamma.is_finite() && self.gamma > 0.0) {
-            return Err(format!("gamma must be > 0, got {}", self.gamma));
-        }
-        if !(self.kappa.is_finite() && self.kappa > 0.0) {
-            return Err(format!("kappa must be > 0, got {}", self.kappa));
-        }
+    pub fn chain(&self) -> Result<Chain> {
+        positive("gamma", self.gamma)?;
+        positive("kappa", self.kappa)?;
         let (l1, l2) = self.lengths();
         let mtot = l1 + l2;
         Chain::new(ChainConfig {
@@ -146,7 +143,7 @@ impl TwoRodRun {
 /// (measured: 11 episodes in the first impact at M = 8, κ = 1000), while in free
 /// flight Ṙ_21 is constant, so a new impact at the same end is impossible before one
 /// at the other end.
-pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRodRun, String> {
+pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRodRun> {
     let mut chain = setup.chain()?;
     let e_start = chain.energy();
     let mut run = TwoRodRun {
@@ -163,7 +160,9 @@ pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRod
     while run.records.len() < n {
         let recs = chain.run_collisions(1);
         let Some(c) = recs.last() else {
-            return Err("two rods: no further collision".into());
+            return Err(Error::NoFurtherCollision {
+                collisions: run.records.len() + usize::from(pending.is_some()),
+            });
         };
         let (e_tr, eta, w) = snapshot(&chain, setup);
         // E_tr/E0 = (Ṙ_21/V0)² with V0 = 1.
