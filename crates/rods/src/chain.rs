@@ -29,9 +29,16 @@
 //! with c_h = 0.5); 3e-10 over 10⁴ collisions at M = 8, κ = 100, c_h = 0.25.
 
 mod cluster;
+mod impacts;
 mod rod;
+mod two_rod_summary;
 mod two_rods;
 
+pub use impacts::Impacts;
+pub use two_rod_summary::{
+    equipartition_per_collision, equipartition_time, running_mean_e_tr, TwoRodSummary,
+    RUNNING_WINDOW,
+};
 pub use two_rods::{
     cooling_collision, eta_equilibrium, eta_relaxation, eta_within, mean_spectrum, run_two_rods,
     spectral_entropy, TwoRodRecord, TwoRodRun, TwoRodSetup,

@@ -2,6 +2,7 @@
 pub mod chain;
 pub mod deterministic;
 mod error;
+pub mod ring;
 pub mod stochastic;
 
 pub use error::{Error, Result};

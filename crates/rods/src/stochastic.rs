@@ -5,10 +5,12 @@
 //!
 //! Parameters: γ = l1/l2 > 0, κ = αlV/c > 0 (scaled impact velocity), and the energy ratio
 //! r = E_tr/T_bath > 0 (r = ∞ is the deterministic limit T_bath = 0).
+mod histogram;
 pub mod markov;
 pub mod noise;
 pub mod table;
 
+pub use histogram::{eps2_histogram, Eps2Bin};
 pub use noise::{covariance, NoiseProcess};
 pub use table::Table;
 

@@ -6,6 +6,7 @@
 
 use super::{Chain, ChainConfig, ChainStats};
 use crate::error::{positive, Error, Result};
+use std::time::Instant;
 
 /// Parameters of the two-rod experiment.
 #[derive(Clone, Copy, Debug)]
@@ -110,8 +111,15 @@ fn snapshot(chain: &Chain, setup: &TwoRodSetup) -> (f64, f64, Vec<f64>) {
 /// Result of [`run_two_rods`].
 #[derive(Clone, Debug)]
 pub struct TwoRodRun {
+    /// Modes per rod.
+    pub modes: usize,
+    /// The transient: collisions before the time integrals (and [`TwoRodRun::summary`]'s
+    /// means) start.
+    pub skip: usize,
     /// One record per collision.
     pub records: Vec<TwoRodRecord>,
+    /// Wall-clock seconds of the run.
+    pub wall_seconds: f64,
     /// Cost counters.
     pub stats: ChainStats,
     /// |H(end) − H(0)|/H(0).
@@ -144,10 +152,14 @@ impl TwoRodRun {
 /// flight Ṙ_21 is constant, so a new impact at the same end is impossible before one
 /// at the other end.
 pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRodRun> {
+    let clock = Instant::now();
     let mut chain = setup.chain()?;
     let e_start = chain.energy();
     let mut run = TwoRodRun {
+        modes: setup.modes,
+        skip,
         records: Vec::with_capacity(n),
+        wall_seconds: 0.0,
         stats: ChainStats::default(),
         energy_drift: 0.0,
         free_time: 0.0,
@@ -215,6 +227,7 @@ pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRod
     }
     run.energy_drift = (chain.energy() - e_start).abs() / e_start;
     run.stats = chain.stats();
+    run.wall_seconds = clock.elapsed().as_secs_f64();
     Ok(run)
 }
 
