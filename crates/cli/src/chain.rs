@@ -6,10 +6,9 @@
 use crate::error::{CliError, CliResult};
 use crate::RunArgs;
 use gas::EventDriven;
-use rand::SeedableRng;
-use rand_distr::{Distribution, StandardNormal};
 use restitution::{Glauber, Restitution};
-use rods::chain::{Chain, ChainConfig};
+use rods::chain::{Chain, Impacts};
+use rods::ring::{equipartition_share, translational_energy, RingSetup, RingState};
 use serde::{Deserialize, Serialize};
 use sim::plot::{self, Axes};
 use std::io::Write;
@@ -74,6 +73,26 @@ struct ChainRunSection {
     table: Option<PathBuf>,
 }
 
+impl ChainSection {
+    /// The ring of rods this table describes.
+    fn ring(&self) -> RingSetup {
+        RingSetup {
+            rods: self.rods,
+            lengths: self.lengths.clone(),
+            modes: self.modes,
+            perimeter: self.perimeter,
+            alpha: self.alpha,
+            strength: self.strength,
+            sound_speed: self.sound_speed,
+            density: self.density,
+            temperature: self.temperature,
+            bath_temperature: self.bath_temperature,
+            seed: self.seed,
+            step: self.step,
+        }
+    }
+}
+
 fn unit_length() -> Vec<f64> {
     vec![1.0]
 }
@@ -109,58 +128,30 @@ fn bad(key: &str, detail: impl std::fmt::Display) -> CliError {
     CliError::argument(key, detail)
 }
 
-fn positive(key: &str, x: f64) -> CliResult<f64> {
-    if x.is_finite() && x > 0.0 {
-        Ok(x)
-    } else {
-        Err(bad(
-            key,
-            format!("{x} is out of range; allowed: a finite number > 0"),
-        ))
+/// A rods error about the `[chain]` table: range errors name their key `chain.NAME`.
+fn chain_error(error: rods::Error) -> CliError {
+    match error {
+        rods::Error::OutOfRange {
+            name,
+            value,
+            allowed,
+        } => bad(
+            &format!("chain.{name}"),
+            format!("{value} is out of range; allowed: {allowed}"),
+        ),
+        other => bad("chain", other),
     }
 }
 
-/// Checks the file; returns the rod lengths around the ring and the perimeter.
-fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
-    let c = &file.chain;
-    if !(2..=100_000).contains(&c.rods) {
+/// Checks the file; returns the ring of rods it describes.
+fn validate(file: &ChainFile) -> CliResult<RingSetup> {
+    let ring = file.chain.ring();
+    ring.validate().map_err(chain_error)?;
+    let end_time = file.run.end_time;
+    if !(end_time.is_finite() && end_time > 0.0) {
         return Err(bad(
-            "chain.rods",
-            format!("{}; allowed: 2 <= N <= 100000", c.rods),
-        ));
-    }
-    if !(1..=10_000).contains(&c.modes) {
-        return Err(bad(
-            "chain.modes",
-            format!("{}; allowed: 1 <= modes <= 10000", c.modes),
-        ));
-    }
-    if c.lengths.is_empty() {
-        return Err(bad("chain.lengths", "give at least one length"));
-    }
-    for l in &c.lengths {
-        positive("chain.lengths", *l)?;
-    }
-    for (key, x) in [
-        ("chain.alpha", c.alpha),
-        ("chain.sound_speed", c.sound_speed),
-        ("chain.density", c.density),
-        ("chain.temperature", c.temperature),
-        ("chain.step", c.step),
-        ("run.end_time", file.run.end_time),
-    ] {
-        positive(key, x)?;
-    }
-    if c.step > 1.0 {
-        return Err(bad(
-            "chain.step",
-            format!("{}; allowed: 0 < step <= 1", c.step),
-        ));
-    }
-    if !(c.bath_temperature.is_finite() && c.bath_temperature >= 0.0) {
-        return Err(bad(
-            "chain.bath_temperature",
-            "must be a finite number >= 0",
+            "run.end_time",
+            format!("{end_time} is out of range; allowed: a finite number > 0"),
         ));
     }
     if !(1..=10_000).contains(&file.run.repeats) {
@@ -187,63 +178,7 @@ fn validate(file: &ChainFile) -> CliResult<(Vec<f64>, f64)> {
             "give a table exactly when compare holds \"tabulated\"",
         ));
     }
-    let lengths: Vec<f64> = (0..c.rods)
-        .map(|i| c.lengths[i % c.lengths.len()])
-        .collect();
-    let total: f64 = lengths.iter().sum();
-    let perimeter = c.perimeter.unwrap_or(2.0 * total);
-    if !(perimeter.is_finite() && perimeter > total) {
-        let allowed = format!("a finite number > {total} (the total length of the rods)");
-        return Err(bad(
-            "chain.perimeter",
-            format!("{perimeter}; allowed: {allowed}"),
-        ));
-    }
-    Ok((lengths, perimeter))
-}
-
-/// Rod centres evenly spaced (equal gaps) and Maxwellian velocities with zero momentum.
-fn initial_state(c: &ChainSection, lengths: &[f64], perimeter: f64) -> (Vec<f64>, Vec<f64>) {
-    let gap = (perimeter - lengths.iter().sum::<f64>()) / lengths.len() as f64;
-    let mut x = 0.0;
-    let positions = lengths
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            if i > 0 {
-                x += 0.5 * (lengths[i - 1] + l) + gap;
-            }
-            x
-        })
-        .collect();
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(c.seed);
-    let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
-    let mut v: Vec<f64> = masses
-        .iter()
-        .map(|m| {
-            (c.temperature / m).sqrt() * Distribution::<f64>::sample(&StandardNormal, &mut rng)
-        })
-        .collect::<Vec<f64>>();
-    let momentum: f64 = v.iter().zip(&masses).map(|(v, m)| v * m).sum();
-    let drift = momentum / masses.iter().sum::<f64>();
-    v.iter_mut().for_each(|v| *v -= drift);
-    (positions, v)
-}
-
-/// Translational energy about the centre of mass.
-fn translational(velocities: &[f64], masses: &[f64]) -> f64 {
-    let total: f64 = masses.iter().sum();
-    let drift = velocities
-        .iter()
-        .zip(masses)
-        .map(|(v, m)| v * m)
-        .sum::<f64>()
-        / total;
-    velocities
-        .iter()
-        .zip(masses)
-        .map(|(v, m)| 0.5 * m * (v - drift).powi(2))
-        .sum()
+    Ok(ring)
 }
 
 /// Where a run stands: saved as `DIR/checkpoint.json` after a sample of the chain MD.
@@ -281,10 +216,8 @@ struct Saving<'a> {
 
 /// The rods and their common start, shared by the chain MD and the ED + MC runs.
 struct Start<'a> {
-    lengths: &'a [f64],
-    perimeter: f64,
-    positions: Vec<f64>,
-    velocities: Vec<f64>,
+    ring: RingSetup,
+    state: RingState,
     /// Sampling times.
     targets: &'a [f64],
 }
@@ -333,7 +266,7 @@ pub fn run(args: &RunArgs) -> CliResult {
             ))
         }
     };
-    let (lengths, perimeter) = validate(&file)?;
+    let ring = validate(&file)?;
     std::fs::create_dir_all(&out).map_err(|e| bad("--out", format!("{}: {e}", out.display())))?;
     let every = count("--checkpoint-every", &args.checkpoint_every)?
         .or(resume.as_ref().and_then(|c| c.every));
@@ -355,13 +288,10 @@ pub fn run(args: &RunArgs) -> CliResult {
     for repeat in first..file.run.repeats {
         let mut one = file.clone();
         one.chain.seed = file.chain.seed.wrapping_add(repeat as u64);
-        let c = &one.chain;
-        let (positions, velocities) = initial_state(c, &lengths, perimeter);
+        let ring = one.chain.ring();
         let start = Start {
-            lengths: &lengths,
-            perimeter,
-            positions,
-            velocities,
+            state: ring.initial_state(),
+            ring,
             targets: &targets,
         };
         let clock = Instant::now();
@@ -371,7 +301,7 @@ pub fn run(args: &RunArgs) -> CliResult {
                 chain: c.chain,
                 impacts: c.impacts,
             },
-            None => new_chain_run(&one, &start)?,
+            None => new_chain_run(&start)?,
         };
         let finished = sample_chain(&mut progress, &start, &mut saving, |run| Checkpoint {
             file: file.clone(),
@@ -395,18 +325,18 @@ pub fn run(args: &RunArgs) -> CliResult {
         let mut runs = vec![("rod-chain MD".to_string(), progress.rows)];
         for name in &file.run.compare {
             let law = stochastic_law(name, &one)?;
-            let rows = run_ed_mc(c, law, &start)?;
+            let rows = run_ed_mc(law, &start)?;
             runs.push((format!("ED + MC, {name}"), rows));
         }
         accumulate(&mut curves, runs, file.run.repeats);
     }
-    write_outputs(&file, &out, perimeter, &curves, chain_seconds, started)
+    write_outputs(&file, &out, &ring, &curves, chain_seconds, started)
 }
 
 fn write_outputs(
     file: &ChainFile,
     out: &Path,
-    perimeter: f64,
+    ring: &RingSetup,
     curves: &[(String, Vec<Row>)],
     chain_seconds: f64,
     started: Instant,
@@ -416,11 +346,7 @@ fn write_outputs(
         write_rows(&out.join(format!("ed_mc_{name}.csv")), rows)?;
     }
     let chain_rows = &curves[0].1;
-    let c = &file.chain;
-    let n = c.rods as f64;
-    // Equipartition: (N - 1)/2 translational quadratic terms (momentum is conserved),
-    // 2 N_modes per rod.
-    let share = 0.5 * (n - 1.0) / (0.5 * (n - 1.0) + n * c.modes as f64);
+    let share = equipartition_share(ring.rods, ring.modes);
     let equilibrium: Vec<(f64, f64)> = chain_rows
         .iter()
         .map(|r| (r.time, share * r.total_energy))
@@ -429,7 +355,7 @@ fn write_outputs(
     let last = chain_rows.last().copied();
     let summary = serde_json::json!({
         "parameters": file,
-        "perimeter": perimeter,
+        "perimeter": ring.perimeter(),
         "wall_seconds_chain": chain_seconds,
         "wall_seconds": started.elapsed().as_secs_f64(),
         "equipartition_translational_energy": share * chain_rows[0].total_energy,
@@ -442,44 +368,18 @@ fn write_outputs(
     writeln!(f)?;
     eprintln!(
         "haff rods chain: {} rods, {chain_seconds:.2} s; output in {}",
-        c.rods,
+        ring.rods,
         out.display()
     );
     Ok(())
 }
 
 /// The chain of one repeat at t = 0 (modes thermalized if `chain.bath_temperature` > 0).
-fn new_chain_run(file: &ChainFile, start: &Start) -> CliResult<ChainRun> {
-    let (lengths, c) = (start.lengths, &file.chain);
-    let mean_length = lengths.iter().sum::<f64>() / lengths.len() as f64;
-    let mass = c.density * mean_length;
-    let strength = c
-        .strength
-        .unwrap_or(mass * c.sound_speed.powi(2) / (c.alpha * mean_length).powi(2));
-    let mut chain = Chain::new(ChainConfig {
-        lengths: lengths.to_vec(),
-        modes: c.modes,
-        alpha: c.alpha,
-        b: positive("chain.strength", strength)?,
-        c: c.sound_speed,
-        rho: c.density,
-        perimeter: start.perimeter,
-        positions: start.positions.clone(),
-        velocities: start.velocities.clone(),
-        c_h: c.step,
-        global_step: true,
-    })
-    .map_err(|e| bad("chain", e))?;
-    if c.bath_temperature > 0.0 {
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(c.seed ^ 0x5eed);
-        chain
-            .thermalize_modes(c.bath_temperature, &mut rng)
-            .map_err(|e| bad("chain.bath_temperature", e))?;
-    }
+fn new_chain_run(start: &Start) -> CliResult<ChainRun> {
     Ok(ChainRun {
         rows: Vec::new(),
-        chain,
-        impacts: Impacts::new(lengths.len()),
+        chain: start.ring.chain(&start.state).map_err(chain_error)?,
+        impacts: Impacts::new(start.ring.rods),
     })
 }
 
@@ -492,7 +392,7 @@ fn sample_chain(
     checkpoint: impl Fn(&ChainRun) -> Checkpoint,
 ) -> CliResult<bool> {
     let masses = run.chain.masses();
-    let n = start.lengths.len();
+    let n = run.chain.n_rods();
     let progress = indicatif::ProgressBar::new(start.targets.len() as u64);
     progress.set_position(run.rows.len() as u64);
     for &t in &start.targets[run.rows.len()..] {
@@ -503,8 +403,8 @@ fn sample_chain(
             .sum();
         run.rows.push(Row {
             time: chain.time(),
-            collisions_per_particle: 2.0 * run.impacts.collisions as f64 / n as f64,
-            translational_energy: translational(&chain.velocities(), &masses),
+            collisions_per_particle: run.impacts.per_particle(),
+            translational_energy: translational_energy(&chain.velocities(), &masses),
             bath_energy: bath,
             total_energy: chain.energy(),
         });
@@ -521,39 +421,6 @@ fn sample_chain(
     }
     progress.finish_and_clear();
     Ok(true)
-}
-
-/// Counts impacts from contact episodes: with finitely many modes the rod ends ring, so
-/// one impact opens and closes its contact several times. An episode of contact k (rods k
-/// and k+1) starts a new impact unless both rods' previous episode was at contact k too
-/// (in 1D a pair can only meet again after one of them hit its other neighbour).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-struct Impacts {
-    last_contact: Vec<usize>,
-    collisions: u64,
-}
-
-impl Impacts {
-    fn new(rods: usize) -> Self {
-        Impacts {
-            last_contact: vec![usize::MAX; rods],
-            collisions: 0,
-        }
-    }
-
-    fn count(&mut self, episodes: &[rods::chain::CollisionRecord]) {
-        let n = self.last_contact.len();
-        let mut sorted: Vec<_> = episodes.iter().map(|e| (e.t_start, e.contact)).collect();
-        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for (_, k) in sorted {
-            let (left, right) = (k, (k + 1) % n);
-            if self.last_contact[left] != k || self.last_contact[right] != k {
-                self.collisions += 1;
-            }
-            self.last_contact[left] = k;
-            self.last_contact[right] = k;
-        }
-    }
 }
 
 fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution>> {
@@ -573,18 +440,14 @@ fn stochastic_law(name: &str, file: &ChainFile) -> CliResult<Box<dyn Restitution
 
 /// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
 /// modes at the chain's initial mode temperature.
-fn run_ed_mc(c: &ChainSection, law: Box<dyn Restitution>, start: &Start) -> CliResult<Vec<Row>> {
-    let Start {
-        lengths,
-        perimeter,
-        targets,
-        ..
-    } = *start;
-    let masses: Vec<f64> = lengths.iter().map(|l| c.density * l).collect();
+fn run_ed_mc(law: Box<dyn Restitution>, start: &Start) -> CliResult<Vec<Row>> {
+    let (c, targets) = (&start.ring, start.targets);
+    let masses = c.masses();
+    let lengths = c.rod_lengths();
     let system = gas::System::<1> {
-        length: perimeter,
-        positions: start.positions.iter().map(|x| [*x]).collect(),
-        velocities: start.velocities.iter().map(|v| [*v]).collect(),
+        length: c.perimeter(),
+        positions: start.state.positions.iter().map(|x| [*x]).collect(),
+        velocities: start.state.velocities.iter().map(|v| [*v]).collect(),
         radii: lengths.iter().map(|l| 0.5 * l).collect(),
         masses: masses.clone(),
     };
@@ -606,7 +469,7 @@ fn run_ed_mc(c: &ChainSection, law: Box<dyn Restitution>, start: &Start) -> CliR
         let cpp = engine.collisions_per_particle();
         let s = engine.system();
         let v: Vec<f64> = s.velocities.iter().map(|v| v[0]).collect();
-        let kinetic = translational(&v, &masses);
+        let kinetic = translational_energy(&v, &masses);
         rows.push(Row {
             time: t.max(time),
             collisions_per_particle: cpp,

@@ -4,13 +4,14 @@
 use crate::error::{CliError, CliResult};
 use crate::output::{number, parse_count, parse_list, parse_number, stdout, write_csv, Allowed};
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs};
+use rods::chain::TwoRodSummary;
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
-use rods::stochastic::{sample_eps, Resolution, Table};
+use rods::stochastic::{eps2_histogram, sample_eps, Eps2Bin, Resolution, Table};
 use sim::plot::{self, Axes};
 use std::io::Write;
 use std::path::Path;
 
-fn library(flag: &str) -> impl Fn(String) -> CliError + '_ {
+fn library(flag: &str) -> impl Fn(rods::Error) -> CliError + '_ {
     move |e| CliError::argument(flag, e)
 }
 
@@ -77,10 +78,10 @@ pub fn collide(args: &RodsCollideArgs) -> CliResult {
     };
     let bins = parse_count("--histogram", bins, 1, 100_000)?;
     let max = parse_number("--max", &args.max, Allowed::positive("largest eps^2"))?;
-    let histogram = eps2_histogram(&eps, bins, max);
+    let histogram = eps2_histogram(&eps, bins, max).map_err(library("--histogram"))?;
     let rows = histogram
         .iter()
-        .map(|&(x, p, cdf)| vec![number(x), number(p), number(cdf)]);
+        .map(|b| vec![number(b.eps2), number(b.density), number(b.cdf)]);
     write_csv(&mut out, &["eps2", "density", "cdf"], rows)?;
     out.flush()?;
     let mean = eps.iter().map(|e| e * e).sum::<f64>() / eps.len() as f64;
@@ -93,35 +94,9 @@ pub fn collide(args: &RodsCollideArgs) -> CliResult {
     Ok(())
 }
 
-/// (bin centre, density, distribution function at the bin's upper edge) of eps^2 on [0, max).
-fn eps2_histogram(eps: &[f64], bins: usize, max: f64) -> Vec<(f64, f64, f64)> {
-    let width = max / bins as f64;
-    let mut counts = vec![0usize; bins];
-    for e in eps {
-        let k = (e * e / width) as usize;
-        if k < bins {
-            counts[k] += 1;
-        }
-    }
-    let n = eps.len() as f64;
-    let mut below = 0;
-    counts
-        .iter()
-        .enumerate()
-        .map(|(k, &c)| {
-            below += c;
-            (
-                (k as f64 + 0.5) * width,
-                c as f64 / (n * width),
-                below as f64 / n,
-            )
-        })
-        .collect()
-}
-
-fn plot_distribution(path: &Path, title: &str, histogram: &[(f64, f64, f64)]) -> CliResult {
-    let density = histogram.iter().map(|&(x, p, _)| (x, p)).collect();
-    let cdf = histogram.iter().map(|&(x, _, c)| (x, c)).collect();
+fn plot_distribution(path: &Path, title: &str, histogram: &[Eps2Bin]) -> CliResult {
+    let density = histogram.iter().map(|b| (b.eps2, b.density)).collect();
+    let cdf = histogram.iter().map(|b| (b.eps2, b.cdf)).collect();
     let axes = Axes {
         title,
         x: "eps^2",
@@ -182,27 +157,6 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
     Ok(())
 }
 
-/// One two-rod experiment's outcome for the summary.
-#[derive(Debug, serde::Serialize)]
-struct TwoRodSummary {
-    modes: usize,
-    collisions: usize,
-    transient: usize,
-    wall_seconds: f64,
-    energy_drift: f64,
-    /// Mean E_tr/E0 per collision after the transient, and Giese's E0/(2M+1).
-    mean_e_tr: f64,
-    equipartition_per_collision: f64,
-    /// Time average of E_tr/E0 after the transient, and E0/(4M+1).
-    time_mean_e_tr: f64,
-    equipartition_time: f64,
-    mean_eta: f64,
-    eta_equilibrium: f64,
-    eta_relaxation_collision: Option<usize>,
-    eta_within_20_percent_collision: Option<usize>,
-    cooling_collision: Option<usize>,
-}
-
 /// `haff rods two-rods`: Figs. 1 and 2 of Giese — two cold rods on a ring, E_tr, eps and
 /// the spectral entropy after every collision, and the mean modal spectrum.
 pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
@@ -225,6 +179,7 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
     let mut rows = Vec::new();
     let mut spectra = Vec::new();
     let mut summaries = Vec::new();
+    let mut last_spectrum = Vec::new();
     let (mut energy, mut entropy) = (Vec::new(), Vec::new());
     for &m in &modes {
         let setup = TwoRodSetup {
@@ -234,29 +189,10 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
             gap: 1.0,
             c_h,
         };
-        let clock = std::time::Instant::now();
         let run = run_two_rods(&setup, collisions, transient).map_err(library("--modes"))?;
-        let wall_seconds = clock.elapsed().as_secs_f64();
-        let tail = &run.records[transient..];
-        let mean =
-            |f: fn(&TwoRodRecord) -> f64| tail.iter().map(f).sum::<f64>() / tail.len() as f64;
-        let (mean_e_tr, eq) = (mean(|r| r.e_tr), eta_equilibrium(m));
-        summaries.push(TwoRodSummary {
-            modes: m,
-            collisions,
-            transient,
-            wall_seconds,
-            energy_drift: run.energy_drift,
-            mean_e_tr,
-            equipartition_per_collision: 1.0 / (2.0 * m as f64 + 1.0),
-            time_mean_e_tr: run.time_mean_etr(),
-            equipartition_time: 1.0 / (4.0 * m as f64 + 1.0),
-            mean_eta: mean(|r| r.eta),
-            eta_equilibrium: eq,
-            eta_relaxation_collision: eta_relaxation(&run.records, eq),
-            eta_within_20_percent_collision: eta_within(&run.records, eq, 0.2),
-            cooling_collision: cooling_collision(&run.records, mean_e_tr, 25, 2.0),
-        });
+        let summary = run.summary();
+        let (eq, plateau) = (summary.eta_equilibrium, summary.equipartition_per_collision);
+        summaries.push(summary);
         for r in &run.records {
             rows.push(vec![
                 m.to_string(),
@@ -266,7 +202,8 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
                 number(r.eta),
             ]);
         }
-        for (j, w) in mean_spectrum(tail).iter().enumerate() {
+        last_spectrum = run.mean_spectrum();
+        for (j, w) in last_spectrum.iter().enumerate() {
             spectra.push(vec![
                 m.to_string(),
                 (j / m + 1).to_string(),
@@ -284,19 +221,13 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         ));
         energy.push((
             format!("equilibrium 1/(2M+1), M = {m}"),
-            vec![
-                (1.0, 1.0 / (2.0 * m as f64 + 1.0)),
-                (collisions as f64, 1.0 / (2.0 * m as f64 + 1.0)),
-            ],
+            vec![(1.0, plateau), (collisions as f64, plateau)],
         ));
-        let window = 25.min(run.records.len());
-        let running = run.records.windows(window).map(|w| {
-            let mean = w.iter().map(|r| r.e_tr).sum::<f64>() / window as f64;
-            (w[window / 2].collision as f64, mean)
-        });
+        let window = RUNNING_WINDOW.min(run.records.len());
+        let running = running_mean_e_tr(&run.records, window);
         energy.push((
             format!("M = {m}, mean of {window} collisions"),
-            running.collect(),
+            running.iter().map(|&(k, e)| (k as f64, e)).collect(),
         ));
         entropy.push((
             label,
@@ -338,7 +269,9 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         log_y: false,
     };
     plot::lines(&file("entropy.png"), axes, &entropy)?;
-    plot_spectrum(&file("spectrum.png"), &summaries, &args.out)?;
+    if let Some(last) = summaries.last() {
+        plot_spectrum(&file("spectrum.png"), last, &last_spectrum)?;
+    }
     for s in &summaries {
         eprintln!(
             "M = {}: <E_tr>/E0 = {:.5} (E0/(2M+1) = {:.5}), time mean {:.5} (E0/(4M+1) = {:.5}), <eta> = {:.4} (eta_eq = {:.4}), eta relaxed at collision {:?}; energy drift {:.1e}; {:.1} s",
@@ -349,24 +282,17 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
     Ok(())
 }
 
-/// The mean modal spectrum of the last M as w(mode) per rod (inset of Fig. 1).
-fn plot_spectrum(path: &Path, summaries: &[TwoRodSummary], dir: &Path) -> CliResult {
-    let Some(last) = summaries.last() else {
-        return Ok(());
+/// The mean modal spectrum `w` (rod 1 modes 1..M, then rod 2) of the run summarized by
+/// `last` as w(mode) per rod (inset of Fig. 1).
+fn plot_spectrum(path: &Path, last: &TwoRodSummary, spectrum: &[f64]) -> CliResult {
+    let per_rod = |rod: usize| -> Vec<(f64, f64)> {
+        let modes = spectrum.iter().skip(rod * last.modes).take(last.modes);
+        modes
+            .enumerate()
+            .map(|(j, w)| ((j + 1) as f64, *w))
+            .collect()
     };
-    let text = std::fs::read_to_string(dir.join("spectrum.csv"))?;
-    let mut rods: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
-    for line in text.lines().skip(1) {
-        let cells: Vec<&str> = line.split(',').collect();
-        if cells.len() == 4 && cells[0] == last.modes.to_string() {
-            let rod: usize = cells[1].parse().unwrap_or(1);
-            let (mode, w) = (
-                cells[2].parse().unwrap_or(0.0),
-                cells[3].parse().unwrap_or(0.0),
-            );
-            rods[(rod - 1).min(1)].push((mode, w));
-        }
-    }
+    let rods = [per_rod(0), per_rod(1)];
     let flat = 0.5 / last.modes as f64;
     let title = format!(
         "mean modal energies w after collision {} (M = {})",

@@ -29,14 +29,22 @@
 //! with c_h = 0.5); 3e-10 over 10⁴ collisions at M = 8, κ = 100, c_h = 0.25.
 
 mod cluster;
+mod impacts;
 mod rod;
+mod two_rod_summary;
 mod two_rods;
 
+pub use impacts::Impacts;
+pub use two_rod_summary::{
+    equipartition_per_collision, equipartition_time, running_mean_e_tr, TwoRodSummary,
+    RUNNING_WINDOW,
+};
 pub use two_rods::{
     cooling_collision, eta_equilibrium, eta_relaxation, eta_within, mean_spectrum, run_two_rods,
     spectral_entropy, TwoRodRecord, TwoRodRun, TwoRodSetup,
 };
 
+use crate::error::{non_negative, positive, Error, Result};
 use cluster::{Cluster, Geom};
 use rand::Rng;
 use rand_distr::StandardNormal;
@@ -157,31 +165,24 @@ mod infinity_as_null {
     }
 }
 
-fn positive(name: &str, x: f64) -> Result<(), String> {
-    if x.is_finite() && x > 0.0 {
-        Ok(())
-    } else {
-        Err(format!("{name} must be finite and > 0, got {x}"))
-    }
-}
-
-fn validate(cfg: &ChainConfig) -> Result<(), String> {
+fn validate(cfg: &ChainConfig) -> Result<()> {
     let n = cfg.lengths.len();
     if n < 2 {
-        return Err(format!("lengths: need at least 2 rods, got {n}"));
+        return Err(Error::out_of_range("lengths: number of rods", n, ">= 2"));
     }
-    if cfg.positions.len() != n || cfg.velocities.len() != n {
-        return Err(format!(
-            "positions/velocities must have one entry per rod ({n}), got {}/{}",
-            cfg.positions.len(),
-            cfg.velocities.len()
-        ));
+    for (name, len) in [
+        ("positions", cfg.positions.len()),
+        ("velocities", cfg.velocities.len()),
+    ] {
+        if len != n {
+            return Err(Error::WrongLength { name, len, rods: n });
+        }
     }
     if cfg.modes == 0 {
-        return Err("modes must be >= 1".into());
+        return Err(Error::out_of_range("modes", 0, ">= 1"));
     }
     for (i, l) in cfg.lengths.iter().enumerate() {
-        positive(&format!("lengths[{i}]"), *l)?;
+        positive(format!("lengths[{i}]"), *l)?;
     }
     for (name, x) in [
         ("alpha", cfg.alpha),
@@ -193,15 +194,19 @@ fn validate(cfg: &ChainConfig) -> Result<(), String> {
     }
     positive("perimeter", cfg.perimeter)?;
     if !(cfg.c_h > 0.0 && cfg.c_h <= 1.0) {
-        return Err(format!("c_h must be in (0, 1], got {}", cfg.c_h));
+        return Err(Error::out_of_range("c_h", cfg.c_h, "0 < c_h <= 1"));
     }
-    if cfg
-        .positions
-        .iter()
-        .chain(&cfg.velocities)
-        .any(|x| !x.is_finite())
-    {
-        return Err("positions and velocities must be finite".into());
+    for (name, values) in [
+        ("positions", &cfg.positions),
+        ("velocities", &cfg.velocities),
+    ] {
+        if let Some((i, x)) = values.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(Error::out_of_range(
+                format!("{name}[{i}]"),
+                x,
+                "a finite number",
+            ));
+        }
     }
     Ok(())
 }
@@ -209,7 +214,7 @@ fn validate(cfg: &ChainConfig) -> Result<(), String> {
 impl Chain {
     /// Builds a chain with cold modes. Errors name the offending parameter; every
     /// initial gap must exceed (z_cut + 2)/α so that no contact starts active.
-    pub fn new(cfg: ChainConfig) -> Result<Chain, String> {
+    pub fn new(cfg: ChainConfig) -> Result<Chain> {
         validate(&cfg)?;
         let n = cfg.lengths.len();
         let rods = (0..n)
@@ -248,11 +253,11 @@ impl Chain {
         for k in 0..n {
             let r = chain.geom.gap(&chain.rods, k, 0.0, 0.0);
             if chain.geom.alpha * r <= chain.z_on {
-                return Err(format!(
-                    "positions: gap {k} is {r}, must exceed (z_cut+2)/alpha = {} \
-                     (rods may not overlap or start in contact)",
-                    chain.z_on / chain.geom.alpha
-                ));
+                return Err(Error::Overlap {
+                    contact: k,
+                    gap: r,
+                    min: chain.z_on / chain.geom.alpha,
+                });
             }
         }
         Ok(chain)
@@ -396,13 +401,11 @@ impl Chain {
         (r.q[j], r.y[j] * r.mass * r.omega[j])
     }
 
-    fn idle(&self, what: &str) -> Result<(), String> {
+    fn idle(&self, operation: &'static str) -> Result<()> {
         if self.clusters.is_empty() {
             Ok(())
         } else {
-            Err(format!(
-                "{what}: not allowed while a contact episode is in progress"
-            ))
+            Err(Error::ContactInProgress { operation })
         }
     }
 
@@ -420,13 +423,24 @@ impl Chain {
     }
 
     /// Sets mode ν (1..M) of rod i to (q, p) at the current time.
-    pub fn set_mode(&mut self, i: usize, nu: usize, q: f64, p: f64) -> Result<(), String> {
+    pub fn set_mode(&mut self, i: usize, nu: usize, q: f64, p: f64) -> Result<()> {
         self.idle("set_mode")?;
-        if i >= self.rods.len() || nu == 0 || nu > self.modes {
-            return Err(format!("set_mode: rod {i} / mode {nu} out of range"));
+        let n = self.rods.len();
+        if i >= n {
+            return Err(Error::out_of_range(
+                "set_mode: rod",
+                i,
+                format!("0 <= rod < {n}"),
+            ));
         }
-        if !(q.is_finite() && p.is_finite()) {
-            return Err("set_mode: q and p must be finite".into());
+        if nu == 0 || nu > self.modes {
+            let allowed = format!("1 <= mode <= {}", self.modes);
+            return Err(Error::out_of_range("set_mode: mode", nu, allowed));
+        }
+        for (name, x) in [("set_mode: q", q), ("set_mode: p", p)] {
+            if !x.is_finite() {
+                return Err(Error::out_of_range(name, x, "a finite number"));
+            }
         }
         let t = self.time;
         let r = &mut self.rods[i];
@@ -443,13 +457,9 @@ impl Chain {
         &mut self,
         temperature: f64,
         rng: &mut R,
-    ) -> Result<(), String> {
+    ) -> Result<()> {
         self.idle("thermalize_modes")?;
-        if !(temperature.is_finite() && temperature >= 0.0) {
-            return Err(format!(
-                "temperature must be finite and >= 0, got {temperature}"
-            ));
-        }
+        non_negative("temperature", temperature)?;
         self.restart_free();
         for r in &mut self.rods {
             for j in 0..r.q.len() {
@@ -464,7 +474,7 @@ impl Chain {
 
     /// Flips every momentum (P_i and p_{i,ν}); with [`Chain::run_until`] this runs the
     /// dynamics backwards.
-    pub fn reverse_momenta(&mut self) -> Result<(), String> {
+    pub fn reverse_momenta(&mut self) -> Result<()> {
         self.idle("reverse_momenta")?;
         self.restart_free();
         for r in &mut self.rods {

@@ -1,4 +1,8 @@
 //! Giese's one-dimensional elastic rods with internal vibration modes.
 pub mod chain;
 pub mod deterministic;
+mod error;
+pub mod ring;
 pub mod stochastic;
+
+pub use error::{Error, Result};

@@ -5,14 +5,17 @@
 //!
 //! Parameters: γ = l1/l2 > 0, κ = αlV/c > 0 (scaled impact velocity), and the energy ratio
 //! r = E_tr/T_bath > 0 (r = ∞ is the deterministic limit T_bath = 0).
+mod histogram;
 pub mod markov;
 pub mod noise;
 pub mod table;
 
+pub use histogram::{eps2_histogram, Eps2Bin};
 pub use noise::{covariance, NoiseProcess};
 pub use table::Table;
 
 use crate::deterministic::{integrate, Solution, Z0};
+use crate::error::{positive, Error, Result};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -61,16 +64,14 @@ impl Resolution {
 }
 
 /// Checks the parameters; errors name the parameter and its range.
-pub fn check_params(gamma: f64, kappa: f64, energy_ratio: f64) -> Result<(), String> {
-    if !(gamma > 0.0 && gamma.is_finite()) {
-        return Err(format!("gamma must be finite and > 0, got {gamma}"));
-    }
-    if !(kappa > 0.0 && kappa.is_finite()) {
-        return Err(format!("kappa must be finite and > 0, got {kappa}"));
-    }
+pub fn check_params(gamma: f64, kappa: f64, energy_ratio: f64) -> Result<()> {
+    positive("gamma", gamma)?;
+    positive("kappa", kappa)?;
     if energy_ratio.is_nan() || energy_ratio <= 0.0 {
-        return Err(format!(
-            "energy_ratio (E_tr/T_bath) must be > 0 (infinity allowed), got {energy_ratio}"
+        return Err(Error::out_of_range(
+            "energy_ratio (E_tr/T_bath)",
+            energy_ratio,
+            "a number > 0 (infinity allowed)",
         ));
     }
     Ok(())
@@ -86,11 +87,14 @@ pub fn solve<R: Rng + ?Sized>(
     energy_ratio: f64,
     res: &Resolution,
     rng: &mut R,
-) -> Result<Solution, String> {
+) -> Result<Solution> {
     check_params(gamma, kappa, energy_ratio)?;
-    if !(res.step > 0.0 && res.oversample >= 1.0) {
-        return Err(format!(
-            "resolution must have step > 0 and oversample >= 1, got {res:?}"
+    positive("resolution.step", res.step)?;
+    if !(res.oversample >= 1.0 && res.oversample.is_finite()) {
+        return Err(Error::out_of_range(
+            "resolution.oversample",
+            res.oversample,
+            "a finite number >= 1",
         ));
     }
     let h = res.h(kappa, energy_ratio);
@@ -115,12 +119,7 @@ pub fn solve<R: Rng + ?Sized>(
 /// ε (Eq. (4) of Giese) of Eq. (3) for one noise realization, default [`Resolution`].
 /// r = E_tr/T_bath = ∞ gives exactly
 /// `deterministic::eps_numeric(gamma, kappa, Resolution::default().h(kappa, r))`.
-pub fn eps<R: Rng + ?Sized>(
-    gamma: f64,
-    kappa: f64,
-    energy_ratio: f64,
-    rng: &mut R,
-) -> Result<f64, String> {
+pub fn eps<R: Rng + ?Sized>(gamma: f64, kappa: f64, energy_ratio: f64, rng: &mut R) -> Result<f64> {
     Ok(solve(gamma, kappa, energy_ratio, &Resolution::default(), rng)?.eps)
 }
 
@@ -144,7 +143,7 @@ pub fn sample_eps(
     energy_ratio: f64,
     realizations: usize,
     seed: u64,
-) -> Result<Vec<f64>, String> {
+) -> Result<Vec<f64>> {
     sample_eps_with(
         gamma,
         kappa,
@@ -163,10 +162,10 @@ pub fn sample_eps_with(
     realizations: usize,
     seed: u64,
     res: &Resolution,
-) -> Result<Vec<f64>, String> {
+) -> Result<Vec<f64>> {
     check_params(gamma, kappa, energy_ratio)?;
     if realizations == 0 {
-        return Err("realizations must be > 0, got 0".into());
+        return Err(Error::out_of_range("realizations", 0, ">= 1"));
     }
     (0..realizations as u64)
         .into_par_iter()
@@ -183,13 +182,15 @@ mod tests {
 
     #[test]
     fn guards_name_parameters() {
-        let e = sample_eps(0.0, 100.0, 1.0, 1, 0).unwrap_err();
+        let e = sample_eps(0.0, 100.0, 1.0, 1, 0).unwrap_err().to_string();
         assert!(e.contains("gamma"), "{e}");
-        let e = sample_eps(0.5, -1.0, 1.0, 1, 0).unwrap_err();
+        let e = sample_eps(0.5, -1.0, 1.0, 1, 0).unwrap_err().to_string();
         assert!(e.contains("kappa"), "{e}");
-        let e = sample_eps(0.5, 100.0, f64::NAN, 1, 0).unwrap_err();
+        let e = sample_eps(0.5, 100.0, f64::NAN, 1, 0)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("energy_ratio"), "{e}");
-        let e = sample_eps(0.5, 100.0, 1.0, 0, 0).unwrap_err();
+        let e = sample_eps(0.5, 100.0, 1.0, 0, 0).unwrap_err().to_string();
         assert!(e.contains("realizations"), "{e}");
     }
 }

@@ -353,7 +353,7 @@ fn invalid_parameters_are_rejected() {
         ),
     ];
     for (cfg, what) in cases {
-        let err = Chain::new(cfg).unwrap_err();
+        let err = Chain::new(cfg).unwrap_err().to_string();
         assert!(err.contains(what), "{err}");
     }
 }

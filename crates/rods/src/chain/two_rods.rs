@@ -5,6 +5,8 @@
 //! so that κ = α l V0/c as in Giese and E0 = μ V0²/2 = μ/2.
 
 use super::{Chain, ChainConfig, ChainStats};
+use crate::error::{positive, Error, Result};
+use std::time::Instant;
 
 /// Parameters of the two-rod experiment.
 #[derive(Clone, Copy, Debug)]
@@ -60,13 +62,9 @@ impl TwoRodSetup {
     }
 
     /// The chain at t = 0.
-    pub fn chain(&self) -> Result<Chain, String> {
-        if !(self.gamma.is_finite() && self.gamma > 0.0) {
-            return Err(format!("gamma must be > 0, got {}", self.gamma));
-        }
-        if !(self.kappa.is_finite() && self.kappa > 0.0) {
-            return Err(format!("kappa must be > 0, got {}", self.kappa));
-        }
+    pub fn chain(&self) -> Result<Chain> {
+        positive("gamma", self.gamma)?;
+        positive("kappa", self.kappa)?;
         let (l1, l2) = self.lengths();
         let mtot = l1 + l2;
         Chain::new(ChainConfig {
@@ -113,8 +111,15 @@ fn snapshot(chain: &Chain, setup: &TwoRodSetup) -> (f64, f64, Vec<f64>) {
 /// Result of [`run_two_rods`].
 #[derive(Clone, Debug)]
 pub struct TwoRodRun {
+    /// Modes per rod.
+    pub modes: usize,
+    /// The transient: collisions before the time integrals (and [`TwoRodRun::summary`]'s
+    /// means) start.
+    pub skip: usize,
     /// One record per collision.
     pub records: Vec<TwoRodRecord>,
+    /// Wall-clock seconds of the run.
+    pub wall_seconds: f64,
     /// Cost counters.
     pub stats: ChainStats,
     /// |H(end) − H(0)|/H(0).
@@ -146,11 +151,15 @@ impl TwoRodRun {
 /// (measured: 11 episodes in the first impact at M = 8, κ = 1000), while in free
 /// flight Ṙ_21 is constant, so a new impact at the same end is impossible before one
 /// at the other end.
-pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRodRun, String> {
+pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRodRun> {
+    let clock = Instant::now();
     let mut chain = setup.chain()?;
     let e_start = chain.energy();
     let mut run = TwoRodRun {
+        modes: setup.modes,
+        skip,
         records: Vec::with_capacity(n),
+        wall_seconds: 0.0,
         stats: ChainStats::default(),
         energy_drift: 0.0,
         free_time: 0.0,
@@ -163,7 +172,9 @@ pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRod
     while run.records.len() < n {
         let recs = chain.run_collisions(1);
         let Some(c) = recs.last() else {
-            return Err("two rods: no further collision".into());
+            return Err(Error::NoFurtherCollision {
+                collisions: run.records.len() + usize::from(pending.is_some()),
+            });
         };
         let (e_tr, eta, w) = snapshot(&chain, setup);
         // E_tr/E0 = (Ṙ_21/V0)² with V0 = 1.
@@ -216,6 +227,7 @@ pub fn run_two_rods(setup: &TwoRodSetup, n: usize, skip: usize) -> Result<TwoRod
     }
     run.energy_drift = (chain.energy() - e_start).abs() / e_start;
     run.stats = chain.stats();
+    run.wall_seconds = clock.elapsed().as_secs_f64();
     Ok(run)
 }
 

@@ -1,6 +1,8 @@
 //! The Markov chain Eq. (6) of Giese: E_{n+1} = ε² E_n with ε² drawn from p(ε² | E_n/T_bath)
 //! at fixed T_bath, and the Glauber form Eq. (7).
 
+use crate::error::{positive, Error, Result};
+
 /// Runs Eq. (6) of Giese for `steps` collisions in units of T_bath (T_bath = 1), starting at
 /// E_0/T = `e0`; `eps2(r)` draws ε² for the energy ratio r = E_n/T. Returns E_1..E_steps.
 pub fn run_chain(e0: f64, steps: usize, mut eps2: impl FnMut(f64) -> f64) -> Vec<f64> {
@@ -67,16 +69,14 @@ pub fn canonical_step(
     n: usize,
     seed: u64,
     e_min: f64,
-) -> Result<Vec<(f64, f64)>, String> {
+) -> Result<Vec<(f64, f64)>> {
     use rand::Rng;
     use rayon::prelude::*;
     super::check_params(gamma, kappa, 1.0)?;
     if n == 0 {
-        return Err("n must be > 0, got 0".into());
+        return Err(Error::out_of_range("n", 0, ">= 1"));
     }
-    if !(e_min > 0.0 && e_min.is_finite()) {
-        return Err(format!("e_min must be finite and > 0, got {e_min}"));
-    }
+    positive("e_min", e_min)?;
     let res = super::Resolution::default();
     (0..n as u64)
         .into_par_iter()

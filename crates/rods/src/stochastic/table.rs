@@ -2,6 +2,7 @@
 //! r = E_tr/T_bath, for a Monte-Carlo collision law in event-driven MD (the algorithm
 //! proposed at the end of Giese's letter, with the exact p(ε²) instead of Eq. (7)).
 use super::{check_params, realization_rng, sample_eps};
+use crate::error::{Error, Result};
 use rand::RngCore;
 use restitution::stochastic::{tabulated_eps2, Tabulated};
 use serde::{Deserialize, Serialize};
@@ -52,7 +53,7 @@ impl Table {
         ratios: &[f64],
         realizations: usize,
         seed: u64,
-    ) -> Result<Self, String> {
+    ) -> Result<Self> {
         Self::build_reporting(gamma, kappa, ratios, realizations, seed, |_| {})
     }
 
@@ -64,26 +65,25 @@ impl Table {
         realizations: usize,
         seed: u64,
         mut row_done: impl FnMut(usize),
-    ) -> Result<Self, String> {
+    ) -> Result<Self> {
+        const GRID: &str = "a non-empty increasing grid of finite values > 0";
         if ratios.is_empty() {
-            return Err("ratios must be a non-empty increasing grid of values > 0".into());
+            return Err(Error::out_of_range("ratios", "[]", GRID));
         }
         for w in ratios.windows(2) {
             if w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater) {
-                return Err(format!(
-                    "ratios must be increasing, got {} then {}",
-                    w[0], w[1]
-                ));
+                let value = format!("{} then {}", w[0], w[1]);
+                return Err(Error::out_of_range("ratios", value, GRID));
             }
         }
         for &r in ratios {
             check_params(gamma, kappa, r)?;
             if !r.is_finite() {
-                return Err(format!("ratios must be finite, got {r}"));
+                return Err(Error::out_of_range("ratios", r, GRID));
             }
         }
         if realizations < 2 {
-            return Err(format!("realizations must be >= 2, got {realizations}"));
+            return Err(Error::out_of_range("realizations", realizations, ">= 2"));
         }
         let levels = Self::LEVELS;
         let mut quantiles = Vec::with_capacity(ratios.len());
@@ -134,9 +134,11 @@ impl Table {
     }
 
     /// The collision law of this table for particles with `modes` internal modes each.
-    pub fn law(&self, modes: u32) -> Result<Tabulated, String> {
+    pub fn law(&self, modes: u32) -> Result<Tabulated> {
         let (ratios, quantiles) = (self.energy_ratios.clone(), self.quantiles.clone());
-        Tabulated::new(self.gamma, self.kappa, ratios, quantiles, modes).map_err(|e| e.to_string())
+        Ok(Tabulated::new(
+            self.gamma, self.kappa, ratios, quantiles, modes,
+        )?)
     }
 
     /// Mean of ε² at grid row `i` under [`Table::sample`] (trapezoidal in u).
@@ -188,15 +190,19 @@ mod tests {
     fn build_guards() {
         assert!(Table::build(0.5, 100.0, &[], 10, 0)
             .unwrap_err()
+            .to_string()
             .contains("ratios"));
         assert!(Table::build(0.5, 100.0, &[2.0, 1.0], 10, 0)
             .unwrap_err()
+            .to_string()
             .contains("increasing"));
         assert!(Table::build(0.5, 100.0, &[1.0], 1, 0)
             .unwrap_err()
+            .to_string()
             .contains("realizations"));
         assert!(Table::build(-0.5, 100.0, &[1.0], 10, 0)
             .unwrap_err()
+            .to_string()
             .contains("gamma"));
     }
 }
