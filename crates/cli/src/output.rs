@@ -231,13 +231,6 @@ pub fn write_table<W: Write>(
 
 /// Writes `value` as `dir/checkpoint.json`: first to a partial file, then renamed, so that
 /// an interrupted write never destroys the last check-point.
-pub fn write_checkpoint<T: Serialize>(dir: &std::path::Path, value: &T) -> CliResult {
-    let path = dir.join("checkpoint.json");
-    sim::output::write_file(&path, |out| {
-        serde_json::to_writer(out, value).map_err(io::Error::from)
-    })?;
-    Ok(())
-}
 
 #[cfg(test)]
 mod tests {

@@ -24,11 +24,9 @@ impl sim::Progress for Bar {
         self.bar.set_position(done as u64);
     }
 
-    fn sample(&mut self, done: usize, events_per_second: f64, temperature: f64) {
+    fn sample(&mut self, done: usize, note: &str) {
         self.bar.set_position(done as u64);
-        self.bar.set_message(format!(
-            "{events_per_second:.3e} events/s, T = {temperature:.4e}"
-        ));
+        self.bar.set_message(note.to_string());
     }
 
     fn finish(&mut self) {

@@ -89,7 +89,7 @@ pub trait Engine<const D: usize> {
 /// bit for bit as the saved one would have (the law is passed again: laws are not data).
 pub trait Checkpoint<const D: usize>: Engine<D> + Sized {
     /// Everything needed to continue, options included, as plain serde data.
-    type State: Serialize + DeserializeOwned + Clone + PartialEq + Debug;
+    type State: Serialize + DeserializeOwned + Clone + Debug;
 
     /// The state now. Engines may bring themselves to a canonical form first (the
     /// event-driven engine synchronizes every particle), so a run that saves at given

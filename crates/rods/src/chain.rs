@@ -375,6 +375,16 @@ impl Chain {
         self.synced_rods().iter().map(|r| r.v).collect()
     }
 
+    /// Rod lengths l_i.
+    pub fn lengths(&self) -> Vec<f64> {
+        self.rods.iter().map(|r| r.len).collect()
+    }
+
+    /// Ring perimeter P.
+    pub fn perimeter(&self) -> f64 {
+        self.geom.perimeter
+    }
+
     /// Rod masses m_i = ρ l_i.
     pub fn masses(&self) -> Vec<f64> {
         self.rods.iter().map(|r| r.mass).collect()

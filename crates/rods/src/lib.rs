@@ -1,6 +1,7 @@
 //! Giese's one-dimensional elastic rods with internal vibration modes.
 pub mod chain;
 pub mod deterministic;
+pub mod engine;
 mod error;
 pub mod ring;
 pub mod stochastic;

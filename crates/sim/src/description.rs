@@ -36,6 +36,7 @@
 
 use crate::error::{Error, Result};
 use restitution::{Criterion, FormName};
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -234,36 +235,14 @@ fn log() -> Spacing {
 }
 
 impl RunDescription {
-    /// Parses TOML text. A value of the wrong type or a name outside its choices is an
-    /// [`Error::Input`] naming the key (`collision.law: unknown variant ...`); text that is
-    /// not TOML is an [`Error::RunFile`] of `origin`.
+    /// Parses TOML text (see [`parse_toml`]).
     pub fn from_toml(text: &str, origin: &Path) -> Result<Self> {
-        let syntax = |e: toml::de::Error| Error::RunFile {
-            path: origin.to_path_buf(),
-            message: one_line(&e.to_string()),
-        };
-        let deserializer = toml::de::Deserializer::parse(text).map_err(syntax)?;
-        serde_path_to_error::deserialize(deserializer).map_err(|e| {
-            let key = e.path().to_string();
-            let message = one_line(e.inner().message());
-            if key == "." {
-                Error::RunFile {
-                    path: origin.to_path_buf(),
-                    message,
-                }
-            } else {
-                Error::Input { key, message }
-            }
-        })
+        parse_toml(text, origin)
     }
 
     /// Reads and parses a TOML run file.
     pub fn from_path(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::RunFile {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        Self::from_toml(&text, path)
+        read_toml(path)
     }
 
     /// Fills in the defaults that depend on other keys: diameter = mass = 1 without species
@@ -275,6 +254,38 @@ impl RunDescription {
             s.mass.get_or_insert(1.0);
         }
     }
+}
+
+/// Parses TOML text into `T`. A value of the wrong type or a name outside its choices is an
+/// [`Error::Input`] naming the key (`collision.law: unknown variant ...`); text that is not
+/// TOML is an [`Error::RunFile`] of `origin`.
+pub fn parse_toml<T: DeserializeOwned>(text: &str, origin: &Path) -> Result<T> {
+    let syntax = |e: toml::de::Error| Error::RunFile {
+        path: origin.to_path_buf(),
+        message: one_line(&e.to_string()),
+    };
+    let deserializer = toml::de::Deserializer::parse(text).map_err(syntax)?;
+    serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let key = e.path().to_string();
+        let message = one_line(e.inner().message());
+        if key == "." {
+            Error::RunFile {
+                path: origin.to_path_buf(),
+                message,
+            }
+        } else {
+            Error::Input { key, message }
+        }
+    })
+}
+
+/// Reads a TOML file and parses it into `T` (see [`parse_toml`]).
+pub fn read_toml<T: DeserializeOwned>(path: &Path) -> Result<T> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::RunFile {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    parse_toml(&text, path)
 }
 
 /// The species of `system.species` as the initializer takes them.

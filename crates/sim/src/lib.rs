@@ -27,6 +27,7 @@ pub mod law;
 pub mod observer;
 pub mod output;
 pub mod plot;
+pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;
 pub mod validate;

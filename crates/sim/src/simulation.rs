@@ -23,9 +23,8 @@ use std::time::Instant;
 pub trait Progress {
     /// The run is about to take samples `done..total`.
     fn start(&mut self, _total: usize, _done: usize) {}
-    /// A sample was taken: `done` so far, the events per second of this run, the
-    /// temperature now.
-    fn sample(&mut self, _done: usize, _events_per_second: f64, _temperature: f64) {}
+    /// A sample was taken, `done` so far; `note` says how the run goes (rate, temperature).
+    fn sample(&mut self, _done: usize, _note: &str) {}
     /// The run stopped (complete or not).
     fn finish(&mut self) {}
 }
@@ -323,7 +322,10 @@ impl<const D: usize> Run<D> {
                 let events = self.engine.counters().events as f64;
                 let rate = events / started.elapsed().as_secs_f64().max(1e-9);
                 let temperature = self.timeseries.samples[taken - 1].temperature;
-                progress.sample(taken, rate, temperature);
+                progress.sample(
+                    taken,
+                    &format!("{rate:.3e} events/s, T = {temperature:.4e}"),
+                );
                 if stop_after.is_some_and(|k| taken >= k) {
                     return Ok(self.next == self.schedule.len());
                 }

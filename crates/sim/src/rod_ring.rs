@@ -1,0 +1,602 @@
+//! `haff rods chain`: the rod-chain MD of Giese's Eq. (2) on a ring ([`rods::engine`]),
+//! and, on request, Giese's event-driven + Monte Carlo gas of the same rods from the same
+//! start (the 1D event-driven engine with a stochastic law and per-particle baths), so that
+//! the cooling of the translational energy can be compared. Runs of several seeds are
+//! averaged; the chain MD check-points after any sample and continues bit for bit.
+//!
+//! ```toml
+//! [chain]
+//! rods = 100                    # N rods on a ring
+//! lengths = [0.80865, 1.31001]  # repeated along the ring
+//! modes = 10                    # modes per rod
+//! alpha = 5000.0                # 1/alpha: range of the contact potential B exp(-alpha r)
+//! temperature = 1e-4            # initial translational T (Maxwellian, zero momentum)
+//! # perimeter, strength, sound_speed = 1, density = 1, bath_temperature = 0, seed = 1,
+//! # step = 0.05
+//! [run]
+//! end_time = 20000.0
+//! samples = 41
+//! repeats = 4
+//! compare = ["glauber", "tabulated"]
+//! table = "docs/data/giese-table-gamma0.6173.json"
+//! ```
+
+use crate::description::read_toml;
+use crate::error::{Error, Result};
+use crate::output::{number, write_csv_file, write_file, write_json_file};
+use crate::plot::{self, Axes};
+use crate::simulation::Progress;
+use gas::{Engine, EventDriven};
+use restitution::{Glauber, Restitution};
+use rods::engine::{ChainEngine, ChainEngineState};
+use rods::ring::{equipartition_share, translational_energy, RingSetup, RingState};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// A `haff rods chain` run file.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RingDescription {
+    pub chain: ChainSection,
+    pub run: RingRunSection,
+}
+
+/// `[chain]`: the rods (see [`RingSetup`]).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainSection {
+    /// Number of rods N on the ring.
+    pub rods: usize,
+    /// Rod lengths, repeated along the ring (e.g. two lengths: alternating rods).
+    #[serde(default = "unit_length")]
+    pub lengths: Vec<f64>,
+    /// Internal modes per rod.
+    pub modes: usize,
+    /// Ring perimeter (default: twice the total length of the rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub perimeter: Option<f64>,
+    /// Inverse range alpha of the contact potential B exp(-alpha r).
+    pub alpha: f64,
+    /// B of the contact potential [default: m c^2 / (alpha l)^2 of the mean rod].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strength: Option<f64>,
+    #[serde(default = "one")]
+    pub sound_speed: f64,
+    #[serde(default = "one")]
+    pub density: f64,
+    /// Initial translational temperature: velocities ~ N(0, T/m), zero total momentum.
+    pub temperature: f64,
+    /// Initial temperature of the internal modes (default 0: cold rods).
+    #[serde(default)]
+    pub bath_temperature: f64,
+    #[serde(default = "first_seed")]
+    pub seed: u64,
+    /// Step constant c_h of the contact integrator, h = c_h / (alpha v_ref).
+    #[serde(default = "step")]
+    pub step: f64,
+}
+
+/// A law of the ED + MC comparison (`run.compare`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CompareLaw {
+    /// Eq. (7) of Giese.
+    Glauber,
+    /// p(eps^2) of `run.table`.
+    Tabulated,
+}
+
+impl CompareLaw {
+    fn name(self) -> &'static str {
+        match self {
+            CompareLaw::Glauber => "glauber",
+            CompareLaw::Tabulated => "tabulated",
+        }
+    }
+}
+
+/// `[run]` of a chain run.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RingRunSection {
+    pub end_time: f64,
+    #[serde(default = "hundred")]
+    pub samples: usize,
+    /// ED + MC runs from the same start.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub compare: Vec<CompareLaw>,
+    /// Runs from seeds seed, seed + 1, ...; the outputs are their means.
+    #[serde(default = "one_repeat")]
+    pub repeats: usize,
+    /// Table of `haff rods table` for compare = "tabulated".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<PathBuf>,
+}
+
+fn unit_length() -> Vec<f64> {
+    vec![1.0]
+}
+fn one_repeat() -> usize {
+    1
+}
+fn one() -> f64 {
+    1.0
+}
+fn first_seed() -> u64 {
+    1
+}
+fn step() -> f64 {
+    0.05
+}
+fn hundred() -> usize {
+    100
+}
+
+impl ChainSection {
+    /// The ring of rods this table describes.
+    pub fn ring(&self) -> RingSetup {
+        RingSetup {
+            rods: self.rods,
+            lengths: self.lengths.clone(),
+            modes: self.modes,
+            perimeter: self.perimeter,
+            alpha: self.alpha,
+            strength: self.strength,
+            sound_speed: self.sound_speed,
+            density: self.density,
+            temperature: self.temperature,
+            bath_temperature: self.bath_temperature,
+            seed: self.seed,
+            step: self.step,
+        }
+    }
+}
+
+impl RingDescription {
+    /// Reads and parses a run file.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        read_toml(path)
+    }
+
+    /// Checks every key; returns the ring of rods.
+    pub fn validate(&self) -> Result<RingSetup> {
+        let ring = self.chain.ring();
+        ring.validate().map_err(chain_error)?;
+        let run = &self.run;
+        crate::error::positive("run.end_time", run.end_time)?;
+        if !(1..=10_000).contains(&run.repeats) {
+            return Err(Error::out_of_range(
+                "run.repeats",
+                run.repeats,
+                "1 <= repeats <= 10000",
+            ));
+        }
+        if !(2..=100_000).contains(&run.samples) {
+            return Err(Error::out_of_range(
+                "run.samples",
+                run.samples,
+                "2 <= samples <= 100000",
+            ));
+        }
+        let tabulated = run.compare.contains(&CompareLaw::Tabulated);
+        if tabulated != run.table.is_some() {
+            return Err(Error::input(
+                "run.table",
+                "give a table exactly when compare holds \"tabulated\"",
+            ));
+        }
+        Ok(ring)
+    }
+}
+
+/// A rods error about the `[chain]` table: range errors name their key `chain.NAME`.
+fn chain_error(error: rods::Error) -> Error {
+    match error {
+        rods::Error::OutOfRange {
+            name,
+            value,
+            allowed,
+        } => Error::out_of_range(&format!("chain.{name}"), value, &allowed),
+        other => Error::input("chain", other),
+    }
+}
+
+/// One row of a time series: energies summed over the rods.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnergyRow {
+    pub time: f64,
+    pub collisions_per_particle: f64,
+    /// Translational energy in the centre-of-mass frame.
+    pub translational_energy: f64,
+    /// Energy of the internal modes (the baths of ED + MC).
+    pub bath_energy: f64,
+    pub total_energy: f64,
+}
+
+/// The header of `timeseries.csv` and `ed_mc_<law>.csv`.
+pub const ENERGY_HEADER: [&str; 5] = [
+    "time",
+    "collisions_per_particle",
+    "translational_energy",
+    "bath_energy",
+    "total_energy",
+];
+
+/// The chain MD of one repeat in progress.
+#[derive(Debug, Clone)]
+struct Repeat {
+    rows: Vec<EnergyRow>,
+    engine: ChainEngine,
+}
+
+/// A named curve of rows (the chain MD, or ED + MC with one law), summed over repeats.
+type Curve = (String, Vec<EnergyRow>);
+
+/// Where a run stands: saved as `DIR/checkpoint.json` after a sample of the chain MD.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RingCheckpoint {
+    format: String,
+    version: u32,
+    description: RingDescription,
+    /// The repeat in progress (0-based).
+    repeat: usize,
+    /// Its chain MD rows so far, and the chain after the last one.
+    rows: Vec<EnergyRow>,
+    engine: ChainEngineState,
+    /// Sums of the completed repeats (curve 0: chain MD; then one per compared law).
+    curves: Vec<Curve>,
+    chain_seconds: f64,
+    /// Check-point interval in samples (reused on resume).
+    every: Option<usize>,
+}
+
+const FORMAT: &str = "haff-rods-chain-checkpoint";
+const VERSION: u32 = 2;
+
+/// A chain run: the chain MD of every repeat, then ED + MC from the same start.
+pub struct RingRun {
+    description: RingDescription,
+    ring: RingSetup,
+    /// Sampling times.
+    targets: Vec<f64>,
+    repeat: usize,
+    current: Option<Repeat>,
+    curves: Vec<Curve>,
+    chain_seconds: f64,
+    checkpoint_dir: Option<PathBuf>,
+    every: Option<usize>,
+    wall_seconds: f64,
+}
+
+impl RingRun {
+    /// A run from its description (checked first).
+    pub fn new(description: &RingDescription) -> Result<Self> {
+        let ring = description.validate()?;
+        let run = &description.run;
+        let targets = (0..run.samples)
+            .map(|k| run.end_time * k as f64 / (run.samples - 1) as f64)
+            .collect();
+        Ok(RingRun {
+            description: description.clone(),
+            ring,
+            targets,
+            repeat: 0,
+            current: None,
+            curves: Vec::new(),
+            chain_seconds: 0.0,
+            checkpoint_dir: None,
+            every: None,
+            wall_seconds: 0.0,
+        })
+    }
+
+    /// The run saved in `dir/checkpoint.json`; further check-points go to `dir`.
+    pub fn resume(dir: &Path) -> Result<Self> {
+        let path = dir.join(crate::checkpoint::FILE_NAME);
+        let fail = |message: String| Error::Checkpoint {
+            path: path.clone(),
+            message,
+        };
+        let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+        let saved: RingCheckpoint = serde_json::from_str(&text)
+            .map_err(|e| fail(format!("not a rods chain check-point: {e}")))?;
+        if saved.format != FORMAT || saved.version != VERSION {
+            return Err(fail(format!(
+                "written as '{}' version {}; this haff reads '{FORMAT}' version {VERSION}",
+                saved.format, saved.version
+            )));
+        }
+        let mut run = RingRun::new(&saved.description)?;
+        let restored = <ChainEngine as gas::Checkpoint<1>>::restore(
+            saved.engine,
+            Box::new(restitution::Constant::new(1.0).map_err(|e| fail(e.to_string()))?),
+        )
+        .map_err(|e| fail(e.to_string()))?;
+        run.repeat = saved.repeat;
+        run.current = Some(Repeat {
+            rows: saved.rows,
+            engine: restored,
+        });
+        run.curves = saved.curves;
+        run.chain_seconds = saved.chain_seconds;
+        run.every = saved.every;
+        run.checkpoint_dir = Some(dir.to_path_buf());
+        Ok(run)
+    }
+
+    /// Saves the run to `dir/checkpoint.json` every `every` samples taken.
+    pub fn set_checkpoints(&mut self, dir: &Path, every: Option<usize>) {
+        self.checkpoint_dir = Some(dir.to_path_buf());
+        self.every = every;
+    }
+
+    /// The check-point interval (kept from a resumed check-point).
+    pub fn checkpoint_interval(&self) -> Option<usize> {
+        self.every
+    }
+
+    pub fn ring(&self) -> &RingSetup {
+        &self.ring
+    }
+
+    /// Runs every remaining repeat; false if it stopped (after a check-point) once
+    /// `stop_after` samples were taken by this call.
+    pub fn run(&mut self, progress: &mut dyn Progress, stop_after: Option<usize>) -> Result<bool> {
+        let clock = Instant::now();
+        let result = self.run_repeats(progress, stop_after);
+        self.wall_seconds += clock.elapsed().as_secs_f64();
+        result
+    }
+
+    fn run_repeats(
+        &mut self,
+        progress: &mut dyn Progress,
+        stop_after: Option<usize>,
+    ) -> Result<bool> {
+        let mut taken = 0;
+        let repeats = self.description.run.repeats;
+        while self.repeat < repeats {
+            let mut chain = self.description.chain.clone();
+            chain.seed = chain.seed.wrapping_add(self.repeat as u64);
+            let ring = chain.ring();
+            let start = ring.initial_state();
+            let mut current = match self.current.take() {
+                Some(current) => current,
+                None => Repeat {
+                    rows: Vec::new(),
+                    engine: ChainEngine::new(ring.chain(&start).map_err(chain_error)?),
+                },
+            };
+            let clock = Instant::now();
+            progress.start(self.targets.len(), current.rows.len());
+            for k in current.rows.len()..self.targets.len() {
+                let engine = &mut current.engine;
+                engine.run_until(self.targets[k]);
+                current.rows.push(chain_row(engine));
+                taken += 1;
+                progress.sample(current.rows.len(), "");
+                let stop = stop_after.is_some_and(|k| taken >= k);
+                if stop || self.every.is_some_and(|k| taken % k == 0) {
+                    let seconds = self.chain_seconds + clock.elapsed().as_secs_f64();
+                    self.write_checkpoint(&mut current, seconds)?;
+                }
+                if stop {
+                    progress.finish();
+                    self.chain_seconds += clock.elapsed().as_secs_f64();
+                    self.current = Some(current);
+                    return Ok(false);
+                }
+            }
+            progress.finish();
+            self.chain_seconds += clock.elapsed().as_secs_f64();
+            let mut runs = vec![("rod-chain MD".to_string(), current.rows)];
+            for &law in &self.description.run.compare {
+                let rows = ed_mc(self.compare_law(law)?, &ring, &start, &self.targets)?;
+                runs.push((format!("ED + MC, {}", law.name()), rows));
+            }
+            accumulate(&mut self.curves, runs, repeats);
+            self.repeat += 1;
+        }
+        Ok(true)
+    }
+
+    fn write_checkpoint(&self, current: &mut Repeat, chain_seconds: f64) -> Result<()> {
+        let Some(dir) = &self.checkpoint_dir else {
+            return Ok(());
+        };
+        let saved = RingCheckpoint {
+            format: FORMAT.into(),
+            version: VERSION,
+            description: self.description.clone(),
+            repeat: self.repeat,
+            rows: current.rows.clone(),
+            engine: gas::Checkpoint::save(&mut current.engine),
+            curves: self.curves.clone(),
+            chain_seconds,
+            every: self.every,
+        };
+        write_file(&dir.join(crate::checkpoint::FILE_NAME), |out| {
+            serde_json::to_writer(out, &saved).map_err(std::io::Error::from)
+        })
+    }
+
+    /// The stochastic law of an ED + MC comparison.
+    fn compare_law(&self, law: CompareLaw) -> Result<Box<dyn Restitution>> {
+        let modes = u32::try_from(self.ring.modes)
+            .map_err(|_| Error::out_of_range("chain.modes", self.ring.modes, "at most 2^32 - 1"))?;
+        match law {
+            CompareLaw::Glauber => Ok(Box::new(
+                Glauber::new(modes).map_err(|e| Error::input("chain.modes", e))?,
+            )),
+            CompareLaw::Tabulated => {
+                let path = self.description.run.table.as_ref().ok_or_else(|| {
+                    Error::input("run.table", "missing for compare = \"tabulated\"")
+                })?;
+                crate::law::tabulated(path, modes, "run.table")
+            }
+        }
+    }
+
+    /// Writes `timeseries.csv` (the chain MD), `ed_mc_<law>.csv`, `cooling.png` and
+    /// `summary.json` into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        let Some((_, chain_rows)) = self.curves.first() else {
+            return Err(Error::input("run.repeats", "no repeat has finished"));
+        };
+        write_rows(&dir.join("timeseries.csv"), chain_rows)?;
+        for (law, (_, rows)) in self.description.run.compare.iter().zip(&self.curves[1..]) {
+            write_rows(&dir.join(format!("ed_mc_{}.csv", law.name())), rows)?;
+        }
+        let share = equipartition_share(self.ring.rods, self.ring.modes);
+        let equilibrium: Vec<(f64, f64)> = chain_rows
+            .iter()
+            .map(|r| (r.time, share * r.total_energy))
+            .collect();
+        plot_cooling(&dir.join("cooling.png"), &self.curves, equilibrium)?;
+        let (first, last) = (chain_rows[0], chain_rows.last().copied());
+        let summary = serde_json::json!({
+            "parameters": self.description,
+            "perimeter": self.ring.perimeter(),
+            "wall_seconds_chain": self.chain_seconds,
+            "wall_seconds": self.wall_seconds,
+            "equipartition_translational_energy": share * first.total_energy,
+            "final": last,
+            "energy_drift": last.map(|r| (r.total_energy - first.total_energy) / first.total_energy),
+            "compare_final": self.curves[1..].iter().map(|(n, r)| (n.clone(), r.last().copied())).collect::<Vec<_>>(),
+        });
+        write_json_file(&dir.join("summary.json"), &summary)
+    }
+
+    /// Seconds of the chain MD over all repeats (resumed runs included).
+    pub fn chain_seconds(&self) -> f64 {
+        self.chain_seconds
+    }
+}
+
+/// The energies of the chain now.
+fn chain_row(engine: &mut ChainEngine) -> EnergyRow {
+    let chain = engine.chain();
+    let bath: f64 = (0..chain.n_rods())
+        .map(|i| chain.modal_energies(i).iter().sum::<f64>())
+        .sum();
+    let translational = translational_energy(&chain.velocities(), &chain.masses());
+    let total = chain.energy();
+    EnergyRow {
+        time: chain.time(),
+        collisions_per_particle: engine.collisions_per_particle(),
+        translational_energy: translational,
+        bath_energy: bath,
+        total_energy: total,
+    }
+}
+
+/// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
+/// modes at the chain's initial mode temperature.
+fn ed_mc(
+    law: Box<dyn Restitution>,
+    ring: &RingSetup,
+    start: &RingState,
+    targets: &[f64],
+) -> Result<Vec<EnergyRow>> {
+    let masses = ring.masses();
+    let lengths = ring.rod_lengths();
+    let system = gas::System::<1> {
+        length: ring.perimeter(),
+        positions: start.positions.iter().map(|x| [*x]).collect(),
+        velocities: start.velocities.iter().map(|v| [*v]).collect(),
+        radii: lengths.iter().map(|l| 0.5 * l).collect(),
+        masses: masses.clone(),
+    };
+    let mut engine = EventDriven::new(system, law).map_err(|e| Error::input("chain", e))?;
+    engine
+        .set_baths(vec![ring.bath_temperature; lengths.len()], ring.seed)
+        .map_err(|e| Error::input("chain.bath_temperature", e))?;
+    let mut rows = Vec::with_capacity(targets.len());
+    for &t in targets {
+        engine.run_until(t);
+        // A bath of M modes at temperature T holds M T.
+        let baths = engine
+            .bath_temperatures()
+            .unwrap_or(&[])
+            .iter()
+            .sum::<f64>()
+            * ring.modes as f64;
+        let time = engine.time();
+        let collisions_per_particle = engine.collisions_per_particle();
+        let v: Vec<f64> = engine.system().velocities.iter().map(|v| v[0]).collect();
+        let kinetic = translational_energy(&v, &masses);
+        rows.push(EnergyRow {
+            time: t.max(time),
+            collisions_per_particle,
+            translational_energy: kinetic,
+            bath_energy: baths,
+            total_energy: kinetic + baths,
+        });
+    }
+    Ok(rows)
+}
+
+/// Adds `runs` (one row list per curve) into `sums` with weight 1/`repeats`.
+fn accumulate(sums: &mut Vec<Curve>, runs: Vec<Curve>, repeats: usize) {
+    let w = 1.0 / repeats as f64;
+    if sums.is_empty() {
+        for (name, rows) in &runs {
+            let zero = rows
+                .iter()
+                .map(|r| EnergyRow {
+                    time: r.time,
+                    ..EnergyRow::default()
+                })
+                .collect();
+            sums.push((name.clone(), zero));
+        }
+    }
+    for ((_, sum), (_, rows)) in sums.iter_mut().zip(runs) {
+        for (s, r) in sum.iter_mut().zip(rows) {
+            s.collisions_per_particle += w * r.collisions_per_particle;
+            s.translational_energy += w * r.translational_energy;
+            s.bath_energy += w * r.bath_energy;
+            s.total_energy += w * r.total_energy;
+        }
+    }
+}
+
+fn write_rows(path: &Path, rows: &[EnergyRow]) -> Result<()> {
+    let cells = rows.iter().map(|r| {
+        [
+            r.time,
+            r.collisions_per_particle,
+            r.translational_energy,
+            r.bath_energy,
+            r.total_energy,
+        ]
+        .map(number)
+        .to_vec()
+    });
+    write_csv_file(path, &ENERGY_HEADER, cells)
+}
+
+fn plot_cooling(path: &Path, curves: &[Curve], equilibrium: Vec<(f64, f64)>) -> Result<()> {
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = curves
+        .iter()
+        .map(|(name, rows)| {
+            let points = rows.iter().map(|r| (r.time, r.translational_energy));
+            (name.clone(), points.collect())
+        })
+        .collect();
+    series.push((
+        "equilibrium (equipartition with the modes)".into(),
+        equilibrium,
+    ));
+    let axes = Axes {
+        title: "translational energy of the rods",
+        x: "time",
+        y: "E_tr (centre-of-mass frame)",
+        log_x: false,
+        log_y: true,
+    };
+    plot::lines(path, axes, &series)
+}
