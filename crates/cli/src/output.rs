@@ -229,9 +229,6 @@ pub fn write_table<W: Write>(
     Ok(())
 }
 
-/// Writes `value` as `dir/checkpoint.json`: first to a partial file, then renamed, so that
-/// an interrupted write never destroys the last check-point.
-
 #[cfg(test)]
 mod tests {
     use super::*;

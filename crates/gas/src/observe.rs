@@ -113,6 +113,29 @@ pub fn mass_weighted_mean<const D: usize>(velocities: &[[f64; D]], masses: &[f64
     })
 }
 
+/// The pressure over an interval of duration `dt`: the kinetic part F n T / V plus the
+/// collisional virial F sum(impulse sigma) / (D V dt) of the collisions in it (for hard
+/// spheres the virial theorem's force sum becomes a sum over collisions; Allen & Tildesley,
+/// *Computer Simulation of Liquids*, Sec. 2.4), with n the simulated particles and F the
+/// physical particles each stands for ([`crate::Engine::weight`]). `virial_increment` is the
+/// change of [`crate::Counters::virial`] over the interval; without one (dt = 0) only the
+/// kinetic part.
+pub fn pressure<const D: usize>(
+    particles: usize,
+    volume: f64,
+    temperature: f64,
+    weight: f64,
+    virial_increment: f64,
+    dt: f64,
+) -> f64 {
+    let collisional = if dt > 0.0 {
+        weight * virial_increment / (D as f64 * volume * dt)
+    } else {
+        0.0
+    };
+    weight * particles as f64 / volume * temperature + collisional
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,27 +203,4 @@ mod tests {
             .iter()
             .all(|&(_, d)| d == 0.0));
     }
-}
-
-/// The pressure over an interval of duration `dt`: the kinetic part F n T / V plus the
-/// collisional virial F sum(impulse sigma) / (D V dt) of the collisions in it (for hard
-/// spheres the virial theorem's force sum becomes a sum over collisions; Allen & Tildesley,
-/// *Computer Simulation of Liquids*, Sec. 2.4), with n the simulated particles and F the
-/// physical particles each stands for ([`crate::Engine::weight`]). `virial_increment` is the
-/// change of [`crate::Counters::virial`] over the interval; without one (dt = 0) only the
-/// kinetic part.
-pub fn pressure<const D: usize>(
-    particles: usize,
-    volume: f64,
-    temperature: f64,
-    weight: f64,
-    virial_increment: f64,
-    dt: f64,
-) -> f64 {
-    let collisional = if dt > 0.0 {
-        weight * virial_increment / (D as f64 * volume * dt)
-    } else {
-        0.0
-    };
-    weight * particles as f64 / volume * temperature + collisional
 }

@@ -4,6 +4,9 @@
 //! `cargo test --release -p haff-gas --test dsmc` (the heavy validations:
 //! `cargo test --release -p haff-gas --test dsmc -- --ignored --nocapture`).
 
+mod common;
+
+use common::mean_and_error;
 use gas::dsmc::{point_gas, HomogeneousDsmc, Scheme, SpatialDsmc, SpatialOptions, StepSize};
 use gas::observe::{kinetic_energy, mean_velocity, sonine_a2, temperature};
 use gas::system::{ball_volume, System};
@@ -44,14 +47,6 @@ fn homogeneous<const D: usize>(
 fn omega_of<const D: usize>(e: &HomogeneousDsmc<D>, phi: f64, t: f64) -> f64 {
     let others = (e.len() - 1) as f64 / e.volume();
     collision_frequency::<D>(others, 1.0, 1.0, t, phi)
-}
-
-/// Mean and standard error of the mean.
-fn mean_and_error(x: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
 }
 
 /// Velocities of one speed in random directions: a2 = D/(D+2) - 1, far from a Maxwellian.

@@ -1,14 +1,16 @@
 //! DSMC against event-driven MD of the same gas (issue 5): the two engines share nothing but
 //! the collision law, so agreement of T(t) within statistical error checks both.
 
+mod common;
+
+use common::log_temperatures;
 use gas::dsmc::{point_gas, Scheme};
 use gas::init::monodisperse;
-use gas::observe::temperature;
 use gas::{EventDriven, HomogeneousDsmc};
-use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
+use restitution::{Constant, Restitution};
 
 fn viscoelastic(beta: f64) -> Box<dyn Restitution> {
-    Box::new(Viscoelastic::new(beta, "fast".parse::<ScaledForm>().unwrap()).unwrap())
+    Box::new(common::viscoelastic(beta, "fast"))
 }
 
 /// ln T at the given times from eMD runs with independent seeds (N particles at phi).
@@ -25,13 +27,7 @@ fn emd_log_temperatures(
             // Cells of about a tenth of a mean free path (fewer crossings when dilute).
             let width = (0.05 / phi).max(1.0);
             let mut e = EventDriven::with_cell_width(system, law.box_clone(), width).unwrap();
-            times
-                .iter()
-                .map(|&t| {
-                    e.run_until(t);
-                    temperature(e.system()).ln()
-                })
-                .collect()
+            log_temperatures(&mut e, times)
         })
         .collect()
 }
@@ -41,13 +37,7 @@ fn dsmc_log_temperatures(law: &dyn Restitution, n: usize, phi: f64, times: &[f64
     let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
     let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 99).unwrap();
     let mut d = HomogeneousDsmc::new(system, phi, law.box_clone(), 99, Scheme::default()).unwrap();
-    times
-        .iter()
-        .map(|&t| {
-            d.run_until(t);
-            temperature(d.system()).ln()
-        })
-        .collect()
+    log_temperatures(&mut d, times)
 }
 
 /// Compares eMD (K seeds) with DSMC at each time: z = (mean ln T_eMD - ln T_DSMC) / error,

@@ -1,5 +1,8 @@
 //! The event-driven engine against conservation laws and kinetic theory.
 
+mod common;
+
+use common::mean_and_error;
 use gas::init::monodisperse;
 use gas::observe::{kinetic_energy, mean_velocity, temperature};
 use gas::system::dot;
@@ -247,14 +250,6 @@ fn dense_states_are_melted_lattices() {
         })
         .count();
     assert_eq!(on_site, 0);
-}
-
-/// Mean and standard error of batch means.
-fn mean_and_error(batches: &[f64]) -> (f64, f64) {
-    let m = batches.len() as f64;
-    let mean = batches.iter().sum::<f64>() / m;
-    let var = batches.iter().map(|b| (b - mean).powi(2)).sum::<f64>() / (m - 1.0);
-    (mean, (var / m).sqrt())
 }
 
 /// a2 of the homogeneous cooling state from 10 to 50 collisions per particle in `batches`

@@ -10,10 +10,13 @@
 //! The heavy versions (a few minutes, figures printed):
 //! `cargo test --release -p haff-gas --test emd_validation -- --ignored --nocapture`
 
+mod common;
+
+use common::{constant, viscoelastic};
 use gas::init::{monodisperse, polydisperse, Species};
 use gas::observe::temperature;
 use gas::EventDriven;
-use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
+use restitution::{Restitution, Viscoelastic};
 use std::f64::consts::PI;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -153,14 +156,6 @@ impl Restitution for Recording {
     }
 }
 
-fn viscoelastic(beta: f64, form: &str) -> Viscoelastic {
-    Viscoelastic::new(beta, form.parse::<ScaledForm>().unwrap()).unwrap()
-}
-
-fn constant(eps: f64) -> Box<dyn Restitution> {
-    Box::new(Constant::new(eps).unwrap())
-}
-
 /// Steps until one more collision has been processed (false if nothing moves).
 fn next_collision<const D: usize>(e: &mut EventDriven<D>) -> bool {
     let target = e.counters().collisions + 1;
@@ -186,13 +181,7 @@ fn log_temperatures(
 ) -> Vec<f64> {
     let system = monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, seed).unwrap();
     let mut e = EventDriven::new(system, law).unwrap();
-    times
-        .iter()
-        .map(|&t| {
-            e.run_until(t);
-            temperature(e.system()).ln()
-        })
-        .collect()
+    common::log_temperatures(&mut e, times)
 }
 
 /// T(t) of a viscoelastic gas (beta = 1: v* = beta^(1/2) g^(1/10) ~ 0.7 .. 1.1 for the

@@ -49,6 +49,28 @@ pub struct Stop {
     pub event: Option<usize>,
 }
 
+/// Why an integration stopped short of its end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum IntegrationFailure {
+    /// The step size fell below what the time can resolve at `t`.
+    StepUnderflow { t: f64 },
+    /// More than `max` steps were needed.
+    TooManySteps { max: usize },
+}
+
+impl std::fmt::Display for IntegrationFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IntegrationFailure::StepUnderflow { t } => {
+                write!(f, "step size underflow at t = {t:e}")
+            }
+            IntegrationFailure::TooManySteps { max } => write!(f, "more than {max} steps"),
+        }
+    }
+}
+
+impl std::error::Error for IntegrationFailure {}
+
 /// Radau IIA integrator with relative error control.
 #[derive(Debug, Clone)]
 pub struct Radau5 {
@@ -175,7 +197,7 @@ impl Radau5 {
         t_end: f64,
         h0: f64,
         events: &[EventFn<'_>],
-    ) -> Result<Stop, String> {
+    ) -> Result<Stop, IntegrationFailure> {
         self.integrate_until(sys, t0, y0, t_end, h0, events, &[])
     }
 
@@ -193,7 +215,7 @@ impl Radau5 {
         h0: f64,
         events: &[EventFn<'_>],
         soft: &[EventFn<'_>],
-    ) -> Result<Stop, String> {
+    ) -> Result<Stop, IntegrationFailure> {
         let dir = if t_end >= t0 { 1.0 } else { -1.0 };
         let mut h = h0.abs().min((t_end - t0).abs()) * dir;
         let (mut t, mut y) = (t0, y0);
@@ -210,14 +232,14 @@ impl Radau5 {
             let Some((y1, err)) = self.doubled_step(sys, t, y, h) else {
                 h *= 0.25;
                 if h.abs() <= 1e-300 || t + h == t {
-                    return Err(format!("step size underflow at t = {t:e}"));
+                    return Err(IntegrationFailure::StepUnderflow { t });
                 }
                 continue;
             };
             if err > 1.0 {
                 h *= (0.9 * err.powf(-1.0 / 6.0)).clamp(0.1, 0.5);
                 if t + h == t {
-                    return Err(format!("step size underflow at t = {t:e}"));
+                    return Err(IntegrationFailure::StepUnderflow { t });
                 }
                 continue;
             }
@@ -253,7 +275,9 @@ impl Radau5 {
             h *= (0.9 * err.max(1e-12).powf(-1.0 / 6.0)).clamp(0.2, 4.0);
             self.next_step = h.abs();
         }
-        Err(format!("more than {} steps", self.max_steps))
+        Err(IntegrationFailure::TooManySteps {
+            max: self.max_steps,
+        })
     }
 
     /// An accurate step of size s, split into halves (up to `depth` times) where a Newton

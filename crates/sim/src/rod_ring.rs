@@ -379,7 +379,7 @@ impl RingRun {
                 taken += 1;
                 progress.sample(current.rows.len(), "");
                 let stop = stop_after.is_some_and(|k| taken >= k);
-                if stop || self.every.is_some_and(|k| taken % k == 0) {
+                if stop || self.every.is_some_and(|k| taken.is_multiple_of(k)) {
                     let seconds = self.chain_seconds + clock.elapsed().as_secs_f64();
                     self.write_checkpoint(&mut current, seconds)?;
                 }

@@ -315,7 +315,7 @@ impl<const D: usize> Run<D> {
                 }
                 let taken = self.timeseries.samples.len();
                 if let Some((dir, every)) = saving {
-                    if taken % every == 0 {
+                    if taken.is_multiple_of(every) {
                         self.write_checkpoint(plan, dir, every)?;
                     }
                 }
