@@ -7,7 +7,6 @@
 
 mod algebra;
 mod bench;
-mod chain;
 mod cor;
 mod demo;
 mod error;
@@ -471,7 +470,7 @@ fn run(command: Command) -> CliResult {
         Command::Rods(RodsCommand::Collide(args)) => rods::collide(&args),
         Command::Rods(RodsCommand::Table(args)) => rods::table(&args),
         Command::Rods(RodsCommand::TwoRods(args)) => rods::two_rods(&args),
-        Command::Rods(RodsCommand::Chain(args)) => chain::run(&args),
+        Command::Rods(RodsCommand::Chain(args)) => rods::chain(&args),
     }
 }
 

@@ -196,9 +196,7 @@ pub fn stdout() -> BufWriter<StdoutLock<'static>> {
 
 /// Writes `value` as pretty-printed JSON followed by a newline.
 pub fn write_json<W: Write, T: Serialize>(out: &mut W, value: &T) -> CliResult {
-    serde_json::to_writer_pretty(&mut *out, value)?;
-    writeln!(out)?;
-    Ok(())
+    Ok(sim::output::write_json(out, value)?)
 }
 
 /// Writes an aligned table: first column left-aligned, the others right-aligned, columns

@@ -3,11 +3,14 @@
 
 use crate::error::{CliError, CliResult};
 use crate::output::{number, parse_count, parse_list, parse_number, stdout, write_csv, Allowed};
-use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs};
+use crate::progress::Bar;
+use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
 use rods::chain::TwoRodSummary;
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
 use rods::stochastic::{eps2_histogram, sample_eps, Eps2Bin, Resolution, Table};
+use sim::output::{write_csv_file, write_json_file};
 use sim::plot::{self, Axes};
+use sim::rod_ring::{RingDescription, RingRun};
 use std::io::Write;
 use std::path::Path;
 
@@ -145,9 +148,7 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
     })
     .map_err(library("--gamma"))?;
     progress.finish_and_clear();
-    let text = serde_json::to_string_pretty(&table)?;
-    std::fs::write(&args.out, text + "\n")
-        .map_err(|e| CliError::argument("--out", format!("{}: {e}", args.out.display())))?;
+    sim::output::write_json_file(&args.out, &table).map_err(|e| CliError::argument("--out", e))?;
     let step = Resolution::default().step;
     eprintln!(
         "haff rods table: {} ratios x {realizations} realizations (h kappa = {step}) -> {}",
@@ -242,15 +243,17 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         ));
     }
     let file = |name: &str| args.out.join(name);
-    let mut f = std::io::BufWriter::new(std::fs::File::create(file("two_rods.csv"))?);
-    write_csv(&mut f, &["modes", "collision", "e_tr", "eps", "eta"], rows)?;
-    f.flush()?;
-    let mut f = std::io::BufWriter::new(std::fs::File::create(file("spectrum.csv"))?);
-    write_csv(&mut f, &["modes", "rod", "mode", "w"], spectra)?;
-    f.flush()?;
-    let mut f = std::fs::File::create(file("summary.json"))?;
-    serde_json::to_writer_pretty(&mut f, &summaries)?;
-    writeln!(f)?;
+    write_csv_file(
+        &file("two_rods.csv"),
+        &["modes", "collision", "e_tr", "eps", "eta"],
+        rows,
+    )?;
+    write_csv_file(
+        &file("spectrum.csv"),
+        &["modes", "rod", "mode", "w"],
+        spectra,
+    )?;
+    write_json_file(&file("summary.json"), &summaries)?;
     let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: E_tr/E0 after each collision");
     let axes = Axes {
         title: &title,
@@ -316,4 +319,51 @@ fn plot_spectrum(path: &Path, last: &TwoRodSummary, spectrum: &[f64]) -> CliResu
             ("equilibrium 1/(2M)".into(), equal),
         ],
     )?)
+}
+
+/// `haff rods chain RUN.toml`, `haff rods chain --resume DIR`: the rod-chain MD on a ring
+/// and ED + Monte Carlo of the same rods (`sim::rod_ring`).
+pub fn chain(args: &RunArgs) -> CliResult {
+    let (mut run, out) = match (&args.file, &args.resume) {
+        (Some(path), None) => {
+            let out = args.out.clone().unwrap_or_else(|| path.with_extension(""));
+            (RingRun::new(&RingDescription::from_path(path)?)?, out)
+        }
+        (None, Some(dir)) => {
+            let run = RingRun::resume(dir).map_err(CliError::resume)?;
+            (run, args.out.clone().unwrap_or_else(|| dir.clone()))
+        }
+        _ => {
+            return Err(CliError::argument(
+                "RUN.toml",
+                "give a run file or --resume DIR (exactly one)",
+            ))
+        }
+    };
+    let count = |flag: &str, text: &Option<String>| {
+        text.as_ref()
+            .map(|t| parse_count(flag, t, 1, 1_000_000))
+            .transpose()
+    };
+    let every = count("--checkpoint-every", &args.checkpoint_every)?.or(run.checkpoint_interval());
+    let stop_after = count("--stop-after-samples", &args.stop_after_samples)?;
+    std::fs::create_dir_all(&out)
+        .map_err(|e| CliError::argument("--out", format!("{}: {e}", out.display())))?;
+    run.set_checkpoints(&out, every);
+    if !run.run(&mut Bar::samples(), stop_after)? {
+        eprintln!(
+            "haff rods chain: stopped after {} samples; continue with --resume {}",
+            stop_after.unwrap_or(0),
+            out.display()
+        );
+        return Ok(());
+    }
+    run.write(&out)?;
+    eprintln!(
+        "haff rods chain: {} rods, {:.2} s; output in {}",
+        run.ring().rods,
+        run.chain_seconds(),
+        out.display()
+    );
+    Ok(())
 }

@@ -47,7 +47,7 @@ pub struct Simulation {
     /// Check-points every this many samples into `checkpoint_dir`.
     checkpoint_every: Option<usize>,
     checkpoint_dir: Option<PathBuf>,
-    /// Wall-clock seconds spent in [`Simulation::run`] by this process.
+    /// Wall-clock seconds spent by this process building the run and in [`Simulation::run`].
     wall_seconds: f64,
 }
 
@@ -82,6 +82,7 @@ struct Run<const D: usize> {
 impl Simulation {
     /// A run at time 0 from a description (checked first; errors name the key).
     pub fn new(description: &RunDescription) -> Result<Self> {
+        let clock = Instant::now();
         let plan = validate(description)?;
         let law = law::build(&plan.law)?;
         let bins = plan
@@ -115,7 +116,7 @@ impl Simulation {
             run,
             checkpoint_every: None,
             checkpoint_dir: None,
-            wall_seconds: 0.0,
+            wall_seconds: clock.elapsed().as_secs_f64(),
         })
     }
 
@@ -127,6 +128,7 @@ impl Simulation {
     /// The run saved in `dir/checkpoint.json`, to continue bit for bit. Its check-point
     /// interval is kept, and further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
+        let clock = Instant::now();
         let text = checkpoint::read_text(dir)?;
         let head: CheckpointFile<IgnoredAny> = checkpoint::parse(&text, dir)?;
         let plan = validate(&head.description)?;
@@ -156,7 +158,7 @@ impl Simulation {
             run,
             checkpoint_every: head.every,
             checkpoint_dir: Some(dir.to_path_buf()),
-            wall_seconds: 0.0,
+            wall_seconds: clock.elapsed().as_secs_f64(),
         })
     }
 
@@ -249,7 +251,7 @@ impl Simulation {
         write_json_file(&dir.join("summary.json"), &summary)
     }
 
-    /// Wall-clock seconds spent running in this process.
+    /// Wall-clock seconds spent building and running in this process.
     pub fn wall_seconds(&self) -> f64 {
         self.wall_seconds
     }
