@@ -11,6 +11,24 @@ pub use dsmc::dsmc;
 pub use emd::emd;
 pub use rods::rods;
 
+/// `haff bench emd --calendar`: which sorters to time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum CalendarChoice {
+    Heap,
+    Buckets,
+    /// Both, repeats interleaved.
+    Both,
+}
+
+/// `haff bench dsmc --scheme`: the homogeneous DSMC scheme.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DsmcSchemeChoice {
+    /// Parallel blocks.
+    Blocks,
+    /// The exact process over all pairs (serial).
+    Exact,
+}
+
 /// [median, min, max] of a non-empty sample.
 pub(crate) fn median_min_max(mut sample: Vec<f64>) -> [f64; 3] {
     sample.sort_by(f64::total_cmp);

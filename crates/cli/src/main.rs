@@ -275,9 +275,10 @@ pub struct BenchEmdArgs {
     /// Timed repetitions; the median is reported.
     #[arg(long, default_value = "3", allow_hyphen_values = true)]
     pub repeats: String,
-    /// Event calendar: heap, buckets, or both (repeats interleaved, for a fair comparison).
-    #[arg(long, default_value = "heap")]
-    pub calendar: String,
+    /// The sorter of the event calendar: heap, buckets, or both (repeats interleaved, for a
+    /// fair comparison).
+    #[arg(long, value_enum, default_value_t = bench::CalendarChoice::Heap)]
+    pub calendar: bench::CalendarChoice,
     /// Minimum cell width in diameters (>= 1).
     #[arg(long, default_value = "1", allow_hyphen_values = true)]
     pub cell_width: String,
@@ -302,8 +303,8 @@ pub struct BenchDsmcArgs {
     #[arg(long, default_value = "3", allow_hyphen_values = true)]
     pub repeats: String,
     /// Scheme: blocks (parallel) or exact (serial).
-    #[arg(long, default_value = "blocks")]
-    pub scheme: String,
+    #[arg(long, value_enum, default_value_t = bench::DsmcSchemeChoice::Blocks)]
+    pub scheme: bench::DsmcSchemeChoice,
     /// The law: `fast` (viscoelastic, with --beta) or a constant eps in [0, 1].
     #[arg(long, default_value = "fast", allow_hyphen_values = true)]
     pub law: String,

@@ -1,6 +1,6 @@
 //! `haff bench dsmc`: throughput of homogeneous DSMC.
 
-use super::median_min_max;
+use super::{median_min_max, DsmcSchemeChoice};
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, ReportFormat};
 use restitution::Restitution;
@@ -25,15 +25,9 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         crate::output::Allowed::between("collisions per particle", 1e-3, 1e4),
     )?;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
-    let scheme = match args.scheme.as_str() {
-        "blocks" => Scheme::default(),
-        "exact" => Scheme::Exact,
-        other => {
-            return Err(CliError::argument(
-                "--scheme",
-                format!("'{other}': allowed: blocks, exact"),
-            ))
-        }
+    let (scheme, scheme_name) = match args.scheme {
+        DsmcSchemeChoice::Blocks => (Scheme::default(), "blocks"),
+        DsmcSchemeChoice::Exact => (Scheme::Exact, "exact"),
     };
     let law: Box<dyn Restitution> = if args.law == "fast" {
         let beta = crate::output::parse_number(
@@ -79,7 +73,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     let report = serde_json::json!({
         "particles": n,
         "packing_fraction": phi,
-        "scheme": args.scheme,
+        "scheme": scheme_name,
         "law": args.law,
         "threads": threads,
         "collisions_per_repeat": collisions,
@@ -98,7 +92,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         ReportFormat::Table => writeln!(
             out,
             "N = {n}, phi = {phi}, {} scheme, law {}: {median:.3e} collisions/s (min {min:.3e}, max {max:.3e}) on {threads} threads, {:.3e} per thread, {:.0} bytes/particle (median of {repeats})",
-            args.scheme,
+            scheme_name,
             args.law,
             median / threads as f64,
             bytes as f64 / n as f64

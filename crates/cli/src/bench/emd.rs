@@ -1,6 +1,6 @@
 //! `haff bench emd`: throughput of the event-driven engine.
 
-use super::median_min_max;
+use super::{median_min_max, CalendarChoice};
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, ReportFormat};
 use serde::Serialize;
@@ -35,16 +35,10 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
     )?;
     let events = parse_count("--events", &args.events, 1, 1_000_000_000_000)? as u64;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
-    let calendars: Vec<(&'static str, SorterKind)> = match args.calendar.as_str() {
-        "heap" => vec![("heap", SorterKind::Heap)],
-        "buckets" => vec![("buckets", SorterKind::Buckets)],
-        "both" => vec![("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)],
-        other => {
-            return Err(CliError::argument(
-                "--calendar",
-                format!("'{other}': allowed: heap, buckets, both"),
-            ))
-        }
+    let calendars: Vec<(&'static str, SorterKind)> = match args.calendar {
+        CalendarChoice::Heap => vec![("heap", SorterKind::Heap)],
+        CalendarChoice::Buckets => vec![("buckets", SorterKind::Buckets)],
+        CalendarChoice::Both => vec![("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)],
     };
     let mut rates = vec![(vec![], vec![], 0usize); calendars.len()];
     for repeat in 0..repeats {
