@@ -271,7 +271,15 @@ fn bad_speeds_are_rejected() {
 
 #[test]
 fn bad_laws_criteria_and_parameters_are_rejected() {
-    for law in ["foo", "pade:99/1", "pade-paper:2/2", "series:999", "pade:x"] {
+    // pade:1/1 does not exist (its linear system is singular): an input error too.
+    for law in [
+        "foo",
+        "pade:99/1",
+        "pade-paper:2/2",
+        "series:999",
+        "pade:x",
+        "pade:1/1",
+    ] {
         assert_rejected(&["cor", "eps", "--law", law, "--vstar", "1"], "--law");
     }
     for beta in ["0", "-1", "nan", "x"] {

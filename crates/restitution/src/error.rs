@@ -13,6 +13,9 @@ pub enum Error {
     },
     /// A text that does not parse (law names, numbers).
     Parse { what: String, message: String },
+    /// Something asked for that does not exist, e.g. the Padé approximant of an order
+    /// whose linear system is singular (input the user can change, not a failure).
+    Undefined(String),
     /// A numerical procedure that did not converge.
     Numerical(String),
 }
@@ -42,6 +45,7 @@ impl fmt::Display for Error {
                 allowed,
             } => write!(f, "{name} = {value} is out of range: allowed {allowed}"),
             Error::Parse { what, message } => write!(f, "invalid {what}: {message}"),
+            Error::Undefined(m) => write!(f, "undefined: {m}"),
             Error::Numerical(m) => write!(f, "numerical failure: {m}"),
         }
     }

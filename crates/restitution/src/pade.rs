@@ -93,8 +93,10 @@ impl Pade {
             ));
         }
         let h = crate::series::computed_chain(m + n);
-        let approximant = series::pade::pade(&h, m, n)
-            .map_err(|e| Error::Numerical(format!("Padé [{m}/{n}]: {e}")))?;
+        let approximant = series::pade::pade(&h, m, n).map_err(|e| match e {
+            series::pade::PadeError::Singular { .. } => Error::Undefined(e.to_string()),
+            _ => Error::Numerical(format!("Padé [{m}/{n}]: {e}")),
+        })?;
         let (a, b) = approximant.to_f64();
         Pade::new(&a, &b)
     }
@@ -125,7 +127,7 @@ impl Pade {
             .collect();
         let mut rhs: Vec<f64> = (0..n).map(|row| -coeff((m + 1 + row) as isize)).collect();
         let b_tail = solve_dense(&mut matrix, &mut rhs)
-            .ok_or_else(|| Error::Numerical(format!("Padé [{m}/{n}] system is singular")))?;
+            .ok_or_else(|| Error::Undefined(format!("Padé [{m}/{n}] system is singular")))?;
         let mut b = vec![1.0];
         b.extend(b_tail);
         let a: Vec<f64> = (0..=m)
