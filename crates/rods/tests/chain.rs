@@ -199,32 +199,71 @@ fn collisions_are_time_reversible() {
     assert!(err < 1e-8, "{err}");
 }
 
-/// ε of the first impact of cold rods with M modes (κ = 100, γ = 0.6173).
-fn first_eps(modes: usize) -> f64 {
-    run_two_rods(&two(modes, 100.0, 0.25), 1, 0)
-        .unwrap()
-        .records[0]
-        .eps
+/// ε of the first impact of cold rods with M modes (κ = 100, length ratio γ, step
+/// constant c_h).
+fn first_eps(gamma: f64, modes: usize, c_h: f64) -> f64 {
+    let setup = TwoRodSetup {
+        gamma,
+        kappa: 100.0,
+        modes,
+        gap: 1.0,
+        c_h,
+    };
+    run_two_rods(&setup, 1, 0).unwrap().records[0].eps
+}
+
+/// The first impact of the MD against Eq. (3) of Giese with T_bath = 0 (`eps_numeric`, a
+/// different method: the delay equation of the continuum rods), which is the limit
+/// h → 0, M → ∞ of the MD. Both limits are taken by Richardson extrapolation at known
+/// orders: the Strang splitting has an error O(h²) (measured: the difference falls by 4.1
+/// when c_h halves), so e(M) = (4 ε(c_h/2) − ε(c_h))/3 with c_h = 0.125; the mode
+/// truncation has an error a/M + O(1/M²), so L(M) = 2 e(2M) − e(M). Prints the M
+/// ladder e(M) − ε_det and the extrapolants L(M) − ε_det, and asserts:
+/// - |e(M) − ε_det| falls monotonically with M;
+/// - the last extrapolant equals ε_det within the a-posteriori bound of a sequence that
+///   converges at least geometrically with ratio 1/2 (measured ratio 4–8):
+///   |L_last − ε_det| ≤ |L_last − L_previous| + the error of ε_det (its change when the
+///   step of `eps_numeric` halves).
+fn check_first_impact_limit(gamma: f64, ms: &[usize]) {
+    let (det, det_fine) = (
+        eps_numeric(gamma, 100.0, 5e-4),
+        eps_numeric(gamma, 100.0, 2.5e-4),
+    );
+    let e: Vec<f64> = ms
+        .iter()
+        .map(|&m| {
+            let (coarse, fine) = (first_eps(gamma, m, 0.125), first_eps(gamma, m, 0.0625));
+            (4.0 * fine - coarse) / 3.0 - det_fine
+        })
+        .collect();
+    let l: Vec<f64> = e.windows(2).map(|w| 2.0 * w[1] - w[0]).collect();
+    for (m, d) in ms.iter().zip(&e) {
+        println!(
+            "gamma {gamma} M = {m}: eps - eps_det = {d:.7} (M·diff {:.4})",
+            *m as f64 * d
+        );
+    }
+    let shown: Vec<String> = l.iter().map(|x| format!("{x:.2e}")).collect();
+    println!("gamma {gamma}: extrapolated limits - eps_det = {shown:?}");
+    for w in e.windows(2) {
+        assert!(w[1].abs() < w[0].abs(), "gamma {gamma}: {e:?}");
+    }
+    let (last, previous) = (l[l.len() - 1], l[l.len() - 2]);
+    let bound = (last - previous).abs() + (det - det_fine).abs();
+    assert!(
+        last.abs() <= bound,
+        "gamma {gamma}: limit - eps_det = {last:.3e}, bound {bound:.3e}"
+    );
 }
 
 #[test]
 fn first_collision_converges_to_deterministic_limit() {
-    // Eq. (3) with T_bath = 0 is the M → ∞ limit. Measured ε_M − ε_det = −0.00793,
-    // −0.00400, −0.00205, −0.00112 for M = 25, 50, 100, 200: the truncation error
-    // is ≈ −0.2/M (M·Δε = −0.198, −0.200, −0.205, −0.224).
-    let det = eps_numeric(GAMMA, 100.0, 5e-4);
-    let ms = [25, 50, 100, 200];
-    let diff: Vec<f64> = ms.iter().map(|&m| first_eps(m) - det).collect();
-    for (m, d) in ms.iter().zip(&diff) {
-        println!("M = {m}: eps - eps_det = {d:.5}");
-    }
-    for w in diff.windows(2) {
-        assert!(w[1].abs() < w[0].abs(), "{diff:?}");
-    }
-    for (m, d) in ms.iter().zip(&diff) {
-        let scaled = *m as f64 * d;
-        assert!((-0.24..-0.18).contains(&scaled), "M = {m}: M·Δε = {scaled}");
-    }
+    // Eq. (3) with T_bath = 0 is the M → ∞ limit. Measured (c_h → 0): ε_M − ε_det =
+    // −0.00791, −0.00397, −0.00199, −0.00100, −0.00050 for M = 25 … 400 (M·Δε ≈ −0.198 to
+    // −0.200: the truncation error is ≈ −0.2/M); extrapolants L − ε_det = −2.9e-5,
+    // −1.5e-5, −4.0e-6, −7.3e-7 (bound 3.3e-6). At c_h = 0.25 the step error grows with M
+    // (M·Δε = −0.224 at M = 200 against −0.201 at c_h = 0.0625).
+    check_first_impact_limit(GAMMA, &[25, 50, 100, 200, 400]);
 }
 
 /// Equipartition of two rods with `m` modes (kappa = 1000, hard core), `n` collisions after
@@ -375,10 +414,11 @@ fn energy_vs_c_h() {
                 st.step_seconds * 1e9 / st.fine_steps as f64
             );
             // Measured: <= 2.8e-10 for c_h <= 0.25; 4.8e-6 (M = 8), 1.3e-5 (M = 75) at 0.5.
+            // c_h = 0.5 is a documented measurement (the splitting's modified Hamiltonian
+            // is far from H at that step; see the `rods::chain` module docs), not a
+            // requirement: only the step constants in use (<= 0.25) must conserve energy.
             if c_h <= 0.25 {
                 assert!(run.energy_drift < 1e-9, "c_h = {c_h}: {}", run.energy_drift);
-            } else {
-                assert!(run.energy_drift > 1e-7, "c_h = {c_h}: {}", run.energy_drift);
             }
         }
     }
@@ -497,11 +537,10 @@ fn ring_energy() {
         );
         // Measured: global step 2.8e-11 (N = 10), 4.2e-10 (N = 100, 22 contacts open at the
         // end); per-cluster steps 1.6e-5 and 4.0e-5: changing h mid-contact shifts the
-        // modified Hamiltonian (documented limitation of `global_step: false`).
+        // modified Hamiltonian (documented limitation of `global_step: false`, printed
+        // above as a measurement, not asserted). The global step must conserve energy.
         if global {
             assert!((c.energy() - e0).abs() < 1e-8 * e0);
-        } else {
-            assert!((c.energy() - e0).abs() > 1e-7 * e0);
         }
     }
 }
@@ -510,10 +549,14 @@ fn ring_energy() {
 #[ignore] // cargo test --release -p haff-rods --test chain -- --ignored --nocapture other_gammas
 fn other_gammas() {
     // First impact vs Eq. (3) at other length ratios, including γ = 0.3 where the closed
-    // form fails. Measured M·(ε_M − ε_det) at M = 50/200: γ = 0.3: −0.262/−0.287,
-    // γ = 0.9: −0.155/−0.173, γ = 2: −0.216/−0.241.
+    // form fails, extrapolated as in `first_collision_converges_to_deterministic_limit`.
+    // Measured (c_h → 0) M·(ε_M − ε_det) at M = 50/200: γ = 0.3: −0.261/−0.263,
+    // γ = 0.9: −0.154/−0.153, γ = 2: −0.215/−0.216; extrapolants L − ε_det at the
+    // finest level −1.7e-6, 6.4e-7, −9.0e-7 (bounds 6.5e-6, 1.4e-6, 3.8e-6). Energy
+    // drift over 200 collisions ≤ 6.2e-11.
     for g in [0.3, 0.9, 2.0] {
-        let det = eps_numeric(g, 100.0, 5e-4);
+        check_first_impact_limit(g, &[25, 50, 100, 200, 400]);
+        // Energy over 200 collisions at the default step constant.
         for m in [50, 200] {
             let s = TwoRodSetup {
                 gamma: g,
@@ -523,16 +566,7 @@ fn other_gammas() {
                 c_h: 0.25,
             };
             let run = run_two_rods(&s, 200, 0).unwrap();
-            let scaled = m as f64 * (run.records[0].eps - det);
-            println!(
-                "gamma {g} M {m}: eps1 {:.5} det {det:.5} M*diff {scaled:.3}; drift {:.1e}",
-                run.records[0].eps, run.energy_drift
-            );
-            // The finite-M error ~ -0.15/M .. -0.3/M: the MD converges to Eq. (3).
-            assert!(
-                (-0.32..-0.13).contains(&scaled),
-                "gamma {g}, M {m}: {scaled}"
-            );
+            println!("gamma {g} M {m}: drift {:.1e}", run.energy_drift);
             assert!(run.energy_drift < 1e-9);
         }
     }
