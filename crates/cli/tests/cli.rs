@@ -107,7 +107,15 @@ fn eps_at_physical_speeds_in_cgs() {
     // unit of the last digit: 5e-7 below 1, 5e-6 above), propagated to eps.
     let a = [1.0, 1.07232, 0.574198, 0.141552];
     let b = [1.0, 1.07232, 1.72765, 1.37842, 1.19449, 0.467273, 0.235585];
-    let half_unit = |c: f64| if c == 1.0 { 0.0 } else if c.abs() >= 1.0 { 5e-6 } else { 5e-7 };
+    let half_unit = |c: f64| {
+        if c == 1.0 {
+            0.0
+        } else if c.abs() >= 1.0 {
+            5e-6
+        } else {
+            5e-7
+        }
+    };
     for (row, v) in rows.iter().zip(speeds) {
         assert_eq!(row[0], v);
         let vstar = 1.307f64.sqrt() * v.powf(0.1);

@@ -47,8 +47,14 @@ fn rk4_eps(vstar: f64, h0: f64) -> f64 {
     };
     let rk4 = |rhs: &dyn Fn(f64, [f64; 2]) -> [f64; 2], t: f64, s: [f64; 2], dt: f64| {
         let k1 = rhs(t, s);
-        let k2 = rhs(t + 0.5 * dt, [s[0] + 0.5 * dt * k1[0], s[1] + 0.5 * dt * k1[1]]);
-        let k3 = rhs(t + 0.5 * dt, [s[0] + 0.5 * dt * k2[0], s[1] + 0.5 * dt * k2[1]]);
+        let k2 = rhs(
+            t + 0.5 * dt,
+            [s[0] + 0.5 * dt * k1[0], s[1] + 0.5 * dt * k1[1]],
+        );
+        let k3 = rhs(
+            t + 0.5 * dt,
+            [s[0] + 0.5 * dt * k2[0], s[1] + 0.5 * dt * k2[1]],
+        );
         let k4 = rhs(t + dt, [s[0] + dt * k3[0], s[1] + dt * k3[1]]);
         [
             s[0] + dt / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
@@ -147,7 +153,11 @@ fn pade_table_i_against_exact() {
              (RK4 bound {rk4_error:.1e})",
             m + 3
         );
-        assert!((e - e_ref).abs() <= tolerance, "[{m}/{}] {e} vs {e_ref}", m + 3);
+        assert!(
+            (e - e_ref).abs() <= tolerance,
+            "[{m}/{}] {e} vs {e_ref}",
+            m + 3
+        );
     }
     // Both agree with the exact law to better than 1e-5 for v* <= 0.5.
     for v in [0.1, 0.3, 0.5] {

@@ -261,8 +261,8 @@ fn row_from_sample(mut e2: Vec<f64>, levels: usize) -> Vec<f64> {
         })
         .collect();
     let top = &e2[(n * (levels - 1) / levels).min(n - 1)..];
-    q[levels] = (2.0 * top.iter().sum::<f64>() / top.len() as f64 - q[levels - 1])
-        .max(q[levels - 1]);
+    q[levels] =
+        (2.0 * top.iter().sum::<f64>() / top.len() as f64 - q[levels - 1]).max(q[levels - 1]);
     let bot = &e2[..n.div_ceil(levels).max(1)];
     q[0] = (2.0 * bot.iter().sum::<f64>() / bot.len() as f64 - q[1]).clamp(0.0, q[1]);
     q
@@ -416,7 +416,11 @@ fn check_table(table: &Table) {
     );
     assert!((main.m1 - 1.0).abs() < 5.0 * s1, "chain mean {}", main.m1);
     assert!((main.m2 - 2.0).abs() < 5.0 * s2, "chain m2 {}", main.m2);
-    assert!((main.one - 1.0).abs() < 5.0 * s_one, "one-step mean {}", main.one);
+    assert!(
+        (main.one - 1.0).abs() < 5.0 * s_one,
+        "one-step mean {}",
+        main.one
+    );
     assert!(ks_chain < crit_chain, "chain KS {ks_chain}");
     assert!(ks_step < crit_step, "one-step KS {ks_step}");
 }
@@ -480,7 +484,10 @@ fn direct_chain() {
     let lag = (1..200)
         .find(|&k| {
             chains.iter().all(|c| {
-                let ind: Vec<f64> = c.iter().map(|&x| f64::from(u8::from(x <= median))).collect();
+                let ind: Vec<f64> = c
+                    .iter()
+                    .map(|&x| f64::from(u8::from(x <= median)))
+                    .collect();
                 autocorrelation(c, k).abs() < 0.05 && autocorrelation(&ind, k).abs() < 0.05
             })
         })
