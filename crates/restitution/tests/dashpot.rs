@@ -6,6 +6,10 @@
 //! Richardson extrapolation of the results at `h` and `h/2` (RK4 is fourth order). It uses
 //! no closed form of the trajectory.
 
+mod common;
+
+use common::rel;
+
 use restitution::dashpot::{
     damping_ratio, dashpot, duration, paper_eq12, DashpotCriterion, DashpotOutcome,
 };
@@ -103,10 +107,6 @@ impl Oscillator {
             .expect("event at step h/2");
         (t2 + (t2 - t1) / 15.0, e2 + (e2 - e1) / 15.0)
     }
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    ((a - b) / b).abs()
 }
 
 fn eval(ratio: f64, criterion: DashpotCriterion) -> DashpotOutcome {

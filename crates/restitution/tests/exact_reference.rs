@@ -20,6 +20,10 @@
 //! overdamped collision is fixed by its slow manifold, which the scale invariance of the
 //! equation maps onto itself. The improved eps ~ v*^(-10/3) only asymptotically.
 
+mod common;
+
+use common::rel;
+
 mod reference;
 
 use reference::{ln_gamma, puiseux, End, Form, Poly, RefCollision, Reference};
@@ -27,14 +31,6 @@ use restitution::exact::{solve, Collision, Criterion};
 use std::time::Instant;
 
 const TARGET: f64 = 1e-10;
-
-fn rel(a: f64, b: f64) -> f64 {
-    if a == b {
-        0.0
-    } else {
-        (a - b).abs() / b.abs()
-    }
-}
 
 fn end_of(criterion: Criterion) -> End {
     match criterion {

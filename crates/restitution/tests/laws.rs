@@ -2,6 +2,10 @@
 //! against each other. Figures quoted in comments were measured with
 //! `cargo run --release -p haff-restitution --example padeerr`.
 
+mod common;
+
+use common::rel;
+
 use restitution::exact::{solve, solve_with_tolerance, trajectory, Criterion};
 use restitution::fast::Fast;
 use restitution::pade::Pade;
@@ -10,10 +14,6 @@ use restitution::{Restitution, ScaledForm, Viscoelastic};
 
 fn exact(vstar: f64) -> f64 {
     solve(vstar, Criterion::Improved).unwrap().eps
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
 }
 
 /// MP2011 quotes eps ~ 0.278 at v* = 1.25. The exact value is 0.27063; 0.2777 is what the

@@ -379,6 +379,7 @@ fn table_kappa100() {
 ///   table noise of F is smoother than a Brownian bridge (few degrees of freedom), so
 ///   this critical value is approximate; over the replicas D* = sup|F* − F| stayed far
 ///   below it (at 300 realizations: largest of 30 replicas 0.096, critical 0.14).
+///
 /// Not covered by the bootstrap: the interpolation in ln r and the clamping below
 /// r = 0.01, systematic errors of the table; over six 300-realization tables the
 /// one-step mean was 0.9956 ± 0.0043, so they are below the noise.

@@ -261,10 +261,12 @@ impl Hierarchy {
                     .max_by(|&x, &y| m[x][col].abs().total_cmp(&m[y][col].abs()))
                     .unwrap();
                 m.swap(col, pivot);
-                for row in col + 1..n {
-                    let f = m[row][col] / m[col][col];
-                    for cc in col..=n {
-                        m[row][cc] -= f * m[col][cc];
+                let (top, below) = m.split_at_mut(col + 1);
+                let pivot_row = &top[col];
+                for row in below.iter_mut() {
+                    let f = row[col] / pivot_row[col];
+                    for (x, p) in row[col..=n].iter_mut().zip(&pivot_row[col..=n]) {
+                        *x -= f * p;
                     }
                 }
             }

@@ -1,0 +1,97 @@
+//! `haff bench ...`: the reports (JSON keys, rates, memory) and bad arguments.
+
+mod common;
+
+use common::{assert_rejected, json_of, number};
+
+#[test]
+fn bench_json_lists_every_law() {
+    let json = json_of(&[
+        "bench",
+        "cor",
+        "--format",
+        "json",
+        "--repeats",
+        "1",
+        "--evaluations",
+        "100",
+    ]);
+    assert_eq!(json["unit"], "ns_per_eval");
+    let results = json["results"].as_array().expect("results");
+    let laws: Vec<&str> = results
+        .iter()
+        .map(|r| r["law"].as_str().expect("law"))
+        .collect();
+    let expected = [
+        "exact",
+        "exact-naive",
+        "fast",
+        "pade:1/4",
+        "pade:3/6",
+        "series:20",
+        "fast(v)",
+        "pade:3/6(v)",
+    ];
+    assert_eq!(laws, expected);
+    for result in results {
+        let [median, min, max] = ["median_ns", "min_ns", "max_ns"].map(|k| number(&result[k]));
+        assert!(min > 0.0 && min <= median && median <= max, "{result}");
+        assert!(number(&result["ratio_to_pade36"]) > 0.0);
+    }
+}
+
+#[test]
+fn bench_emd_reports_rates_and_memory() {
+    let report = json_of(&[
+        "bench",
+        "emd",
+        "--particles",
+        "2000",
+        "--packing-fraction",
+        "0.1",
+        "--events",
+        "20000",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert!(number(&report["collisions_per_second"]) > 0.0);
+    assert!(number(&report["events_per_second"]) >= number(&report["collisions_per_second"]));
+    let bytes = number(&report["bytes_per_particle"]);
+    assert!(bytes > 50.0 && bytes < 400.0, "{bytes}");
+    assert_rejected(
+        &["bench", "emd", "--packing-fraction", "0.9"],
+        "--packing-fraction",
+    );
+}
+
+#[test]
+fn bench_dsmc_reports_rates_and_memory() {
+    let report = json_of(&[
+        "bench",
+        "dsmc",
+        "--particles",
+        "20000",
+        "--collisions",
+        "0.5",
+        "--repeats",
+        "1",
+        "--threads",
+        "2",
+        "--format",
+        "json",
+    ]);
+    let total = number(&report["collisions_per_second"]);
+    assert!(total > 0.0);
+    assert_eq!(number(&report["threads"]), 2.0);
+    assert_eq!(
+        number(&report["collisions_per_second_per_core"]),
+        total / 2.0
+    );
+    let bytes = number(&report["bytes_per_particle"]);
+    assert!((24.0..200.0).contains(&bytes), "{bytes}");
+    assert_rejected(&["bench", "dsmc", "--law", "1.5"], "--law");
+    assert_rejected(&["bench", "dsmc", "--scheme", "fast"], "--scheme");
+    assert_rejected(&["bench", "emd", "--calendar", "tree"], "--calendar");
+}
