@@ -16,6 +16,7 @@ use crate::system::{dot, wrap, System, Vector};
 use restitution::Restitution;
 
 mod models;
+mod predict;
 mod state;
 
 pub use models::BathState;
@@ -305,157 +306,6 @@ impl<const D: usize> EventDriven<D> {
         p.valid_at = self.time;
     }
 
-    /// Time from now until a sphere at `pi` with velocity `vi` touches j (contact
-    /// distance `sigma`), if they approach.
-    #[inline]
-    fn collision_delay(&self, pi: &Vector<D>, vi: &Vector<D>, j: usize, sigma: f64) -> Option<f64> {
-        let pj = &self.particles[j];
-        let r = self.separation(pi, &pj.position_at(self.time));
-        let v: Vector<D> = std::array::from_fn(|k| pj.velocity[k] - vi[k]);
-        let b = dot(&r, &v);
-        if b >= 0.0 {
-            return None;
-        }
-        let gap = dot(&r, &r) - sigma * sigma;
-        if gap <= 0.0 {
-            return Some(0.0);
-        }
-        let v2 = dot(&v, &v);
-        let disc = b * b - v2 * gap;
-        // gap / (-b + sqrt(disc)) is the smaller root without cancellation.
-        (disc >= 0.0).then(|| gap / (-b + disc.sqrt()))
-    }
-
-    /// Predicts and schedules the events of particle i from scratch.
-    fn predict(&mut self, i: usize) {
-        self.particles[i].collision = f64::INFINITY;
-        self.predict_crossing(i);
-        let mut best = Best::NONE;
-        let (pi, vi) = self.now(i);
-        self.for_each_neighbor(i, |j| self.consider(i, &pi, &vi, j, &mut best));
-        self.keep_if_earlier(i, best);
-    }
-
-    /// After i entered a new cell: only the layer of cells beyond it is new to i.
-    fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
-        self.predict_crossing(i);
-        let mut best = Best::NONE;
-        let (pi, vi) = self.now(i);
-        let (cells, count) = self.grid.layer_cells(&self.particles[i].cell, dim, up);
-        for &cell in &cells[..count] {
-            self.for_each_in_cell(cell, |j| self.consider(i, &pi, &vi, j, &mut best));
-        }
-        self.keep_if_earlier(i, best);
-    }
-
-    /// Calls f for every particle in the cell with linear index `cell`.
-    #[inline]
-    fn for_each_in_cell(&self, cell: usize, mut f: impl FnMut(usize)) {
-        if self.occupied[cell / 64] & (1 << (cell % 64)) == 0 {
-            return;
-        }
-        let mut j = self.heads[cell];
-        while j != NONE {
-            f(j as usize);
-            j = self.particles[j as usize].next_in_cell;
-        }
-    }
-
-    /// Calls f for every particle in the cell of i and the adjacent cells (i included).
-    #[inline]
-    fn for_each_neighbor(&self, i: usize, mut f: impl FnMut(usize)) {
-        let (cells, count) = self.grid.neighbor_cells(&self.particles[i].cell);
-        for &cell in &cells[..count] {
-            self.for_each_in_cell(cell, &mut f);
-        }
-    }
-
-    /// Puts particle i into the cell with coordinates c.
-    fn insert(&mut self, i: usize, c: [u32; D]) {
-        let cell = self.grid.index(&c);
-        let old = self.heads[cell];
-        if old != NONE {
-            self.particles[old as usize].prev_in_cell = i as u32;
-        }
-        let p = &mut self.particles[i];
-        p.next_in_cell = old;
-        p.prev_in_cell = NONE;
-        p.cell = c;
-        self.heads[cell] = i as u32;
-        self.occupied[cell / 64] |= 1 << (cell % 64);
-    }
-
-    /// Takes particle i out of its cell.
-    fn remove(&mut self, i: usize) {
-        let Particle {
-            prev_in_cell: prev,
-            next_in_cell: next,
-            cell,
-            ..
-        } = self.particles[i];
-        if prev != NONE {
-            self.particles[prev as usize].next_in_cell = next;
-        } else {
-            let cell = self.grid.index(&cell);
-            self.heads[cell] = next;
-            if next == NONE {
-                self.occupied[cell / 64] &= !(1 << (cell % 64));
-            }
-        }
-        if next != NONE {
-            self.particles[next as usize].prev_in_cell = prev;
-        }
-    }
-
-    /// Position and velocity of i now.
-    #[inline]
-    fn now(&self, i: usize) -> (Vector<D>, Vector<D>) {
-        let p = &self.particles[i];
-        (p.position_at(self.time), p.velocity)
-    }
-
-    fn predict_crossing(&mut self, i: usize) {
-        let (p, v) = self.now(i);
-        let exit = self.grid.exit(&self.particles[i].cell, &p, &v);
-        let next = &mut self.particles[i];
-        match exit {
-            Some((dt, dim, up)) => {
-                next.crossing = self.time + dt;
-                next.exit_dim = dim as u8;
-                next.exit_up = up;
-            }
-            None => next.crossing = f64::INFINITY,
-        }
-    }
-
-    /// Updates `best` with the collision of i (now at `pi` with velocity `vi`) and j.
-    #[inline]
-    fn consider(&self, i: usize, pi: &Vector<D>, vi: &Vector<D>, j: usize, best: &mut Best) {
-        if j != i {
-            if let Some(dt) = self.collision_delay(pi, vi, j, self.sigma(i, j)) {
-                if self.time + dt < best.time {
-                    *best = Best {
-                        time: self.time + dt,
-                        partner: j as u32,
-                        partner_count: self.particles[j].count,
-                    };
-                }
-            }
-        }
-    }
-
-    /// Stores the collision `best` if it is earlier than the one i has, and reschedules i.
-    fn keep_if_earlier(&mut self, i: usize, best: Best) {
-        let next = &mut self.particles[i];
-        if best.time < next.collision {
-            next.collision = best.time;
-            next.partner = best.partner;
-            next.partner_count = best.partner_count;
-        }
-        let t = next.next_event();
-        self.queue.update(i, t);
-    }
-
     /// A pair whose next collision is earlier than both particles' scheduled events
     /// (which the sorter must never allow), with that collision time. O(N^2): for tests.
     pub fn missed_collision(&self) -> Option<(usize, usize, f64)> {
@@ -606,22 +456,6 @@ fn prefetch<const D: usize>(p: &Particle<D>) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = p;
-}
-
-/// The earliest collision found so far while scanning neighbours.
-#[derive(Debug, Clone, Copy)]
-struct Best {
-    time: f64,
-    partner: u32,
-    partner_count: u32,
-}
-
-impl Best {
-    const NONE: Best = Best {
-        time: f64::INFINITY,
-        partner: u32::MAX,
-        partner_count: 0,
-    };
 }
 
 #[cfg(test)]
