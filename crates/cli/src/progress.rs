@@ -19,7 +19,9 @@ impl Bar {
 }
 
 impl sim::Progress for Bar {
+    /// A new bar for every stretch of samples (a run of repeats starts several).
     fn start(&mut self, total: usize, done: usize) {
+        *self = Bar::samples();
         self.bar.set_length(total as u64);
         self.bar.set_position(done as u64);
     }

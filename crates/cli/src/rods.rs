@@ -7,7 +7,7 @@ use crate::progress::Bar;
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
 use rods::chain::TwoRodSummary;
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
-use rods::stochastic::{eps2_histogram, sample_eps, Eps2Bin, Resolution, Table};
+use rods::stochastic::{eps2_histogram, eps2_summary, sample_eps, Eps2Bin, Resolution, Table};
 use sim::output::{write_csv_file, write_json_file};
 use sim::plot::{self, Axes};
 use sim::rod_ring::{RingDescription, RingRun};
@@ -87,8 +87,7 @@ pub fn collide(args: &RodsCollideArgs) -> CliResult {
         .map(|b| vec![number(b.eps2), number(b.density), number(b.cdf)]);
     write_csv(&mut out, &["eps2", "density", "cdf"], rows)?;
     out.flush()?;
-    let mean = eps.iter().map(|e| e * e).sum::<f64>() / eps.len() as f64;
-    let above = eps.iter().filter(|e| **e > 1.0).count() as f64 / eps.len() as f64;
+    let (mean, above) = eps2_summary(&eps);
     eprintln!("gamma = {gamma}, kappa = {kappa}, E_tr/T_bath = {ratio}: <eps^2> = {mean:.4}, P(eps^2 > 1) = {above:.4}, {realizations} realizations");
     if let Some(path) = &args.plot {
         let title = format!("p(eps^2): gamma = {gamma}, E_tr/T_bath = {ratio}, kappa = {kappa}");
@@ -296,7 +295,7 @@ fn plot_spectrum(path: &Path, last: &TwoRodSummary, spectrum: &[f64]) -> CliResu
             .collect()
     };
     let rods = [per_rod(0), per_rod(1)];
-    let flat = 0.5 / last.modes as f64;
+    let flat = rods::chain::equipartition_mode_share(last.modes);
     let title = format!(
         "mean modal energies w after collision {} (M = {})",
         last.transient, last.modes

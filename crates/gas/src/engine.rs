@@ -2,8 +2,8 @@
 //! a time or by a number of collisions, report one counter type, expose the state for the
 //! observables, and save/restore the complete state ([`Checkpoint`]). The run driver
 //! (crate `haff-sim`) drives every engine through these two traits only; a new engine
-//! (e.g. soft-sphere MD) implements them and needs nothing else from the driver but a name
-//! in the run description.
+//! (e.g. soft-sphere MD) implements them, and the driver only needs to know its name in the
+//! run description and how to build it (docs/architecture.md).
 
 use crate::system::System;
 use crate::Result;

@@ -42,13 +42,6 @@ pub enum Error {
     /// Baths were set for a deterministic law.
     #[error("the law '{law}' has no baths")]
     NoBaths { law: String },
-    /// A name outside a closed set of choices.
-    #[error("{what} '{given}': allowed {allowed}")]
-    UnknownName {
-        what: &'static str,
-        given: String,
-        allowed: &'static str,
-    },
     /// The collision law could not be built.
     #[error(transparent)]
     Law(#[from] restitution::Error),

@@ -23,27 +23,6 @@ pub enum SorterKind {
     Buckets,
 }
 
-impl SorterKind {
-    /// Every kind, by the name [`std::str::FromStr`] parses.
-    pub const ALL: [(&'static str, SorterKind); 2] =
-        [("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)];
-}
-
-impl std::str::FromStr for SorterKind {
-    type Err = crate::Error;
-    fn from_str(s: &str) -> Result<Self, crate::Error> {
-        SorterKind::ALL
-            .iter()
-            .find(|(name, _)| *name == s)
-            .map(|&(_, kind)| kind)
-            .ok_or_else(|| crate::Error::UnknownName {
-                what: "sorter",
-                given: s.to_string(),
-                allowed: "heap, buckets",
-            })
-    }
-}
-
 /// The sorter in use.
 #[derive(Debug, Clone)]
 pub(crate) enum Sorter {

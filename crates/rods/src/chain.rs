@@ -36,8 +36,8 @@ mod two_rods;
 
 pub use impacts::Impacts;
 pub use two_rod_summary::{
-    equipartition_per_collision, equipartition_time, running_mean_e_tr, TwoRodSummary,
-    RUNNING_WINDOW,
+    equipartition_mode_share, equipartition_per_collision, equipartition_time, running_mean_e_tr,
+    TwoRodSummary, RUNNING_WINDOW,
 };
 pub use two_rods::{
     cooling_collision, eta_equilibrium, eta_relaxation, eta_within, mean_spectrum, run_two_rods,

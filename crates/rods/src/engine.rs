@@ -47,6 +47,23 @@ impl ChainEngine {
         }
     }
 
+    /// The engine saved as `state`; fails if the impact counter is not of this chain.
+    pub fn from_state(state: ChainEngineState) -> gas::Result<Self> {
+        let rods = state.chain.n_rods();
+        if state.impacts.rods() != rods {
+            return Err(gas::Error::LengthMismatch {
+                what: format!(
+                    "the impact counter ({} rods) and the chain ({rods} rods)",
+                    state.impacts.rods()
+                ),
+            });
+        }
+        let mut engine = ChainEngine::new(state.chain);
+        engine.impacts = state.impacts;
+        engine.episodes = state.episodes;
+        Ok(engine)
+    }
+
     /// The chain (for modal energies, the total energy, ...).
     pub fn chain(&self) -> &Chain {
         &self.chain
@@ -113,6 +130,7 @@ impl Engine<1> for ChainEngine {
         &self.system
     }
 
+    /// The chain's own record only (its per-rod mode arrays are not counted).
     fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Chain>()
     }
@@ -131,9 +149,6 @@ impl Checkpoint<1> for ChainEngine {
 
     /// Restores the chain; its dynamics has no law (the law argument is not used).
     fn restore(state: ChainEngineState, _law: Box<dyn Restitution>) -> gas::Result<Self> {
-        let mut engine = ChainEngine::new(state.chain);
-        engine.impacts = state.impacts;
-        engine.episodes = state.episodes;
-        Ok(engine)
+        ChainEngine::from_state(state)
     }
 }

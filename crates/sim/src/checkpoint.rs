@@ -62,19 +62,29 @@ pub fn parse<S: DeserializeOwned>(text: &str, dir: &Path) -> Result<CheckpointFi
     };
     let file: CheckpointFile<S> =
         serde_json::from_str(text).map_err(|e| fail(format!("not a run check-point: {e}")))?;
-    if file.format != FORMAT || file.version != VERSION {
-        return Err(fail(format!(
-            "written as '{}' version {}; this haff reads '{FORMAT}' version {VERSION}",
-            file.format, file.version
-        )));
-    }
+    check_format(dir, (&file.format, file.version), (FORMAT, VERSION))?;
     Ok(file)
+}
+
+/// Refuses a check-point of `dir` written as `found` (format, version) where `expected`
+/// is read.
+pub(crate) fn check_format(dir: &Path, found: (&str, u32), expected: (&str, u32)) -> Result<()> {
+    if found == expected {
+        return Ok(());
+    }
+    Err(Error::Checkpoint {
+        path: dir.join(FILE_NAME),
+        message: format!(
+            "written as '{}' version {}; this haff reads '{}' version {}",
+            found.0, found.1, expected.0, expected.1
+        ),
+    })
 }
 
 /// Writes `file` as `dir/checkpoint.json` atomically (a partial file, then renamed), so
 /// that an interrupted write never destroys the last check-point.
-pub(crate) fn write<S: Serialize>(dir: &Path, file: &CheckpointRef<'_, S>) -> Result<()> {
+pub(crate) fn write<T: Serialize>(dir: &Path, value: &T) -> Result<()> {
     write_file(&dir.join(FILE_NAME), |out| {
-        serde_json::to_writer(out, file).map_err(std::io::Error::from)
+        serde_json::to_writer(out, value).map_err(std::io::Error::from)
     })
 }

@@ -106,8 +106,9 @@ pub enum Distribution {
     Tabulated,
 }
 
-/// `[collision]`: the law and its parameters. Keys of the other laws are refused by
-/// [`crate::validate`].
+/// `[collision]`: the law and its parameters. The stochastic keys are refused for the
+/// other laws by [`crate::validate`]; keys of another deterministic law are still accepted
+/// and ignored (as they always were).
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct CollisionSection {

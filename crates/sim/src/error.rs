@@ -24,6 +24,10 @@ pub enum Error {
         gas::emd::COLLAPSE_COLLISIONS_PER_PARTICLE
     )]
     Collapse { time: f64 },
+    /// A numerical procedure that failed on valid input (an internal failure, not the
+    /// user's): `key` names what was being computed.
+    #[error("{key}: {message}")]
+    Numerical { key: String, message: String },
     /// An output file that could not be written.
     #[error("writing {}: {source}", path.display())]
     Write {
@@ -51,7 +55,21 @@ impl Error {
 
     /// Whether the user's input caused the error (exit code 2), rather than the machine.
     pub fn is_input(&self) -> bool {
-        !matches!(self, Error::Write { .. } | Error::Plot { .. })
+        !matches!(
+            self,
+            Error::Write { .. } | Error::Plot { .. } | Error::Numerical { .. }
+        )
+    }
+
+    /// A restitution error about `key`: numerical failures are internal, all else input.
+    pub fn law(key: &str, error: restitution::Error) -> Self {
+        match error {
+            restitution::Error::Numerical(message) => Error::Numerical {
+                key: key.to_string(),
+                message,
+            },
+            other => Error::input(key, other),
+        }
     }
 
     /// The error of writing `path`.

@@ -7,7 +7,7 @@ use std::path::Path;
 
 /// The law of `spec`. Errors name the key of the run file that set the failing value.
 pub fn build(spec: &LawSpec) -> Result<Box<dyn Restitution>> {
-    let input = |key: &'static str| move |e: restitution::Error| Error::input(key, e);
+    let input = |key: &'static str| move |e: restitution::Error| Error::law(key, e);
     Ok(match spec {
         LawSpec::Constant(eps) => {
             Box::new(Constant::new(*eps).map_err(input("collision.restitution"))?)

@@ -1,8 +1,9 @@
 //! # haff-sim — the run driver
 //!
-//! A run as a library, used by the `haff` command and by Python alike:
+//! A run as a library: what the `haff` command runs (and what the Python package will
+//! call):
 //!
-//! TOML or Python dict -> [`RunDescription`] -> [`validate`] -> [`Plan`] -> system + law +
+//! TOML (or, later, a Python dict) -> [`RunDescription`] -> [`validate`] -> [`Plan`] -> system + law +
 //! engine ([`engines`], [`law`]) -> [`observer`]s -> writers ([`output`], [`plot`]),
 //! with [`checkpoint`]s to continue a run bit for bit.
 //!

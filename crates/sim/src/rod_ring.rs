@@ -26,8 +26,9 @@ mod description;
 use description::chain_error;
 pub use description::{ChainSection, CompareLaw, RingDescription, RingRunSection};
 
+use crate::checkpoint;
 use crate::error::{Error, Result};
-use crate::output::{number, write_csv_file, write_file, write_json_file};
+use crate::output::{number, write_csv_file, write_json_file};
 use crate::plot::{self, Axes};
 use crate::simulation::Progress;
 use gas::{Engine, EventDriven};
@@ -131,26 +132,16 @@ impl RingRun {
 
     /// The run saved in `dir/checkpoint.json`; further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
-        let path = dir.join(crate::checkpoint::FILE_NAME);
         let fail = |message: String| Error::Checkpoint {
-            path: path.clone(),
+            path: dir.join(checkpoint::FILE_NAME),
             message,
         };
-        let text = std::fs::read_to_string(&path).map_err(|e| fail(e.to_string()))?;
+        let text = checkpoint::read_text(dir)?;
         let saved: RingCheckpoint = serde_json::from_str(&text)
             .map_err(|e| fail(format!("not a rods chain check-point: {e}")))?;
-        if saved.format != FORMAT || saved.version != VERSION {
-            return Err(fail(format!(
-                "written as '{}' version {}; this haff reads '{FORMAT}' version {VERSION}",
-                saved.format, saved.version
-            )));
-        }
+        checkpoint::check_format(dir, (&saved.format, saved.version), (FORMAT, VERSION))?;
         let mut run = RingRun::new(&saved.description)?;
-        let restored = <ChainEngine as gas::Checkpoint<1>>::restore(
-            saved.engine,
-            Box::new(restitution::Constant::new(1.0).map_err(|e| fail(e.to_string()))?),
-        )
-        .map_err(|e| fail(e.to_string()))?;
+        let restored = ChainEngine::from_state(saved.engine).map_err(|e| fail(e.to_string()))?;
         run.repeat = saved.repeat;
         run.current = Some(Repeat {
             rows: saved.rows,
@@ -254,9 +245,7 @@ impl RingRun {
             chain_seconds,
             every: self.every,
         };
-        write_file(&dir.join(crate::checkpoint::FILE_NAME), |out| {
-            serde_json::to_writer(out, &saved).map_err(std::io::Error::from)
-        })
+        checkpoint::write(dir, &saved)
     }
 
     /// The stochastic law of an ED + MC comparison.
@@ -265,7 +254,7 @@ impl RingRun {
             .map_err(|_| Error::out_of_range("chain.modes", self.ring.modes, "at most 2^32 - 1"))?;
         match law {
             CompareLaw::Glauber => Ok(Box::new(
-                Glauber::new(modes).map_err(|e| Error::input("chain.modes", e))?,
+                Glauber::new(modes).map_err(|e| Error::law("chain.modes", e))?,
             )),
             CompareLaw::Tabulated => {
                 let path = self.description.run.table.as_ref().ok_or_else(|| {
@@ -292,7 +281,9 @@ impl RingRun {
             .map(|r| (r.time, share * r.total_energy))
             .collect();
         plot_cooling(&dir.join("cooling.png"), &self.curves, equilibrium)?;
-        let (first, last) = (chain_rows[0], chain_rows.last().copied());
+        let (Some(&first), last) = (chain_rows.first(), chain_rows.last().copied()) else {
+            return Err(Error::input("run.samples", "no sample was taken"));
+        };
         let summary = serde_json::json!({
             "parameters": self.description,
             "perimeter": self.ring.perimeter(),

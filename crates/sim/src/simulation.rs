@@ -1,7 +1,7 @@
 //! The run driver: a [`Simulation`] built from a run description (or a check-point) runs its
 //! engine through the sampling schedule, feeds the observers, writes check-points and,
-//! on request, the output files. The `haff run` command and the Python package both drive
-//! runs through it.
+//! on request, the output files. The `haff run` command drives runs through it (and the
+//! Python package will).
 
 use crate::checkpoint::{self, CheckpointFile};
 use crate::description::RunDescription;

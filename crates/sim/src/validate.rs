@@ -1,5 +1,9 @@
 //! Checks a run description before anything runs, and turns it into a [`Plan`]: typed
-//! choices with every value in range. Errors name the key and the allowed range.
+//! choices, every key of `[system]` and `[run]` in range, the keys each law needs present
+//! and the stochastic keys only with the stochastic law. The law's own parameter ranges
+//! (restitution, damping ratio, beta, modes, the form's order, the table) are checked by the
+//! law itself when [`crate::law::build`] builds it, which [`crate::Simulation::new`] does
+//! before anything runs. Errors name the key and the allowed range.
 
 use crate::description::{
     species, Distribution, DsmcScheme, EngineKind, LawKind, RunDescription, RunSection, Spacing,

@@ -42,6 +42,11 @@ impl Impacts {
         }
     }
 
+    /// The number of rods on the ring.
+    pub fn rods(&self) -> usize {
+        self.last_contact.len()
+    }
+
     /// Impacts counted so far.
     pub fn collisions(&self) -> u64 {
         self.collisions

@@ -29,6 +29,11 @@ pub fn equipartition_per_collision(modes: usize) -> f64 {
     1.0 / (2.0 * modes as f64 + 1.0)
 }
 
+/// Mean relative energy w of one of the 2M modes of the two rods at equipartition, 1/(2M).
+pub fn equipartition_mode_share(modes: usize) -> f64 {
+    0.5 / modes as f64
+}
+
 /// Time average of E_tr/E0 at equipartition: 1/(4M + 1) (see the module documentation).
 pub fn equipartition_time(modes: usize) -> f64 {
     1.0 / (4.0 * modes as f64 + 1.0)

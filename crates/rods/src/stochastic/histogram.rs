@@ -87,3 +87,12 @@ mod tests {
         assert!(e.contains("max"), "{e}");
     }
 }
+
+/// The mean of eps^2 over samples of eps and the fraction with eps^2 > 1 (an energy gain
+/// from the bath), as printed beside Fig. 3 of Giese.
+pub fn eps2_summary(eps: &[f64]) -> (f64, f64) {
+    let n = eps.len().max(1) as f64;
+    let mean = eps.iter().map(|e| e * e).sum::<f64>() / n;
+    let above = eps.iter().filter(|e| **e > 1.0).count() as f64 / n;
+    (mean, above)
+}
