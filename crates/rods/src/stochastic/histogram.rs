@@ -48,6 +48,15 @@ pub fn eps2_histogram(eps: &[f64], bins: usize, max: f64) -> Result<Vec<Eps2Bin>
         .collect())
 }
 
+/// The mean of eps^2 over samples of eps and the fraction with eps^2 > 1 (an energy gain
+/// from the bath), as printed beside Fig. 3 of Giese.
+pub fn eps2_summary(eps: &[f64]) -> (f64, f64) {
+    let n = eps.len().max(1) as f64;
+    let mean = eps.iter().map(|e| e * e).sum::<f64>() / n;
+    let above = eps.iter().filter(|e| **e > 1.0).count() as f64 / n;
+    (mean, above)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,13 +95,4 @@ mod tests {
         let e = eps2_histogram(&[0.5], 2, 0.0).unwrap_err().to_string();
         assert!(e.contains("max"), "{e}");
     }
-}
-
-/// The mean of eps^2 over samples of eps and the fraction with eps^2 > 1 (an energy gain
-/// from the bath), as printed beside Fig. 3 of Giese.
-pub fn eps2_summary(eps: &[f64]) -> (f64, f64) {
-    let n = eps.len().max(1) as f64;
-    let mean = eps.iter().map(|e| e * e).sum::<f64>() / n;
-    let above = eps.iter().filter(|e| **e > 1.0).count() as f64 / n;
-    (mean, above)
 }
