@@ -69,6 +69,27 @@ macro_rules! each {
     };
 }
 
+/// The run of `$dimension` (1, 2, else 3) dimensions: `$make` evaluated with the constant
+/// `$D` set to it, its error returned.
+macro_rules! in_dimension {
+    ($dimension:expr, $D:ident => $make:expr) => {
+        match $dimension {
+            1 => {
+                const $D: usize = 1;
+                Dimensioned::One(Box::new($make?))
+            }
+            2 => {
+                const $D: usize = 2;
+                Dimensioned::Two(Box::new($make?))
+            }
+            _ => {
+                const $D: usize = 3;
+                Dimensioned::Three(Box::new($make?))
+            }
+        }
+    };
+}
+
 /// The engine and observers of a run in D dimensions.
 struct Run<const D: usize> {
     engine: Box<dyn Driven<D>>,
@@ -91,26 +112,12 @@ impl Simulation {
             .histogram_bins
             .unwrap_or(HISTOGRAM_BINS);
         let (timeseries, histograms) = (TimeSeries::default(), VelocityHistograms::new(bins));
-        let run = match plan.description.system.dimension {
-            1 => Dimensioned::One(Box::new(Run::new(
-                &plan,
-                engines::start::<1>(&plan, law)?,
-                timeseries,
-                histograms,
-            )?)),
-            2 => Dimensioned::Two(Box::new(Run::new(
-                &plan,
-                engines::start::<2>(&plan, law)?,
-                timeseries,
-                histograms,
-            )?)),
-            _ => Dimensioned::Three(Box::new(Run::new(
-                &plan,
-                engines::start::<3>(&plan, law)?,
-                timeseries,
-                histograms,
-            )?)),
-        };
+        let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::new(
+            &plan,
+            engines::start::<D>(&plan, law)?,
+            timeseries,
+            histograms,
+        ));
         Ok(Simulation {
             plan,
             run,
@@ -133,26 +140,12 @@ impl Simulation {
         let head: CheckpointFile<IgnoredAny> = checkpoint::parse(&text, dir)?;
         let plan = validate(&head.description)?;
         let law = law::build(&plan.law)?;
-        let run = match plan.description.system.dimension {
-            1 => Dimensioned::One(Box::new(Run::new(
-                &plan,
-                engines::restore::<1>(&plan, law, &text, dir)?,
-                head.timeseries,
-                head.histograms,
-            )?)),
-            2 => Dimensioned::Two(Box::new(Run::new(
-                &plan,
-                engines::restore::<2>(&plan, law, &text, dir)?,
-                head.timeseries,
-                head.histograms,
-            )?)),
-            _ => Dimensioned::Three(Box::new(Run::new(
-                &plan,
-                engines::restore::<3>(&plan, law, &text, dir)?,
-                head.timeseries,
-                head.histograms,
-            )?)),
-        };
+        let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::new(
+            &plan,
+            engines::restore::<D>(&plan, law, &text, dir)?,
+            head.timeseries,
+            head.histograms,
+        ));
         Ok(Simulation {
             plan,
             run,
