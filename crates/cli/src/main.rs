@@ -162,10 +162,10 @@ pub struct RunArgs {
     /// the check-point's directory].
     #[arg(long)]
     pub out: Option<std::path::PathBuf>,
-    /// Save the state every K samples to DIR/checkpoint.json.
+    /// Save the state every K samples to DIR/checkpoint.bin.
     #[arg(long, value_name = "K", allow_hyphen_values = true)]
     pub checkpoint_every: Option<String>,
-    /// Continue the run saved in DIR/checkpoint.json.
+    /// Continue the run saved in DIR/checkpoint.bin.
     #[arg(long, value_name = "DIR", conflicts_with = "file")]
     pub resume: Option<std::path::PathBuf>,
     /// End after this many samples (a run in chunks; continue with --resume).

@@ -146,6 +146,39 @@ pub struct Snapshot<const D: usize, O> {
     pub temperature: f64,
 }
 
+impl<const D: usize, O> Snapshot<D, O> {
+    /// Checks what a check-point could hold wrongly: time, step temperature, speed bound
+    /// and reference velocity finite and in range, finite counters, the particles
+    /// ([`System::check`], positions in the box if `in_box`). The engine's constructor
+    /// checks the rest (packing fraction, options, radii and masses).
+    pub fn check(&self, in_box: bool) -> Result<()> {
+        for (name, x) in [
+            ("time", self.time),
+            ("temperature", self.temperature),
+            ("speed_bound", self.speed_bound),
+        ] {
+            if !(x.is_finite() && x >= 0.0) {
+                return Err(Error::out_of_range(name, x, "a finite number >= 0"));
+            }
+        }
+        if self.reference_velocity.iter().any(|x| !x.is_finite()) {
+            return Err(Error::NotFinite {
+                what: "reference_velocity",
+                index: 0,
+            });
+        }
+        let c = &self.counters;
+        if !(c.energy_lost.is_finite() && c.virial.is_finite()) || c.events < c.collisions {
+            return Err(Error::out_of_range(
+                "counters",
+                format!("{c:?}"),
+                "finite sums and candidates >= collisions",
+            ));
+        }
+        self.system.check(in_box)
+    }
+}
+
 /// Snapshot of a [`HomogeneousDsmc`].
 pub type HomogeneousSnapshot<const D: usize> = Snapshot<D, Scheme>;
 /// Snapshot of a [`SpatialDsmc`].
@@ -272,7 +305,7 @@ fn positive(x: f64) -> bool {
 
 /// The engine interface, forwarded to the inherent methods of both DSMC engines.
 macro_rules! dsmc_engine {
-    ($engine:ident, $snapshot:ident, $weight:expr) => {
+    ($engine:ident, $snapshot:ident, $weight:expr, $in_box:expr) => {
         impl<const D: usize> Engine<D> for $engine<D> {
             fn run_until(&mut self, t: f64) {
                 $engine::run_until(self, t)
@@ -307,11 +340,14 @@ macro_rules! dsmc_engine {
                 self.snapshot()
             }
             fn restore(state: Self::State, law: Box<dyn Restitution>) -> Result<Self> {
+                state.check($in_box)?;
                 $engine::restore(state, law)
             }
         }
     };
 }
 
-dsmc_engine!(HomogeneousDsmc, HomogeneousSnapshot, |_| 1.0);
-dsmc_engine!(SpatialDsmc, SpatialSnapshot, SpatialDsmc::weight);
+// The homogeneous engine has no positions (all zero, in the box); the spatial one keeps
+// them wrapped into the box.
+dsmc_engine!(HomogeneousDsmc, HomogeneousSnapshot, |_| 1.0, true);
+dsmc_engine!(SpatialDsmc, SpatialSnapshot, SpatialDsmc::weight, true);

@@ -38,6 +38,50 @@ impl<const D: usize> System<D> {
         std::array::from_fn(|k| minimum_image(b[k] - a[k], self.length))
     }
 
+    /// Checks a state read from outside (a check-point): a finite box side > 0, radii and
+    /// masses finite and > 0, finite velocities, and (if `in_box`) positions in [0, L)^D.
+    pub fn check(&self, in_box: bool) -> crate::Result<()> {
+        use crate::Error;
+        crate::error::require_positive("length", self.length)?;
+        let n = self.positions.len();
+        if [self.velocities.len(), self.radii.len(), self.masses.len()] != [n; 3] {
+            return Err(Error::LengthMismatch {
+                what: "positions, velocities, radii and masses".into(),
+            });
+        }
+        for (what, list) in [("radii", &self.radii), ("masses", &self.masses)] {
+            if let Some(i) = list.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
+                return Err(Error::out_of_range(
+                    format!("{what}[{i}]"),
+                    list[i],
+                    "a finite number > 0",
+                ));
+            }
+        }
+        if let Some(index) = self
+            .velocities
+            .iter()
+            .position(|v| v.iter().any(|x| !x.is_finite()))
+        {
+            return Err(Error::NotFinite {
+                what: "velocities",
+                index,
+            });
+        }
+        let length = self.length;
+        if let Some(i) = self.positions.iter().position(|p| {
+            p.iter()
+                .any(|x| !(x.is_finite() && (!in_box || (0.0..length).contains(x))))
+        }) {
+            return Err(Error::out_of_range(
+                format!("positions[{i}]"),
+                format!("{:?}", self.positions[i]),
+                format!("finite coordinates in [0, {length}) (the box)"),
+            ));
+        }
+        Ok(())
+    }
+
     /// Fraction of the volume occupied by the spheres.
     pub fn packing_fraction(&self) -> f64 {
         self.radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / self.volume()

@@ -1,90 +1,174 @@
-//! The check-point of a run (`DIR/checkpoint.json`): the run description, the observers'
-//! records and the engine's complete state ([`gas::Checkpoint::State`]), so that a resumed
-//! run repeats the uninterrupted one bit for bit.
+//! Check-points: one file, `DIR/checkpoint.bin`, from which a run continues bit for bit.
+//!
+//! Layout (version 3):
+//!
+//! ```text
+//! {"format":"haff-run-checkpoint","version":3,"haff_version":"0.1.0","records_bytes":R,"engine_bytes":E,"crc32":C}\n
+//! <R bytes: the driver's records as JSON (run description, observers, interval)>\n
+//! <E bytes: the engine's complete state (gas::Checkpoint::State), postcard-encoded>
+//! ```
+//!
+//! The first line says what the file is and which haff wrote it; C is the CRC-32 of the
+//! records and engine bytes, so an edited, truncated or damaged file is refused before it is
+//! read. The records stay readable JSON; the engine state, O(N), is binary (f64 as 8
+//! bytes, lengths as varints: about 70 bytes per particle for the event-driven engine in
+//! 3D). After the checksum, the driver checks the content for meaning (the run description
+//! like a fresh run, the engine state against it: see `engines`).
 
-use crate::description::RunDescription;
 use crate::error::{Error, Result};
-use crate::observer::{TimeSeries, VelocityHistograms};
 use crate::output::write_file;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The file name of a check-point in its directory.
-pub const FILE_NAME: &str = "checkpoint.json";
-/// What the `format` field of a run check-point says.
-pub const FORMAT: &str = "haff-run-checkpoint";
-/// The version of the layout below; a check-point of another version is refused.
-pub const VERSION: u32 = 2;
+pub const FILE_NAME: &str = "checkpoint.bin";
+/// The file name older versions (1, 2: all JSON) wrote.
+pub const LEGACY_FILE_NAME: &str = "checkpoint.json";
+/// The version of the layout; a check-point of another version is refused, naming both.
+pub const VERSION: u32 = 3;
+/// The version of haff that writes.
+pub const HAFF_VERSION: &str = env!("CARGO_PKG_VERSION");
+/// The longest first line read before a file is declared foreign.
+const MAX_HEADER: usize = 4096;
 
-/// A check-point with the engine state `S` (`serde::de::IgnoredAny` to read the rest
-/// first, before the engine is known).
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// The first line of a check-point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct CheckpointFile<S> {
-    pub format: String,
-    pub version: u32,
-    /// The run file (normalized).
-    pub description: RunDescription,
-    /// Check-point interval in samples (reused on resume).
-    pub every: Option<usize>,
-    pub timeseries: TimeSeries,
-    pub histograms: VelocityHistograms,
-    pub engine: S,
+struct Header {
+    format: String,
+    version: u32,
+    haff_version: String,
+    records_bytes: u64,
+    engine_bytes: u64,
+    crc32: u32,
 }
 
-/// The serialized form of [`CheckpointFile`], borrowing its parts.
-#[derive(Serialize)]
-pub(crate) struct CheckpointRef<'a, S> {
-    pub format: &'a str,
-    pub version: u32,
-    pub description: &'a RunDescription,
-    pub every: Option<usize>,
-    pub timeseries: &'a TimeSeries,
-    pub histograms: &'a VelocityHistograms,
-    pub engine: &'a S,
+/// A check-point read and verified (format, version, lengths, checksum), not yet decoded.
+#[derive(Debug)]
+pub struct Sections {
+    path: std::path::PathBuf,
+    records: Vec<u8>,
+    engine: Vec<u8>,
 }
 
-/// Reads the check-point in `dir` as text.
-pub fn read_text(dir: &Path) -> Result<String> {
+impl Sections {
+    /// The records, as `R`.
+    pub fn records<R: DeserializeOwned>(&self) -> Result<R> {
+        serde_json::from_slice(&self.records).map_err(|e| self.error(format!("records: {e}")))
+    }
+
+    /// The engine state, as `S`.
+    pub fn engine<S: DeserializeOwned>(&self) -> Result<S> {
+        postcard::from_bytes(&self.engine).map_err(|e| self.error(format!("engine state: {e}")))
+    }
+
+    /// An error about this check-point.
+    pub fn error(&self, message: impl std::fmt::Display) -> Error {
+        Error::Checkpoint {
+            path: self.path.clone(),
+            message: message.to_string(),
+        }
+    }
+}
+
+/// Writes the check-point of `format` into `dir` atomically (a partial file, then renamed),
+/// so that an interrupted write never destroys the last one.
+pub fn write<R: Serialize, S: Serialize>(
+    dir: &Path,
+    format: &str,
+    records: &R,
+    engine: &S,
+) -> Result<()> {
     let path = dir.join(FILE_NAME);
-    std::fs::read_to_string(&path).map_err(|e| Error::Checkpoint {
-        path,
-        message: e.to_string(),
+    let records = serde_json::to_vec(records).map_err(|e| Error::write(&path, e.into()))?;
+    let engine =
+        postcard::to_stdvec(engine).map_err(|e| Error::write(&path, std::io::Error::other(e)))?;
+    let mut crc = crc32fast::Hasher::new();
+    crc.update(&records);
+    crc.update(&engine);
+    let header = Header {
+        format: format.to_string(),
+        version: VERSION,
+        haff_version: HAFF_VERSION.to_string(),
+        records_bytes: records.len() as u64,
+        engine_bytes: engine.len() as u64,
+        crc32: crc.finalize(),
+    };
+    write_file(&path, |out| {
+        serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
+        out.write_all(b"\n")?;
+        out.write_all(&records)?;
+        out.write_all(b"\n")?;
+        out.write_all(&engine)
     })
 }
 
-/// Parses a check-point (of `dir`, for messages) with engine state `S`.
-pub fn parse<S: DeserializeOwned>(text: &str, dir: &Path) -> Result<CheckpointFile<S>> {
+/// Reads the check-point of `format` in `dir` and verifies it: a haff check-point of this
+/// format and version, complete (nothing missing, nothing appended) and with the checksum
+/// of its content.
+pub fn read(dir: &Path, format: &str) -> Result<Sections> {
+    let path = dir.join(FILE_NAME);
     let fail = |message: String| Error::Checkpoint {
-        path: dir.join(FILE_NAME),
+        path: path.clone(),
         message,
     };
-    let file: CheckpointFile<S> =
-        serde_json::from_str(text).map_err(|e| fail(format!("not a run check-point: {e}")))?;
-    check_format(dir, (&file.format, file.version), (FORMAT, VERSION))?;
-    Ok(file)
-}
-
-/// Refuses a check-point of `dir` written as `found` (format, version) where `expected`
-/// is read.
-pub(crate) fn check_format(dir: &Path, found: (&str, u32), expected: (&str, u32)) -> Result<()> {
-    if found == expected {
-        return Ok(());
+    let bytes = match std::fs::read(&path) {
+        Ok(bytes) => bytes,
+        Err(e) if dir.join(LEGACY_FILE_NAME).exists() => {
+            return Err(Error::Checkpoint {
+                path: dir.join(LEGACY_FILE_NAME),
+                message: format!(
+                    "a check-point of an older haff (format version 1 or 2, all JSON); this \
+                     haff reads version {VERSION} ({FILE_NAME}) ({e})"
+                ),
+            })
+        }
+        Err(e) => return Err(fail(e.to_string())),
+    };
+    let end = bytes
+        .iter()
+        .take(MAX_HEADER)
+        .position(|&b| b == b'\n')
+        .ok_or_else(|| fail("not a haff check-point (no header line)".into()))?;
+    let header: Header = serde_json::from_slice(&bytes[..end])
+        .map_err(|e| fail(format!("not a haff check-point (header: {e})")))?;
+    if header.format != format || header.version != VERSION {
+        return Err(fail(format!(
+            "written as '{}' version {} by haff {}; this haff {HAFF_VERSION} reads '{format}' \
+             version {VERSION}",
+            header.format, header.version, header.haff_version
+        )));
     }
-    Err(Error::Checkpoint {
-        path: dir.join(FILE_NAME),
-        message: format!(
-            "written as '{}' version {}; this haff reads '{}' version {}",
-            found.0, found.1, expected.0, expected.1
-        ),
-    })
-}
-
-/// Writes `file` as `dir/checkpoint.json` atomically (a partial file, then renamed), so
-/// that an interrupted write never destroys the last check-point.
-pub(crate) fn write<T: Serialize>(dir: &Path, value: &T) -> Result<()> {
-    write_file(&dir.join(FILE_NAME), |out| {
-        serde_json::to_writer(out, value).map_err(std::io::Error::from)
+    let body = &bytes[end + 1..];
+    let expected = header
+        .records_bytes
+        .checked_add(header.engine_bytes)
+        .and_then(|n| n.checked_add(1))
+        .ok_or_else(|| fail("header: impossible lengths".into()))?;
+    if body.len() as u64 != expected {
+        return Err(fail(format!(
+            "{} bytes after the header where it announces {expected}: the file is truncated \
+             or was changed",
+            body.len()
+        )));
+    }
+    let r = header.records_bytes as usize;
+    if body[r] != b'\n' {
+        return Err(fail("the records do not end where the header says".into()));
+    }
+    let (records, engine) = (&body[..r], &body[r + 1..]);
+    let mut crc = crc32fast::Hasher::new();
+    crc.update(records);
+    crc.update(engine);
+    if crc.finalize() != header.crc32 {
+        return Err(fail(
+            "checksum mismatch: the check-point was changed or damaged after it was written".into(),
+        ));
+    }
+    Ok(Sections {
+        path,
+        records: records.to_vec(),
+        engine: engine.to_vec(),
     })
 }

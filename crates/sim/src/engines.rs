@@ -1,18 +1,39 @@
 //! Engines built from a plan: fresh from the `[system]` section, or restored from a
-//! check-point. The one place that maps `run.engine` to an engine type.
+//! check-point after checking that the saved state belongs to the plan's run. The one place
+//! that maps `run.engine` to an engine type.
 
-use crate::checkpoint::{self, CheckpointRef, FORMAT, VERSION};
+use crate::checkpoint::{self, Sections};
 use crate::description::species;
 use crate::error::{Error, Result};
 use crate::observer::{TimeSeries, VelocityHistograms};
 use crate::validate::{EngineSpec, LawSpec, Plan};
-use gas::{BathState, Checkpoint, Engine, EventDriven, HomogeneousDsmc, SpatialDsmc, System};
+use gas::{
+    BathState, Checkpoint, Engine, EventDriven, EventDrivenState, HomogeneousDsmc, SpatialDsmc,
+    System,
+};
 use restitution::Restitution;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// What a check-point holds besides the engine.
-pub(crate) struct Records<'a> {
-    pub plan: &'a Plan,
+/// The `format` of a run check-point.
+pub const FORMAT: &str = "haff-run-checkpoint";
+
+/// What a run check-point holds besides the engine (JSON, readable).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Records {
+    /// The run file (normalized).
+    pub description: crate::RunDescription,
+    /// Check-point interval in samples (reused on resume).
+    pub every: Option<usize>,
+    pub timeseries: TimeSeries,
+    pub histograms: VelocityHistograms,
+}
+
+/// [`Records`], borrowed for writing.
+#[derive(Serialize)]
+pub(crate) struct RecordsRef<'a> {
+    pub description: &'a crate::RunDescription,
     pub every: Option<usize>,
     pub timeseries: &'a TimeSeries,
     pub histograms: &'a VelocityHistograms,
@@ -20,25 +41,14 @@ pub(crate) struct Records<'a> {
 
 /// An engine the driver runs: the engine interface and a check-point writer.
 pub(crate) trait Driven<const D: usize>: Engine<D> {
-    /// Saves the engine's state with `records` as `dir/checkpoint.json`.
-    fn write_checkpoint(&mut self, dir: &Path, records: Records<'_>) -> Result<()>;
+    /// Saves the engine's state with `records` as the check-point of `dir`.
+    fn write_checkpoint(&mut self, dir: &Path, records: RecordsRef<'_>) -> Result<()>;
 }
 
 impl<const D: usize, E: Checkpoint<D>> Driven<D> for E {
-    fn write_checkpoint(&mut self, dir: &Path, records: Records<'_>) -> Result<()> {
+    fn write_checkpoint(&mut self, dir: &Path, records: RecordsRef<'_>) -> Result<()> {
         let state = self.save();
-        checkpoint::write(
-            dir,
-            &CheckpointRef {
-                format: FORMAT,
-                version: VERSION,
-                description: &records.plan.description,
-                every: records.every,
-                timeseries: records.timeseries,
-                histograms: records.histograms,
-                engine: &state,
-            },
-        )
+        checkpoint::write(dir, FORMAT, &records, &state)
     }
 }
 
@@ -110,29 +120,151 @@ pub(crate) fn start<const D: usize>(
     })
 }
 
-/// The engine of the check-point `text` (read from `dir`).
+/// The engine of the check-point `sections`, after checking that its state belongs to
+/// the run of `plan`.
 pub(crate) fn restore<const D: usize>(
     plan: &Plan,
     law: Box<dyn Restitution>,
-    text: &str,
-    dir: &Path,
+    sections: &Sections,
 ) -> Result<Box<dyn Driven<D>>> {
     match plan.engine {
-        EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(law, text, dir),
-        EngineSpec::HomogeneousDsmc(_) => restore_as::<D, HomogeneousDsmc<D>>(law, text, dir),
-        EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(law, text, dir),
+        EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(plan, law, sections),
+        EngineSpec::HomogeneousDsmc(_) => restore_as::<D, HomogeneousDsmc<D>>(plan, law, sections),
+        EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(plan, law, sections),
     }
 }
 
-fn restore_as<const D: usize, E: Checkpoint<D> + 'static>(
+fn restore_as<const D: usize, E: Planned<D> + 'static>(
+    plan: &Plan,
     law: Box<dyn Restitution>,
-    text: &str,
-    dir: &Path,
+    sections: &Sections,
 ) -> Result<Box<dyn Driven<D>>> {
-    let file = checkpoint::parse::<E::State>(text, dir)?;
-    let engine = E::restore(file.engine, law).map_err(|e| Error::Checkpoint {
-        path: dir.join(checkpoint::FILE_NAME),
-        message: e.to_string(),
-    })?;
+    let state: E::State = sections.engine()?;
+    E::check_state(plan, &state).map_err(|e| sections.error(format!("engine state: {e}")))?;
+    let engine =
+        E::restore(state, law).map_err(|e| sections.error(format!("engine state: {e}")))?;
     Ok(Box::new(engine))
+}
+
+/// An engine state that can be checked against the run it claims to belong to.
+trait Planned<const D: usize>: Checkpoint<D> {
+    /// Why `state` cannot be a state of the run of `plan`, if it cannot.
+    fn check_state(plan: &Plan, state: &Self::State) -> std::result::Result<(), String>;
+}
+
+impl<const D: usize> Planned<D> for EventDriven<D> {
+    fn check_state(plan: &Plan, state: &EventDrivenState<D>) -> std::result::Result<(), String> {
+        particles(plan, &state.system)?;
+        box_side(plan, &state.system)?;
+        if state.tc.as_ref().map(|tc| tc.duration) != plan.tc {
+            return Err("the TC model differs from collision.tc".into());
+        }
+        let stochastic = matches!(plan.law, LawSpec::Stochastic { .. });
+        match &state.baths {
+            Some(b) if stochastic && b.seed == plan.description.system.seed => {}
+            None if !stochastic => {}
+            _ => return Err("the baths do not belong to collision.law".into()),
+        }
+        if state.min_cell_width != 0.0 || state.sorter != gas::SorterKind::default() {
+            return Err("cells or sorter differ from a run's".into());
+        }
+        Ok(())
+    }
+}
+
+macro_rules! planned_dsmc {
+    ($engine:ident, $spec:ident, $box:expr) => {
+        impl<const D: usize> Planned<D> for $engine<D> {
+            fn check_state(
+                plan: &Plan,
+                state: &<Self as Checkpoint<D>>::State,
+            ) -> std::result::Result<(), String> {
+                particles(plan, &state.system)?;
+                let s = &plan.description.system;
+                let options = match plan.engine {
+                    EngineSpec::$spec(options) => options,
+                    _ => return Err("another engine".into()),
+                };
+                if state.options != options
+                    || state.packing_fraction != s.packing_fraction
+                    || state.seed != s.seed
+                {
+                    return Err(
+                        "the DSMC options, packing fraction or seed differ from the run file's"
+                            .into(),
+                    );
+                }
+                if $box {
+                    box_side(plan, &state.system)?;
+                }
+                Ok(())
+            }
+        }
+    };
+}
+
+// The homogeneous engine's box is its volume's cube root, not an initial box.
+planned_dsmc!(HomogeneousDsmc, HomogeneousDsmc, false);
+planned_dsmc!(SpatialDsmc, SpatialDsmc, true);
+
+/// The particles of `system` are those of `[system]`: their number, and their radii and
+/// masses (one kind, or the species in their counts).
+fn particles<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
+    let s = &plan.description.system;
+    if system.len() != s.particles {
+        return Err(format!(
+            "{} particles where system.particles = {}",
+            system.len(),
+            s.particles
+        ));
+    }
+    let kinds: Vec<(f64, f64, usize)> = match &s.species {
+        None => vec![(
+            0.5 * s.diameter.unwrap_or(1.0),
+            s.mass.unwrap_or(1.0),
+            s.particles,
+        )],
+        Some(entries) => {
+            let counts = gas::init::species_counts(s.particles, &species(entries))
+                .map_err(|e| e.to_string())?;
+            entries
+                .iter()
+                .zip(counts)
+                .map(|(x, count)| (0.5 * x.diameter, x.mass, count))
+                .collect()
+        }
+    };
+    for (radius, mass, count) in kinds {
+        let found = system
+            .radii
+            .iter()
+            .zip(&system.masses)
+            .filter(|&(&r, &m)| r == radius && m == mass)
+            .count();
+        if found != count {
+            return Err(format!(
+                "{found} particles of radius {radius} and mass {mass} where [system] has {count}"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The box side is the one of `[system]` (the spheres' volume at the packing fraction).
+fn box_side<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
+    let volume: f64 = system
+        .radii
+        .iter()
+        .map(|&r| gas::system::ball_volume::<D>(r))
+        .sum();
+    let expected = gas::system::box_side::<D>(volume, plan.description.system.packing_fraction);
+    // The initializer sums the volumes in another order: agree to round-off.
+    if (system.length - expected).abs() <= 1e-12 * expected {
+        Ok(())
+    } else {
+        Err(format!(
+            "box side {} where system.packing_fraction gives {expected}",
+            system.length
+        ))
+    }
 }

@@ -71,18 +71,16 @@ struct Repeat {
 /// A named curve of rows (the chain MD, or ED + MC with one law), summed over repeats.
 type Curve = (String, Vec<EnergyRow>);
 
-/// Where a run stands: saved as `DIR/checkpoint.json` after a sample of the chain MD.
+/// Where a run stands besides the chain (the check-point's JSON records), saved after a
+/// sample of the chain MD; the chain itself is the engine state ([`ChainEngineState`]).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RingCheckpoint {
-    format: String,
-    version: u32,
+struct RingRecords {
     description: RingDescription,
     /// The repeat in progress (0-based).
     repeat: usize,
-    /// Its chain MD rows so far, and the chain after the last one.
+    /// Its chain MD rows so far.
     rows: Vec<EnergyRow>,
-    engine: ChainEngineState,
     /// Sums of the completed repeats (curve 0: chain MD; then one per compared law).
     curves: Vec<Curve>,
     chain_seconds: f64,
@@ -90,8 +88,8 @@ struct RingCheckpoint {
     every: Option<usize>,
 }
 
+/// The `format` of a rods chain check-point.
 const FORMAT: &str = "haff-rods-chain-checkpoint";
-const VERSION: u32 = 2;
 
 /// A chain run: the chain MD of every repeat, then ED + MC from the same start.
 pub struct RingRun {
@@ -130,22 +128,20 @@ impl RingRun {
         })
     }
 
-    /// The run saved in `dir/checkpoint.json`; further check-points go to `dir`.
+    /// The run saved in the check-point of `dir`, verified (format, version, checksum) and
+    /// checked against its run file; further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
-        let fail = |message: String| Error::Checkpoint {
-            path: dir.join(checkpoint::FILE_NAME),
-            message,
-        };
-        let text = checkpoint::read_text(dir)?;
-        let saved: RingCheckpoint = serde_json::from_str(&text)
-            .map_err(|e| fail(format!("not a rods chain check-point: {e}")))?;
-        checkpoint::check_format(dir, (&saved.format, saved.version), (FORMAT, VERSION))?;
-        let mut run = RingRun::new(&saved.description)?;
-        let restored = ChainEngine::from_state(saved.engine).map_err(|e| fail(e.to_string()))?;
+        let sections = checkpoint::read(dir, FORMAT)?;
+        let saved: RingRecords = sections.records()?;
+        let state: ChainEngineState = sections.engine()?;
+        let mut run = RingRun::new(&saved.description).map_err(|e| sections.error(e))?;
+        run.check_saved(&saved, &state)
+            .map_err(|e| sections.error(e))?;
+        let engine = ChainEngine::from_state(state).map_err(|e| sections.error(e))?;
         run.repeat = saved.repeat;
         run.current = Some(Repeat {
             rows: saved.rows,
-            engine: restored,
+            engine,
         });
         run.curves = saved.curves;
         run.chain_seconds = saved.chain_seconds;
@@ -154,7 +150,50 @@ impl RingRun {
         Ok(run)
     }
 
-    /// Saves the run to `dir/checkpoint.json` every `every` samples taken.
+    /// Why the saved records and chain cannot be this run's after a sample, if they cannot.
+    fn check_saved(
+        &self,
+        saved: &RingRecords,
+        state: &ChainEngineState,
+    ) -> std::result::Result<(), String> {
+        let run = &self.description.run;
+        let chain = &state.chain;
+        if chain.n_rods() != self.ring.rods || chain.modes() != self.ring.modes {
+            return Err(format!(
+                "a chain of {} rods with {} modes where the run file has {} and {}",
+                chain.n_rods(),
+                chain.modes(),
+                self.ring.rods,
+                self.ring.modes
+            ));
+        }
+        let (Some(last), true) = (saved.rows.last(), saved.rows.len() <= run.samples) else {
+            return Err("no rows, or more than run.samples".into());
+        };
+        if saved.repeat >= run.repeats || last.time != chain.time() {
+            return Err("the repeat or the chain's time does not match the rows".into());
+        }
+        let curves = if saved.repeat == 0 {
+            0
+        } else {
+            1 + run.compare.len()
+        };
+        let complete = saved
+            .curves
+            .iter()
+            .all(|(_, rows)| rows.len() == run.samples);
+        if saved.curves.len() != curves || !complete {
+            return Err("the averaged curves do not match the repeats done".into());
+        }
+        if !saved.every.is_none_or(|k| (1..=1_000_000).contains(&k))
+            || !(saved.chain_seconds.is_finite() && saved.chain_seconds >= 0.0)
+        {
+            return Err("every or chain_seconds out of range".into());
+        }
+        Ok(())
+    }
+
+    /// Saves the run to the check-point of `dir` every `every` samples taken.
     pub fn set_checkpoints(&mut self, dir: &Path, every: Option<usize>) {
         self.checkpoint_dir = Some(dir.to_path_buf());
         self.every = every;
@@ -234,18 +273,16 @@ impl RingRun {
         let Some(dir) = &self.checkpoint_dir else {
             return Ok(());
         };
-        let saved = RingCheckpoint {
-            format: FORMAT.into(),
-            version: VERSION,
+        let saved = RingRecords {
             description: self.description.clone(),
             repeat: self.repeat,
             rows: current.rows.clone(),
-            engine: gas::Checkpoint::save(&mut current.engine),
             curves: self.curves.clone(),
             chain_seconds,
             every: self.every,
         };
-        checkpoint::write(dir, &saved)
+        let state = gas::Checkpoint::save(&mut current.engine);
+        checkpoint::write(dir, FORMAT, &saved, &state)
     }
 
     /// The stochastic law of an ED + MC comparison.

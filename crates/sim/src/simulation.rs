@@ -3,9 +3,9 @@
 //! on request, the output files. The `haff run` command drives runs through it (and the
 //! Python package will).
 
-use crate::checkpoint::{self, CheckpointFile};
+use crate::checkpoint;
 use crate::description::RunDescription;
-use crate::engines::{self, Driven, Records};
+use crate::engines::{self, Driven, Records, RecordsRef};
 use crate::error::{Error, Result};
 use crate::law;
 use crate::observer::{
@@ -15,7 +15,6 @@ use crate::output::write_json_file;
 use crate::schedule::{sample_targets, schedule, Target};
 use crate::validate::{validate, Plan, Stop};
 use gas::Counters;
-use serde::de::IgnoredAny;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -112,12 +111,12 @@ impl Simulation {
             .histogram_bins
             .unwrap_or(HISTOGRAM_BINS);
         let (timeseries, histograms) = (TimeSeries::default(), VelocityHistograms::new(bins));
-        let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::new(
+        let run = in_dimension!(plan.description.system.dimension, D => Ok::<_, Error>(Run::<D>::new(
             &plan,
             engines::start::<D>(&plan, law)?,
             timeseries,
             histograms,
-        ));
+        )));
         Ok(Simulation {
             plan,
             run,
@@ -132,30 +131,39 @@ impl Simulation {
         Self::new(&RunDescription::from_toml(text, origin)?)
     }
 
-    /// The run saved in `dir/checkpoint.json`, to continue bit for bit. Its check-point
-    /// interval is kept, and further check-points go to `dir`.
+    /// The run saved in the check-point of `dir` (`checkpoint.bin`), to continue bit for
+    /// bit. The file is verified (format, version, checksum) and its content checked for
+    /// meaning: the run description like a fresh run's, the engine state and the records
+    /// against it. Its check-point interval is kept, and further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
         let clock = Instant::now();
-        let text = checkpoint::read_text(dir)?;
-        let head: CheckpointFile<IgnoredAny> = checkpoint::parse(&text, dir)?;
-        let plan = validate(&head.description)?;
-        let law = law::build(&plan.law)?;
-        let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::new(
+        let sections = checkpoint::read(dir, engines::FORMAT)?;
+        let records: Records = sections.records()?;
+        let plan = validate(&records.description).map_err(|e| sections.error(e))?;
+        if records.description != plan.description {
+            return Err(sections.error("the run description is not in its normal form"));
+        }
+        if !records.every.is_none_or(|k| (1..=1_000_000).contains(&k)) {
+            return Err(sections.error("every: allowed 1 ..= 1e6 samples"));
+        }
+        let law = law::build(&plan.law).map_err(|e| sections.error(e))?;
+        let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::resumed(
             &plan,
-            engines::restore::<D>(&plan, law, &text, dir)?,
-            head.timeseries,
-            head.histograms,
-        ));
+            engines::restore::<D>(&plan, law, &sections)?,
+            records.timeseries,
+            records.histograms,
+        )
+        .map_err(|e| sections.error(e)));
         Ok(Simulation {
             plan,
             run,
-            checkpoint_every: head.every,
+            checkpoint_every: records.every,
             checkpoint_dir: Some(dir.to_path_buf()),
             wall_seconds: clock.elapsed().as_secs_f64(),
         })
     }
 
-    /// Saves the state to `dir/checkpoint.json` every `every` samples (None: never).
+    /// Saves the state to the check-point of `dir` every `every` samples (None: never).
     pub fn set_checkpoints(&mut self, dir: &Path, every: Option<usize>) {
         self.checkpoint_dir = Some(dir.to_path_buf());
         self.checkpoint_every = every;
@@ -251,40 +259,74 @@ impl Simulation {
 }
 
 impl<const D: usize> Run<D> {
-    /// A run of `engine` with the observers' records so far (empty for a fresh run).
+    /// A run of `engine` at the start of its schedule.
     fn new(
         plan: &Plan,
         engine: Box<dyn Driven<D>>,
         timeseries: TimeSeries,
         histograms: VelocityHistograms,
-    ) -> Result<Self> {
+    ) -> Self {
         let run = &plan.description.run;
         let schedule = schedule(
             &sample_targets(plan.stop.end(), run.samples, plan.log_spacing()),
             run.histogram_at.as_deref().unwrap_or(&[]),
         );
-        // A check-point is written right after a sample: continue after that sample's stop.
-        let next = match timeseries.samples.len() {
-            0 => 0,
-            k => schedule
-                .iter()
-                .position(|target| target.sample == Some(k - 1))
-                .map_or(schedule.len(), |i| i + 1),
-        };
-        let histograms_due = schedule[..next].iter().filter(|t| t.histogram).count();
-        if histograms_due != histograms.histograms.len() {
-            return Err(Error::input(
-                "--resume",
-                "the check-point's histograms do not match run.histogram_at",
-            ));
-        }
-        Ok(Run {
+        Run {
             engine,
             schedule,
-            next,
+            next: 0,
             timeseries,
             histograms,
-        })
+        }
+    }
+
+    /// A run continuing from a check-point, which is written right after a sample: the
+    /// records must be those of the run up to that sample, and the engine must stand there.
+    fn resumed(
+        plan: &Plan,
+        engine: Box<dyn Driven<D>>,
+        timeseries: TimeSeries,
+        histograms: VelocityHistograms,
+    ) -> std::result::Result<Self, String> {
+        let mut run = Run::new(plan, engine, timeseries, histograms);
+        let samples = &run.timeseries.samples;
+        let Some(last) = samples.last() else {
+            return Err("no sample: a check-point follows a sample".into());
+        };
+        run.next = run
+            .schedule
+            .iter()
+            .position(|target| target.sample == Some(samples.len() - 1))
+            .ok_or(format!(
+                "{} samples where run.samples = {}",
+                samples.len(),
+                plan.description.run.samples
+            ))?
+            + 1;
+        let counters = run.engine.counters();
+        if last.time != run.engine.time() || last.events != counters.events {
+            return Err("the engine does not stand at the last sample".into());
+        }
+        let bins = plan
+            .description
+            .run
+            .histogram_bins
+            .unwrap_or(HISTOGRAM_BINS);
+        let due: Vec<f64> = run.schedule[..run.next]
+            .iter()
+            .filter(|t| t.histogram)
+            .map(|t| t.value)
+            .collect();
+        let taken: Vec<f64> = run.histograms.histograms.iter().map(|h| h.target).collect();
+        let wrong_bins = run
+            .histograms
+            .histograms
+            .iter()
+            .any(|h| h.bins.len() != bins);
+        if due != taken || run.histograms.bins != bins || wrong_bins {
+            return Err("the velocity histograms do not match run.histogram_at and bins".into());
+        }
+        Ok(run)
     }
 
     /// Runs through the remaining targets; false if it stopped after `stop_after` samples.
@@ -348,8 +390,8 @@ impl<const D: usize> Run<D> {
     }
 
     fn write_checkpoint(&mut self, plan: &Plan, dir: &Path, every: usize) -> Result<()> {
-        let records = Records {
-            plan,
+        let records = RecordsRef {
+            description: &plan.description,
             every: Some(every),
             timeseries: &self.timeseries,
             histograms: &self.histograms,

@@ -72,6 +72,64 @@ pub struct EventDrivenState<const D: usize> {
     pub stall_collisions: u64,
 }
 
+impl<const D: usize> EventDrivenState<D> {
+    /// Checks the state for what a check-point could hold wrongly: time, positions in the
+    /// box, finite velocities, positive radii and masses, one count per particle, finite
+    /// counters, TC and bath arrays of the right length and range.
+    pub fn check(&self) -> Result<()> {
+        let n = self.system.len();
+        if !(self.time.is_finite() && self.time >= 0.0) {
+            return Err(Error::out_of_range(
+                "time",
+                self.time,
+                "a finite number >= 0",
+            ));
+        }
+        self.system.check(true)?;
+        if self.counts.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "collision counts and particles".into(),
+            });
+        }
+        let c = &self.counters;
+        if !(c.energy_lost.is_finite() && c.virial.is_finite()) || c.events < c.collisions {
+            return Err(Error::out_of_range(
+                "counters",
+                format!("{c:?}"),
+                "finite sums and events >= collisions",
+            ));
+        }
+        if !(self.min_cell_width.is_finite() && self.min_cell_width >= 0.0) {
+            return Err(Error::out_of_range(
+                "min_cell_width",
+                self.min_cell_width,
+                "a finite number >= 0",
+            ));
+        }
+        if !(self.stall_since.is_finite() && self.stall_since <= self.time) {
+            return Err(Error::out_of_range(
+                "stall_since",
+                self.stall_since,
+                "a finite time <= time",
+            ));
+        }
+        if let Some(tc) = &self.tc {
+            if let Some(i) = tc
+                .last
+                .iter()
+                .position(|&t| !(t == f64::NEG_INFINITY || (t.is_finite() && t <= self.time)))
+            {
+                return Err(Error::out_of_range(
+                    format!("tc.last[{i}]"),
+                    tc.last[i],
+                    "a collision time <= time (or none)",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl<const D: usize> Engine<D> for EventDriven<D> {
     fn run_until(&mut self, t: f64) {
         EventDriven::run_until(self, t)
@@ -125,7 +183,10 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         }
     }
 
+    /// Checks the state ([`EventDrivenState::check`]), then builds the engine (which
+    /// refuses overlapping spheres and inconsistent TC or bath arrays).
     fn restore(state: EventDrivenState<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        state.check()?;
         let EventDrivenState {
             time,
             system,
