@@ -185,9 +185,8 @@ impl RingRun {
         if saved.curves.len() != curves || !complete {
             return Err("the averaged curves do not match the repeats done".into());
         }
-        if !saved.every.is_none_or(|k| (1..=1_000_000).contains(&k))
-            || !(saved.chain_seconds.is_finite() && saved.chain_seconds >= 0.0)
-        {
+        let every = saved.every.is_none_or(|k| (1..=1_000_000).contains(&k));
+        if !(every && saved.chain_seconds.is_finite() && saved.chain_seconds >= 0.0) {
             return Err("every or chain_seconds out of range".into());
         }
         Ok(())
