@@ -1,11 +1,13 @@
 //! `haff bench ...`: timing measurements, one file per benchmark. Each reports medians of
 //! repeats (and min, max), as a table or JSON.
 
+mod checkpoint;
 mod cor;
 mod dsmc;
 mod emd;
 mod rods;
 
+pub use checkpoint::checkpoint;
 pub use cor::{cor, log_spaced};
 pub use dsmc::dsmc;
 pub use emd::emd;

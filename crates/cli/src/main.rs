@@ -238,6 +238,22 @@ enum BenchCommand {
     Dsmc(BenchDsmcArgs),
     /// Throughput of the rod-chain MD (two rods of Giese's Fig. 1).
     Rods(BenchRodsArgs),
+    /// Size and save/load time of the check-point of an event-driven run.
+    Checkpoint(BenchCheckpointArgs),
+}
+
+/// Arguments of `haff bench checkpoint`.
+#[derive(Debug, Args)]
+pub struct BenchCheckpointArgs {
+    /// Number of particles, 2 <= N <= 1e8.
+    #[arg(long, default_value = "1000000", allow_hyphen_values = true)]
+    pub particles: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 /// Arguments of `haff bench rods`.
@@ -465,6 +481,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Emd(args)) => bench::emd(&args),
         Command::Bench(BenchCommand::Dsmc(args)) => bench::dsmc(&args),
         Command::Bench(BenchCommand::Rods(args)) => bench::rods(&args),
+        Command::Bench(BenchCommand::Checkpoint(args)) => bench::checkpoint(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),

@@ -111,10 +111,18 @@ impl<const D: usize> EventDriven<D> {
     /// their collision is the image that collides. (With fewer cells, or all pairs, a
     /// prediction far ahead can pick the wrong periodic image and miss a collision.)
     pub fn with_cell_width(
-        mut system: System<D>,
+        system: System<D>,
         law: Box<dyn Restitution>,
         min_width: f64,
     ) -> Result<Self> {
+        let mut engine = Self::assemble(system, law, min_width)?;
+        engine.predict_all();
+        Ok(engine)
+    }
+
+    /// The engine at time 0 with its particles in the cell lists and nothing predicted;
+    /// fails if spheres overlap.
+    fn assemble(mut system: System<D>, law: Box<dyn Restitution>, min_width: f64) -> Result<Self> {
         let n = system.len();
         if system.velocities.len() != n || system.radii.len() != n || system.masses.len() != n {
             return Err(Error::LengthMismatch {
@@ -190,30 +198,33 @@ impl<const D: usize> EventDriven<D> {
             engine.insert(i, c);
         }
         engine.check_overlaps()?;
-        for i in 0..n {
-            engine.predict(i);
-        }
         Ok(engine)
     }
 
+    /// Fails, naming the first pair (in the particle order), if two spheres overlap (the
+    /// scan runs in parallel; it only reads).
     fn check_overlaps(&self) -> Result<()> {
-        for i in 0..self.particles.len() {
-            let mut overlap = None;
-            let pi = self.particles[i].position_at(self.time);
-            self.for_each_neighbor(i, |j| {
-                if j > i {
-                    let r = self.separation(&pi, &self.particles[j].position_at(self.time));
-                    let sigma = self.sigma(i, j);
-                    if dot(&r, &r) < sigma * sigma * (1.0 - 1e-12) {
-                        overlap = Some(j);
+        use rayon::prelude::*;
+        let first = (0..self.particles.len())
+            .into_par_iter()
+            .find_map_first(|i| {
+                let mut overlap = None;
+                let pi = self.particles[i].position_at(self.time);
+                self.for_each_neighbor(i, |j| {
+                    if j > i {
+                        let r = self.separation(&pi, &self.particles[j].position_at(self.time));
+                        let sigma = self.sigma(i, j);
+                        if dot(&r, &r) < sigma * sigma * (1.0 - 1e-12) {
+                            overlap = Some(j);
+                        }
                     }
-                }
+                });
+                overlap.map(|j| (i, j))
             });
-            if let Some(j) = overlap {
-                return Err(Error::Overlap(i, j));
-            }
+        match first {
+            Some((i, j)) => Err(Error::Overlap(i, j)),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     pub fn time(&self) -> f64 {

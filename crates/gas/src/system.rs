@@ -6,14 +6,16 @@ use serde::{Deserialize, Serialize};
 /// A vector in D dimensions.
 pub type Vector<const D: usize> = [f64; D];
 
-/// N smooth spheres in the periodic box [0, L)^D. Serialized with vectors as lists (see
-/// [`SystemRecord`]).
+/// N smooth spheres in the periodic box [0, L)^D. Serialized with each vector a list of D
+/// numbers; a state read from outside is checked with [`System::check`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(into = "SystemRecord", try_from = "SystemRecord")]
+#[serde(deny_unknown_fields)]
 pub struct System<const D: usize> {
     /// Side of the periodic box.
     pub length: f64,
+    #[serde(with = "crate::serde_util::vectors")]
     pub positions: Vec<Vector<D>>,
+    #[serde(with = "crate::serde_util::vectors")]
     pub velocities: Vec<Vector<D>>,
     pub radii: Vec<f64>,
     pub masses: Vec<f64>,
@@ -85,64 +87,6 @@ impl<const D: usize> System<D> {
     /// Fraction of the volume occupied by the spheres.
     pub fn packing_fraction(&self) -> f64 {
         self.radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / self.volume()
-    }
-}
-
-/// A [`System`] of any dimension as serde data: each vector a list of D numbers.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SystemRecord {
-    pub length: f64,
-    pub positions: Vec<Vec<f64>>,
-    pub velocities: Vec<Vec<f64>>,
-    pub radii: Vec<f64>,
-    pub masses: Vec<f64>,
-}
-
-impl<const D: usize> From<System<D>> for SystemRecord {
-    fn from(s: System<D>) -> Self {
-        SystemRecord {
-            length: s.length,
-            positions: s.positions.iter().map(|p| p.to_vec()).collect(),
-            velocities: s.velocities.iter().map(|v| v.to_vec()).collect(),
-            radii: s.radii,
-            masses: s.masses,
-        }
-    }
-}
-
-impl<const D: usize> TryFrom<SystemRecord> for System<D> {
-    type Error = crate::Error;
-
-    /// Fails if a vector has other than D components or the arrays differ in length.
-    fn try_from(r: SystemRecord) -> crate::Result<Self> {
-        let vectors = |what: &'static str, list: Vec<Vec<f64>>| {
-            list.into_iter()
-                .enumerate()
-                .map(|(i, v)| {
-                    <[f64; D]>::try_from(v).map_err(|v| {
-                        crate::Error::out_of_range(
-                            format!("{what}[{i}]"),
-                            format!("a vector of {} components", v.len()),
-                            format!("{D} components (the dimension)"),
-                        )
-                    })
-                })
-                .collect::<crate::Result<Vec<_>>>()
-        };
-        let n = r.positions.len();
-        if [r.velocities.len(), r.radii.len(), r.masses.len()] != [n; 3] {
-            return Err(crate::Error::LengthMismatch {
-                what: "positions, velocities, radii and masses".into(),
-            });
-        }
-        Ok(System {
-            length: r.length,
-            positions: vectors("positions", r.positions)?,
-            velocities: vectors("velocities", r.velocities)?,
-            radii: r.radii,
-            masses: r.masses,
-        })
     }
 }
 

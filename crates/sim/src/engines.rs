@@ -250,16 +250,31 @@ fn particles<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Re
     Ok(())
 }
 
-/// The box side is the one of `[system]` (the spheres' volume at the packing fraction).
+/// The box side is the one of `[system]` (the spheres' volume at the packing fraction),
+/// exactly for one kind of sphere (the initializer computes it the same way), to the
+/// round-off of the initializer's sum over the particles for a mixture (n ulp).
 fn box_side<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
-    let volume: f64 = system
-        .radii
-        .iter()
-        .map(|&r| gas::system::ball_volume::<D>(r))
-        .sum();
-    let expected = gas::system::box_side::<D>(volume, plan.description.system.packing_fraction);
-    // The initializer sums the volumes in another order: agree to round-off.
-    if (system.length - expected).abs() <= 1e-12 * expected {
+    let s = &plan.description.system;
+    let (expected, tolerance) = match &s.species {
+        None => {
+            let side = gas::system::monodisperse_box_side::<D>(
+                s.particles,
+                s.diameter.unwrap_or(1.0),
+                s.packing_fraction,
+            );
+            (side, 0.0)
+        }
+        Some(_) => {
+            let volume: f64 = system
+                .radii
+                .iter()
+                .map(|&r| gas::system::ball_volume::<D>(r))
+                .sum();
+            let side = gas::system::box_side::<D>(volume, s.packing_fraction);
+            (side, 2.0 * f64::EPSILON * system.len() as f64 * side)
+        }
+    };
+    if (system.length - expected).abs() <= tolerance {
         Ok(())
     } else {
         Err(format!(

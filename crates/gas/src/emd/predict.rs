@@ -43,6 +43,37 @@ impl<const D: usize> EventDriven<D> {
         self.keep_if_earlier(i, best);
     }
 
+    /// Predicts every particle's events from scratch, as [`Self::predict`] for i = 0, 1, ...
+    /// would (the same records and sorter updates in the same order), the neighbour scans
+    /// in parallel: they only read the state.
+    pub(super) fn predict_all(&mut self) {
+        use rayon::prelude::*;
+        let this = &*self;
+        let predictions: Vec<(Option<(f64, usize, bool)>, Best)> = (0..this.particles.len())
+            .into_par_iter()
+            .map(|i| {
+                let (pi, vi) = this.now(i);
+                let exit = this.grid.exit(&this.particles[i].cell, &pi, &vi);
+                let mut best = Best::NONE;
+                this.for_each_neighbor(i, |j| this.consider(i, &pi, &vi, j, &mut best));
+                (exit, best)
+            })
+            .collect();
+        for (i, (exit, best)) in predictions.into_iter().enumerate() {
+            let next = &mut self.particles[i];
+            next.collision = f64::INFINITY;
+            match exit {
+                Some((dt, dim, up)) => {
+                    next.crossing = self.time + dt;
+                    next.exit_dim = dim as u8;
+                    next.exit_up = up;
+                }
+                None => next.crossing = f64::INFINITY,
+            }
+            self.keep_if_earlier(i, best);
+        }
+    }
+
     /// After i entered a new cell: only the layer of cells beyond it is new to i.
     pub(super) fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
         self.predict_crossing(i);

@@ -27,9 +27,7 @@ impl<const D: usize> EventDriven<D> {
             let c = self.grid.coords_of(&p.position);
             self.insert(i, c);
         }
-        for i in 0..n {
-            self.predict(i);
-        }
+        self.predict_all();
     }
 
     /// Collision counts per particle modulo 2^32 (for snapshots).
@@ -204,7 +202,8 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
                 what: "collision counts and particles".into(),
             });
         }
-        let mut engine = Self::with_cell_width(system, law, min_cell_width)?;
+        // Predicted once, by `synchronize` below.
+        let mut engine = Self::assemble(system, law, min_cell_width)?;
         engine.time = time;
         for (p, count) in engine.particles.iter_mut().zip(counts) {
             p.valid_at = time;
