@@ -49,7 +49,9 @@ impl<const D: usize> EventDriven<D> {
     pub(super) fn predict_all(&mut self) {
         use rayon::prelude::*;
         let this = &*self;
-        let predictions: Vec<(Option<(f64, usize, bool)>, Best)> = (0..this.particles.len())
+        // (cell exit: delay, dimension, direction; earliest collision) per particle.
+        type Prediction = (Option<(f64, usize, bool)>, Best);
+        let predictions: Vec<Prediction> = (0..this.particles.len())
             .into_par_iter()
             .map(|i| {
                 let (pi, vi) = this.now(i);
