@@ -168,6 +168,9 @@ pub struct RunArgs {
     /// Continue the run saved in DIR/checkpoint.bin.
     #[arg(long, value_name = "DIR", conflicts_with = "file")]
     pub resume: Option<std::path::PathBuf>,
+    /// Replace the outputs of another run in the output directory.
+    #[arg(long)]
+    pub force: bool,
     /// End after this many samples (a run in chunks; continue with --resume).
     #[arg(
         long,

@@ -8,6 +8,7 @@ use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
 use rods::chain::TwoRodSummary;
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
 use rods::stochastic::{eps2_histogram, eps2_summary, sample_eps, Eps2Bin, Resolution, Table};
+use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::output::{write_csv_file, write_json_file};
 use sim::plot::{self, Axes};
 use sim::rod_ring::{RingDescription, RingRun};
@@ -346,10 +347,17 @@ pub fn chain(args: &RunArgs) -> CliResult {
     };
     let every = count("--checkpoint-every", &args.checkpoint_every)?.or(run.checkpoint_interval());
     let stop_after = count("--stop-after-samples", &args.stop_after_samples)?;
-    std::fs::create_dir_all(&out)
-        .map_err(|e| CliError::argument("--out", format!("{}: {e}", out.display())))?;
+    let hash = run_hash(run.description());
+    let mut dir = OutputDir::open(
+        &out,
+        args.resume.as_deref(),
+        "rods chain",
+        &hash,
+        args.force,
+    )?;
     run.set_checkpoints(&out, every);
     if !run.run(&mut Bar::samples(), stop_after)? {
+        dir.set_state(RunState::Stopped)?;
         eprintln!(
             "haff rods chain: stopped after {} samples; continue with --resume {}",
             stop_after.unwrap_or(0),
@@ -358,6 +366,7 @@ pub fn chain(args: &RunArgs) -> CliResult {
         return Ok(());
     }
     run.write(&out)?;
+    dir.set_state(RunState::Complete)?;
     eprintln!(
         "haff rods chain: {} rods, {:.2} s; output in {}",
         run.ring().rods,

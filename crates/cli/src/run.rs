@@ -6,6 +6,7 @@ use crate::error::{CliError, CliResult};
 use crate::output::parse_count;
 use crate::progress::Bar;
 use crate::RunArgs;
+use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::Simulation;
 use std::path::PathBuf;
 
@@ -37,11 +38,16 @@ pub fn run(args: &RunArgs) -> CliResult {
         .as_ref()
         .map(|text| parse_count("--stop-after-samples", text, 1, 1_000_000))
         .transpose()?;
-    std::fs::create_dir_all(&out)
-        .map_err(|e| CliError::argument("--out", format!("{}: {e}", out.display())))?;
+    let hash = run_hash(simulation.description());
+    let mut dir = OutputDir::open(&out, args.resume.as_deref(), "run", &hash, args.force)?;
     simulation.set_checkpoints(&out, every);
     let outcome = simulation.run(&mut Bar::samples(), stop_after)?;
     simulation.write(&out)?;
+    dir.set_state(if outcome.complete {
+        RunState::Complete
+    } else {
+        RunState::Stopped
+    })?;
     let (counters, wall) = (outcome.counters, simulation.wall_seconds());
     eprintln!(
         "haff run: {} collisions, {} events in {wall:.2} s ({:.3e} events/s); output in {}",

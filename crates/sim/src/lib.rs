@@ -26,6 +26,7 @@ pub mod error;
 mod figures;
 pub mod law;
 pub mod observer;
+pub mod outdir;
 pub mod output;
 pub mod plot;
 pub mod rod_ring;

@@ -203,6 +203,11 @@ impl RingRun {
         self.every
     }
 
+    /// The run file (as read).
+    pub fn description(&self) -> &RingDescription {
+        &self.description
+    }
+
     pub fn ring(&self) -> &RingSetup {
         &self.ring
     }

@@ -248,6 +248,7 @@ impl Simulation {
             "events_per_second": counters.events as f64 / wall,
             "collisions_per_second": counters.collisions as f64 / wall,
             "final": self.samples().last(),
+            "complete": self.is_complete(),
         });
         write_json_file(&dir.join("summary.json"), &summary)
     }

@@ -1,0 +1,230 @@
+//! Nothing silently wrong (issue 12): check-points that are edited, truncated, foreign or
+//! of another version are refused (exit 2, one line), even when whoever edited them fixed
+//! the checksum; output directories are never shared by two runs.
+
+mod common;
+
+use common::{assert_rejected, haff, read, run_ok};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+const RUN: &str = "[system]\nparticles = 200\npacking_fraction = 0.05\nseed = 2\n\
+                   [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+                   [run]\ncollisions_per_particle = 10\nsamples = 8\n\
+                   histogram_at = [0.0, 10.0]\n";
+
+/// A fresh directory for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("haff-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A run of `RUN` stopped after 4 of its 8 samples with a check-point: its directory.
+fn stopped_run(dir: &Path) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join("gas.toml");
+    std::fs::write(&file, RUN).unwrap();
+    let out = dir.join("out");
+    let (f, o) = (file.to_str().unwrap(), out.to_str().unwrap());
+    run_ok(&[
+        f,
+        "--out",
+        o,
+        "--checkpoint-every",
+        "2",
+        "--stop-after-samples",
+        "4",
+    ]);
+    out
+}
+
+/// The three parts of a check-point: header, records (JSON), engine bytes.
+fn parts(out: &Path) -> (Value, Value, Vec<u8>) {
+    let bytes = std::fs::read(out.join("checkpoint.bin")).unwrap();
+    let first = bytes.iter().position(|&b| b == b'\n').unwrap();
+    let header: Value = serde_json::from_slice(&bytes[..first]).unwrap();
+    let r = header["records_bytes"].as_u64().unwrap() as usize;
+    let records = serde_json::from_slice(&bytes[first + 1..first + 1 + r]).unwrap();
+    (header, records, bytes[first + 2 + r..].to_vec())
+}
+
+/// Writes a check-point from its parts with a correct checksum and lengths (an edit that
+/// only the meaning of the content can reveal).
+fn forge(out: &Path, mut header: Value, records: &Value, engine: &[u8]) {
+    let records = serde_json::to_vec(records).unwrap();
+    let mut crc = crc32fast::Hasher::new();
+    crc.update(&records);
+    crc.update(engine);
+    header["records_bytes"] = records.len().into();
+    header["engine_bytes"] = engine.len().into();
+    header["crc32"] = crc.finalize().into();
+    let mut bytes = serde_json::to_vec(&header).unwrap();
+    bytes.push(b'\n');
+    bytes.extend(&records);
+    bytes.push(b'\n');
+    bytes.extend(engine);
+    std::fs::write(out.join("checkpoint.bin"), bytes).unwrap();
+}
+
+fn resume_rejected(out: &Path, says: &str) {
+    let output = haff(&["run", "--resume", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{says}: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--resume") && stderr.contains(says) && !stderr.contains("panicked"),
+        "expected '{says}': {stderr}"
+    );
+}
+
+#[test]
+fn damaged_check_points_are_refused() {
+    let dir = scratch("damaged");
+    let out = stopped_run(&dir);
+    let path = out.join("checkpoint.bin");
+    let good = std::fs::read(&path).unwrap();
+    let (header, records, engine) = parts(&out);
+    assert_eq!(header["format"], "haff-run-checkpoint");
+    assert_eq!(header["version"], 3);
+    // One flipped bit in the engine state, in the records, a truncated or extended file.
+    let mut flipped = good.clone();
+    let last = flipped.len() - 9;
+    flipped[last] ^= 1;
+    std::fs::write(&path, &flipped).unwrap();
+    resume_rejected(&out, "checksum mismatch");
+    let mut edited = good.clone();
+    let at = good.len() - engine.len() - 10;
+    edited[at] ^= 4;
+    std::fs::write(&path, &edited).unwrap();
+    resume_rejected(&out, "checksum");
+    std::fs::write(&path, &good[..good.len() / 2]).unwrap();
+    resume_rejected(&out, "truncated");
+    std::fs::write(&path, [&good[..], b"x"].concat()).unwrap();
+    resume_rejected(&out, "truncated or was changed");
+    std::fs::write(&path, b"{\"not\": \"a check-point\"}").unwrap();
+    resume_rejected(&out, "not a haff check-point");
+    // Another version names both.
+    let mut old = header.clone();
+    old["version"] = 2.into();
+    forge(&out, old, &records, &engine);
+    resume_rejected(&out, "version 2");
+    // A check-point of the layout before version 3 (all JSON).
+    std::fs::remove_file(&path).unwrap();
+    std::fs::write(out.join("checkpoint.json"), "{}").unwrap();
+    resume_rejected(&out, "older haff");
+    std::fs::remove_file(out.join("checkpoint.json")).unwrap();
+    // The intact file still resumes and completes the run.
+    std::fs::write(&path, &good).unwrap();
+    run_ok(&["--resume", out.to_str().unwrap()]);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn check_points_edited_with_a_fixed_checksum_are_refused() {
+    let dir = scratch("forged");
+    let out = stopped_run(&dir);
+    let (header, records, engine) = parts(&out);
+    let cases: [(&str, Box<dyn Fn(&mut Value)>, &str); 6] = [
+        (
+            "particles",
+            Box::new(|r| r["description"]["system"]["particles"] = 300.into()),
+            "particles",
+        ),
+        ("every", Box::new(|r| r["every"] = 0.into()), "every"),
+        (
+            "samples",
+            Box::new(|r| r["description"]["run"]["samples"] = 3.into()),
+            "samples",
+        ),
+        (
+            "sample time",
+            Box::new(|r| r["timeseries"]["samples"][3]["time"] = (-1.0).into()),
+            "last sample",
+        ),
+        (
+            "phi",
+            Box::new(|r| r["description"]["system"]["packing_fraction"] = 0.06.into()),
+            "box side",
+        ),
+        (
+            "histograms",
+            Box::new(|r| r["histograms"]["histograms"] = Value::Array(vec![])),
+            "histograms",
+        ),
+    ];
+    for (what, edit, says) in cases {
+        let mut edited = records.clone();
+        edit(&mut edited);
+        forge(&out, header.clone(), &edited, &engine);
+        eprintln!("{what}");
+        resume_rejected(&out, says);
+    }
+    // A position moved out of the box (the engine bytes edited, the checksum fixed): the
+    // state starts with the time and the box side (8 bytes each), then the number of
+    // positions (200: a 2-byte varint), then the first position's x.
+    let mut far = engine.clone();
+    let x = 8 + 8 + 2;
+    far[x..x + 8].copy_from_slice(&1e300f64.to_le_bytes());
+    forge(&out, header.clone(), &records, &far);
+    resume_rejected(&out, "positions");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_output_directory_belongs_to_one_run() {
+    let dir = scratch("outdir");
+    let file = dir.join("gas.toml");
+    std::fs::write(&file, RUN).unwrap();
+    let (f, out) = (file.to_str().unwrap(), dir.join("out"));
+    let o = out.to_str().unwrap();
+    run_ok(&[f, "--out", o, "--checkpoint-every", "4"]);
+    let manifest: Value = serde_json::from_str(&read(&out, "haff-run.json")).unwrap();
+    assert_eq!(manifest["state"], "complete");
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    assert_eq!(summary["complete"], true);
+    // A second run into it is refused; --force replaces the first run's files, and the
+    // second run (without histograms) leaves none of them behind.
+    let other = dir.join("other.toml");
+    std::fs::write(&other, RUN.replace("histogram_at = [0.0, 10.0]\n", "")).unwrap();
+    let g = other.to_str().unwrap();
+    assert_rejected(&["run", g, "--out", o], "--out");
+    assert!(out.join("velocity_histograms.csv").exists());
+    run_ok(&[g, "--out", o, "--force"]);
+    assert!(!out.join("velocity_histograms.csv").exists());
+    assert!(!out.join("checkpoint.bin").exists());
+    // Resuming a check-point whose directory holds another run's outputs is refused.
+    let stopped = stopped_run(&dir.join("s"));
+    let manifest = read(&out, "haff-run.json");
+    std::fs::write(stopped.join("haff-run.json"), manifest).unwrap();
+    assert_rejected(&["run", "--resume", stopped.to_str().unwrap()], "--resume");
+    // Directories holding anything else are refused, --force or not.
+    let foreign = dir.join("foreign");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "mine").unwrap();
+    for force in [false, true] {
+        let mut args = vec!["run", f, "--out", foreign.to_str().unwrap()];
+        if force {
+            args.push("--force");
+        }
+        assert_rejected(&args, "--out");
+    }
+    assert_eq!(read(&foreign, "notes.txt"), "mine");
+    assert_rejected(&["run", f, "--out", "/"], "--out");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_stopped_run_says_so() {
+    let dir = scratch("stopped");
+    let out = stopped_run(&dir);
+    let manifest: Value = serde_json::from_str(&read(&out, "haff-run.json")).unwrap();
+    assert_eq!(manifest["state"], "stopped");
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    assert_eq!(summary["complete"], false);
+    run_ok(&["--resume", out.to_str().unwrap()]);
+    let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    assert_eq!(summary["complete"], true);
+    std::fs::remove_dir_all(&dir).ok();
+}
