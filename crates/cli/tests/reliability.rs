@@ -126,7 +126,9 @@ fn check_points_edited_with_a_fixed_checksum_are_refused() {
     let dir = scratch("forged");
     let out = stopped_run(&dir);
     let (header, records, engine) = parts(&out);
-    let cases: [(&str, Box<dyn Fn(&mut Value)>, &str); 6] = [
+    // (what, the edit of the records, what the refusal says)
+    type Edit = Box<dyn Fn(&mut Value)>;
+    let cases: [(&str, Edit, &str); 6] = [
         (
             "particles",
             Box::new(|r| r["description"]["system"]["particles"] = 300.into()),
