@@ -20,10 +20,20 @@ pub struct Grid<const D: usize> {
     pub width: f64,
 }
 
+/// The most cells a grid for `n` particles has: 1024 per particle (and 2^20 for few): a
+/// very dilute gas gets wider cells instead of memory beyond its particles' (and a
+/// packing fraction near 0 no overflowing cell count). Gases denser than about
+/// phi = 1e-3 in 3D (2e-3 in 2D) are below it and keep cells one diameter wide.
+pub fn max_cells(n: usize) -> usize {
+    n.saturating_mul(1024).max(1 << 20)
+}
+
 impl<const D: usize> Grid<D> {
-    /// The grid of a box of side `length` with cells at least `min_width` wide.
-    pub fn new(length: f64, min_width: f64) -> Self {
-        let per_side = ((length / min_width).floor() as usize).max(1);
+    /// The grid of a box of side `length` with cells at least `min_width` wide and at most
+    /// `max_cells` cells.
+    pub fn new(length: f64, min_width: f64, max_cells: usize) -> Self {
+        let most = (max_cells as f64).powf(1.0 / D as f64).floor();
+        let per_side = (length / min_width).floor().min(most).max(1.0) as usize;
         Grid {
             per_side,
             width: length / per_side as f64,
@@ -181,7 +191,7 @@ pub struct CellGrid<const D: usize> {
 impl<const D: usize> CellGrid<D> {
     /// A grid for `n` particles in a box of side `length`, cells at least `min_width` wide.
     pub fn new(length: f64, min_width: f64, n: usize) -> Self {
-        let grid = Grid::new(length, min_width);
+        let grid = Grid::new(length, min_width, max_cells(n));
         CellGrid {
             grid,
             head: vec![NONE; grid.cells()],

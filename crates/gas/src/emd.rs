@@ -133,7 +133,11 @@ impl<const D: usize> EventDriven<D> {
         if max_diameter <= 0.0 {
             return Err(Error::out_of_range("radii", "all 0", "a positive radius"));
         }
-        let grid = Grid::new(system.length, max_diameter.max(min_width));
+        let grid = Grid::new(
+            system.length,
+            max_diameter.max(min_width),
+            crate::cells::max_cells(n),
+        );
         if grid.per_side < 4 {
             return Err(Error::BoxTooSmall {
                 length: system.length,

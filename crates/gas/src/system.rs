@@ -70,6 +70,19 @@ impl<const D: usize> System<D> {
                 index,
             });
         }
+        let energy: f64 = self
+            .velocities
+            .iter()
+            .zip(&self.masses)
+            .map(|(v, m)| m * dot(v, v))
+            .sum();
+        if !energy.is_finite() {
+            return Err(Error::out_of_range(
+                "velocities",
+                "a kinetic energy beyond the range of f64",
+                "a finite energy",
+            ));
+        }
         let length = self.length;
         if let Some(i) = self.positions.iter().position(|p| {
             p.iter()

@@ -168,7 +168,11 @@ impl<const D: usize> Planned<D> for EventDriven<D> {
         if state.min_cell_width != 0.0 || state.sorter != gas::SorterKind::default() {
             return Err("cells or sorter differ from a run's".into());
         }
-        Ok(())
+        no_energy_gained(
+            plan,
+            &state.system,
+            state.baths.as_ref().map(|b| b.temperatures.as_slice()),
+        )
     }
 }
 
@@ -197,7 +201,7 @@ macro_rules! planned_dsmc {
                 if $box {
                     box_side(plan, &state.system)?;
                 }
-                Ok(())
+                no_energy_gained(plan, &state.system, None)
             }
         }
     };
@@ -248,6 +252,48 @@ fn particles<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Re
         }
     }
     Ok(())
+}
+
+/// A cooling gas never gains energy: the kinetic energy of the particles (plus, for a
+/// stochastic law, the energy `modes * T_i` held by each particle's bath, which the
+/// collisions exchange with the translation, `restitution::collide_with_baths`) is at most
+/// the initial one, `N (D/2) T0 (+ N modes T_bath)`: the initializer sets the temperature
+/// exactly (to round-off). The tolerance 1e-6 is far above the round-off of the collision
+/// updates (~1e-16 relative per collision, a random walk) and far below what an edit that
+/// would blow up the run (a velocity or bath temperature of 1e100) adds.
+fn no_energy_gained<const D: usize>(
+    plan: &Plan,
+    system: &System<D>,
+    bath_temperatures: Option<&[f64]>,
+) -> std::result::Result<(), String> {
+    let s = &plan.description.system;
+    let n = system.len() as f64;
+    let kinetic: f64 = system
+        .velocities
+        .iter()
+        .zip(&system.masses)
+        .map(|(v, m)| 0.5 * m * v.iter().map(|x| x * x).sum::<f64>())
+        .sum();
+    let mut initial = n * 0.5 * D as f64 * s.temperature;
+    let mut now = kinetic;
+    if let LawSpec::Stochastic {
+        modes,
+        bath_temperature,
+        ..
+    } = plan.law
+    {
+        let modes = f64::from(modes);
+        initial += n * modes * bath_temperature;
+        now += modes * bath_temperatures.unwrap_or(&[]).iter().sum::<f64>();
+    }
+    if now.is_finite() && now <= initial * (1.0 + 1e-6) {
+        Ok(())
+    } else {
+        Err(format!(
+            "energy {now:e} above the initial energy {initial:e} of [system] and [collision]; \
+             a cooling gas does not gain energy"
+        ))
+    }
 }
 
 /// The box side is the one of `[system]` (the spheres' volume at the packing fraction),

@@ -152,6 +152,23 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     })
 }
 
+/// The range of a diameter, mass or temperature (any unit system): wide enough for SI and
+/// scaled units alike, narrow enough that v^4 ~ (T/m)^2 (the Sonine coefficient a2) and
+/// the box volume of 1e8 spheres stay finite in f64.
+const SCALE: (f64, f64) = (1e-30, 1e30);
+
+/// The most dilute gas: its box (N d^D / phi) stays finite for every allowed N and d.
+const MIN_PACKING: f64 = 1e-12;
+
+/// `x` within [`SCALE`].
+fn in_scale(key: &str, x: f64) -> Result<f64> {
+    if (SCALE.0..=SCALE.1).contains(&x) {
+        Ok(x)
+    } else {
+        Err(Error::out_of_range(key, x, "1e-30 <= value <= 1e30"))
+    }
+}
+
 /// `[system]`.
 fn check_system(description: &RunDescription) -> Result<()> {
     let s = &description.system;
@@ -170,8 +187,11 @@ fn check_system(description: &RunDescription) -> Result<()> {
         ));
     }
     let max_phi = gas::init::packing_limit(s.dimension as usize);
-    if !(s.packing_fraction > 0.0 && s.packing_fraction <= max_phi) {
-        let allowed = format!("0 < phi <= {max_phi} in {} dimensions", s.dimension);
+    if !(s.packing_fraction >= MIN_PACKING && s.packing_fraction <= max_phi) {
+        let allowed = format!(
+            "{MIN_PACKING:e} <= phi <= {max_phi} in {} dimensions",
+            s.dimension
+        );
         return Err(Error::out_of_range(
             "system.packing_fraction",
             s.packing_fraction,
@@ -180,8 +200,8 @@ fn check_system(description: &RunDescription) -> Result<()> {
     }
     match &s.species {
         None => {
-            positive("system.diameter", s.diameter.unwrap_or(1.0))?;
-            positive("system.mass", s.mass.unwrap_or(1.0))?;
+            in_scale("system.diameter", s.diameter.unwrap_or(1.0))?;
+            in_scale("system.mass", s.mass.unwrap_or(1.0))?;
         }
         Some(_) if s.diameter.is_some() || s.mass.is_some() => {
             return Err(Error::input(
@@ -194,15 +214,15 @@ fn check_system(description: &RunDescription) -> Result<()> {
                 return Err(Error::input("system.species", "give at least one species"));
             }
             for (k, x) in entries.iter().enumerate() {
-                positive(&format!("system.species[{k}].diameter"), x.diameter)?;
-                positive(&format!("system.species[{k}].mass"), x.mass)?;
+                in_scale(&format!("system.species[{k}].diameter"), x.diameter)?;
+                in_scale(&format!("system.species[{k}].mass"), x.mass)?;
                 positive(&format!("system.species[{k}].fraction"), x.fraction)?;
             }
             gas::init::species_counts(s.particles, &species(entries))
                 .map_err(|e| Error::input("system.species", e))?;
         }
     }
-    positive("system.temperature", s.temperature)?;
+    in_scale("system.temperature", s.temperature)?;
     Ok(())
 }
 

@@ -1,0 +1,530 @@
+//! A fuzzing harness that stays (issue 12): valid run files and check-points are mutated
+//! (keys, values, types, truncation, byte flips; check-points also with the checksum
+//! fixed after the edit) and fed to the run driver. For every input: no panic; a refusal is
+//! an input error (exit 2 in the CLI) with a one-line message; an accepted run produces
+//! only finite numbers. The suite runs a modest number of cases; the long run is
+//! `cargo test --release -p haff-sim --test fuzz -- --ignored --nocapture` (FUZZ_CASES
+//! cases per property, default 50000).
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestRunner};
+use sim::{Error, RunDescription, Simulation};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
+use std::time::{Duration, Instant};
+
+/// Valid run files of every engine and law (small, so that accepted mutants run fast).
+const SEEDS: [&str; 6] = [
+    "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
+     [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
+    "[system]\ndimension = 2\nparticles = 50\npacking_fraction = 0.2\n\
+     species = [{ diameter = 1.0, mass = 1.0, fraction = 3 }, { diameter = 2.0, mass = 4.0, fraction = 1 }]\n\
+     [collision]\nlaw = \"viscoelastic\"\nbeta = 0.3\nform = \"pade:3/6\"\n\
+     [run]\nend_time = 2.0\nsamples = 4\nspacing = \"linear\"\n",
+    "[system]\nparticles = 80\npacking_fraction = 0.05\n\
+     [collision]\nlaw = \"dashpot\"\ndamping_ratio = 0.2\ncriterion = \"naive\"\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"blocks\"\nblock_size = 16\ncollisions_per_particle = 4\nsamples = 4\n",
+    "[system]\nparticles = 80\npacking_fraction = 0.05\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.5\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"exact\"\ncollisions_per_particle = 4\nsamples = 4\n",
+    "[system]\nparticles = 200\npacking_fraction = 0.05\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_step = 0.5\ncollisions_per_particle = 3\nsamples = 3\n",
+    "[system]\ndimension = 1\nparticles = 40\npacking_fraction = 0.3\n\
+     [collision]\nlaw = \"stochastic\"\nmodes = 5\nbath_temperature = 0.5\n\
+     [run]\ncollisions_per_particle = 5\nsamples = 4\n",
+];
+
+/// Keys, in and out of the schema, that mutations insert.
+const KEYS: [&str; 24] = [
+    "dimension",
+    "particles",
+    "packing_fraction",
+    "diameter",
+    "mass",
+    "species",
+    "temperature",
+    "seed",
+    "law",
+    "restitution",
+    "damping_ratio",
+    "criterion",
+    "beta",
+    "form",
+    "tc",
+    "engine",
+    "collisions_per_particle",
+    "end_time",
+    "samples",
+    "spacing",
+    "histogram_at",
+    "dsmc_scheme",
+    "modes",
+    "colour",
+];
+
+/// Values of every TOML type, in and out of range.
+const VALUES: [&str; 30] = [
+    "0",
+    "1",
+    "-1",
+    "2",
+    "3",
+    "4",
+    "1e300",
+    "-1e300",
+    "1e-300",
+    "nan",
+    "inf",
+    "-inf",
+    "0.5",
+    "1.5",
+    "1e9",
+    "100000000000",
+    "\"\"",
+    "\"constant\"",
+    "\"dsmc\"",
+    "\"spatial\"",
+    "\"pade:50/1\"",
+    "\"series:20\"",
+    "\"x\"",
+    "true",
+    "[]",
+    "[1.0, 2.0]",
+    "[-1.0]",
+    "{ a = 1 }",
+    "[{ diameter = 1.0, mass = 1.0, fraction = 0 }]",
+    "18446744073709551615",
+];
+
+/// One mutation of a run file's text.
+#[derive(Debug, Clone)]
+enum Mutation {
+    ReplaceValue {
+        line: usize,
+        value: usize,
+    },
+    DeleteLine {
+        line: usize,
+    },
+    InsertKey {
+        line: usize,
+        key: usize,
+        value: usize,
+    },
+    Truncate {
+        at: usize,
+    },
+    FlipByte {
+        at: usize,
+        to: u8,
+    },
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    prop_oneof![
+        (any::<usize>(), 0..VALUES.len())
+            .prop_map(|(line, value)| Mutation::ReplaceValue { line, value }),
+        any::<usize>().prop_map(|line| Mutation::DeleteLine { line }),
+        (any::<usize>(), 0..KEYS.len(), 0..VALUES.len())
+            .prop_map(|(line, key, value)| Mutation::InsertKey { line, key, value }),
+        any::<usize>().prop_map(|at| Mutation::Truncate { at }),
+        (any::<usize>(), 32u8..127).prop_map(|(at, to)| Mutation::FlipByte { at, to }),
+    ]
+}
+
+fn mutate(text: &str, mutations: &[Mutation]) -> String {
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let mut text;
+    for m in mutations {
+        let n = lines.len().max(1);
+        match *m {
+            Mutation::ReplaceValue { line, value } => {
+                if let Some(l) = lines.get_mut(line % n) {
+                    if let Some((key, _)) = l.split_once('=') {
+                        *l = format!("{key}= {}", VALUES[value]);
+                    }
+                }
+            }
+            Mutation::DeleteLine { line } => {
+                if !lines.is_empty() {
+                    lines.remove(line % n);
+                }
+            }
+            Mutation::InsertKey { line, key, value } => {
+                let at = line % (lines.len() + 1);
+                lines.insert(at, format!("{} = {}", KEYS[key], VALUES[value]));
+            }
+            Mutation::Truncate { at } => {
+                text = lines.join("\n");
+                let cut = at % (text.len() + 1);
+                let cut = (0..=cut)
+                    .rev()
+                    .find(|&c| text.is_char_boundary(c))
+                    .unwrap_or(0);
+                lines = text[..cut].lines().map(String::from).collect();
+            }
+            Mutation::FlipByte { at, to } => {
+                text = lines.join("\n");
+                let mut bytes = text.into_bytes();
+                if !bytes.is_empty() {
+                    let at = at % bytes.len();
+                    bytes[at] = to;
+                }
+                text = String::from_utf8_lossy(&bytes).into_owned();
+                lines = text.lines().map(String::from).collect();
+            }
+        }
+    }
+    lines.join("\n") + "\n"
+}
+
+/// A refusal is an input error with a one-line message.
+fn refused_properly(error: &Error) -> Result<(), String> {
+    let message = error.to_string();
+    if !error.is_input() && !matches!(error, Error::Numerical { .. }) {
+        return Err(format!("not an input error: {message}"));
+    }
+    if message.contains('\n') || message.is_empty() {
+        return Err(format!("not one line: {message:?}"));
+    }
+    Ok(())
+}
+
+/// Whether a valid description is small enough to run in the harness: at most 500
+/// particles, 50 samples and (for a stop by time, from the Enskog collision frequency at
+/// the initial temperature, an upper estimate for a cooling gas; the smallest mass and
+/// largest diameter of a mixture) 20 collisions per particle.
+fn small(description: &RunDescription) -> bool {
+    let (s, r) = (&description.system, &description.run);
+    let (diameter, mass) = match &s.species {
+        None => (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0)),
+        Some(species) => (
+            species.iter().map(|x| x.diameter).fold(0.0, f64::max),
+            species.iter().map(|x| x.mass).fold(f64::INFINITY, f64::min),
+        ),
+    };
+    let phi = s.packing_fraction;
+    let rate = |d: usize| {
+        let volume = match d {
+            1 => diameter,
+            2 => std::f64::consts::PI / 4.0 * diameter * diameter,
+            _ => std::f64::consts::PI / 6.0 * diameter.powi(3),
+        };
+        let density = phi / volume;
+        match d {
+            1 => gas::theory::collision_frequency::<1>(density, diameter, mass, s.temperature, phi),
+            2 => gas::theory::collision_frequency::<2>(density, diameter, mass, s.temperature, phi),
+            _ => gas::theory::collision_frequency::<3>(density, diameter, mass, s.temperature, phi),
+        }
+    };
+    let per_particle = match (r.collisions_per_particle, r.end_time) {
+        (Some(c), _) => c,
+        (_, Some(t)) => t * rate(s.dimension as usize),
+        _ => f64::INFINITY,
+    };
+    s.particles <= 500 && r.samples <= 50 && per_particle <= 20.0
+}
+
+/// Every number a run produced is finite.
+fn outputs_finite(run: &Simulation) -> Result<(), String> {
+    for s in run.samples() {
+        let numbers = [
+            s.time,
+            s.collisions_per_particle,
+            s.temperature,
+            s.a2,
+            s.energy_lost,
+            s.pressure,
+        ];
+        if numbers
+            .iter()
+            .chain(&s.bath_temperature)
+            .any(|x| !x.is_finite())
+        {
+            return Err(format!("non-finite output: {s:?}"));
+        }
+    }
+    for h in run.histograms() {
+        if h.bins
+            .iter()
+            .any(|(c, d)| !(c.is_finite() && d.is_finite()))
+        {
+            return Err("non-finite histogram".into());
+        }
+    }
+    Ok(())
+}
+
+/// Feeds one run file to the driver: refused properly, or run with finite outputs.
+fn check_run_file(text: &str) -> Result<(), String> {
+    let description = match RunDescription::from_toml(text, "fuzz.toml".as_ref()) {
+        Ok(d) => d,
+        Err(e) => return refused_properly(&e),
+    };
+    if let Err(e) = sim::validate(&description) {
+        return refused_properly(&e);
+    }
+    if !small(&description) {
+        return Ok(());
+    }
+    let mut run = match Simulation::new(&description) {
+        Ok(run) => run,
+        Err(e) => return refused_properly(&e),
+    };
+    match run.run(&mut (), None) {
+        Ok(_) => outputs_finite(&run),
+        Err(e) => refused_properly(&e),
+    }
+}
+
+/// The longest a case may take (a small run takes milliseconds): beyond it the case hangs.
+const HANG: Duration = Duration::from_secs(60);
+
+/// Names the case now running for a watchdog that aborts the process, printing the case,
+/// if one case runs longer than [`HANG`] (a hang is a failure, and must not stall the suite).
+fn watch(case: String) {
+    static CURRENT: Mutex<Option<(Instant, String)>> = Mutex::new(None);
+    static WATCHDOG: OnceLock<()> = OnceLock::new();
+    *CURRENT.lock().unwrap() = Some((Instant::now(), case));
+    WATCHDOG.get_or_init(|| {
+        std::thread::spawn(|| loop {
+            std::thread::sleep(Duration::from_secs(1));
+            if let Some((start, case)) = &*CURRENT.lock().unwrap() {
+                if start.elapsed() > HANG {
+                    eprintln!("hang: a case ran longer than {HANG:?}: {case}");
+                    std::process::abort();
+                }
+            }
+        });
+    });
+}
+
+/// Runs `check` without letting a panic escape: a panic is a failure.
+fn no_panic(check: impl FnOnce() -> Result<(), String>) -> Result<(), String> {
+    catch_unwind(AssertUnwindSafe(check)).unwrap_or_else(|p| {
+        let what = p
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        Err(format!("panic: {what}"))
+    })
+}
+
+fn run_files(cases: u32) {
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = (0..SEEDS.len(), prop::collection::vec(mutation(), 1..4));
+    runner
+        .run(&strategy, |(seed, mutations)| {
+            let text = mutate(SEEDS[seed], &mutations);
+            watch(format!("run file:\n{text}"));
+            no_panic(|| check_run_file(&text))
+                .map_err(|e| TestCaseError::fail(format!("{e}\n--- input:\n{text}")))
+        })
+        .unwrap();
+}
+
+/// A valid check-point of each seed file (written once per process).
+fn checkpoints() -> &'static Vec<(PathBuf, Vec<u8>)> {
+    static DIRS: OnceLock<Vec<(PathBuf, Vec<u8>)>> = OnceLock::new();
+    DIRS.get_or_init(|| {
+        SEEDS
+            .iter()
+            .enumerate()
+            .map(|(k, text)| {
+                let dir =
+                    std::env::temp_dir().join(format!("haff-fuzz-{}-seed{k}", std::process::id()));
+                std::fs::create_dir_all(&dir).unwrap();
+                let mut run = Simulation::from_toml(text, "seed.toml".as_ref()).unwrap();
+                run.set_checkpoints(&dir, Some(1));
+                run.run(&mut (), Some(2)).unwrap();
+                let bytes = std::fs::read(dir.join(sim::checkpoint::FILE_NAME)).unwrap();
+                (dir, bytes)
+            })
+            .collect()
+    })
+}
+
+/// One mutation of a check-point's bytes.
+#[derive(Debug, Clone)]
+enum Damage {
+    Flip {
+        at: usize,
+        bit: u8,
+    },
+    Truncate {
+        at: usize,
+    },
+    /// Replace a number in the records JSON, fixing the checksum.
+    ForgeRecords {
+        at: usize,
+        value: usize,
+    },
+    /// Overwrite 8 bytes of the engine state, fixing the checksum.
+    ForgeEngine {
+        at: usize,
+        with: f64,
+    },
+}
+
+fn damage() -> impl Strategy<Value = Damage> {
+    prop_oneof![
+        (any::<usize>(), 0u8..8).prop_map(|(at, bit)| Damage::Flip { at, bit }),
+        any::<usize>().prop_map(|at| Damage::Truncate { at }),
+        (any::<usize>(), 0..VALUES.len())
+            .prop_map(|(at, value)| Damage::ForgeRecords { at, value }),
+        (
+            any::<usize>(),
+            prop_oneof![
+                Just(0.0),
+                Just(-1.0),
+                Just(1e300),
+                Just(f64::NAN),
+                Just(f64::INFINITY),
+                Just(0.5),
+                Just(1e-300),
+                any::<f64>()
+            ]
+        )
+            .prop_map(|(at, with)| Damage::ForgeEngine { at, with }),
+    ]
+}
+
+/// Splits a check-point into header, records and engine bytes.
+fn split(bytes: &[u8]) -> (serde_json::Value, Vec<u8>, Vec<u8>) {
+    let first = bytes.iter().position(|&b| b == b'\n').unwrap();
+    let header: serde_json::Value = serde_json::from_slice(&bytes[..first]).unwrap();
+    let r = header["records_bytes"].as_u64().unwrap() as usize;
+    (
+        header,
+        bytes[first + 1..first + 1 + r].to_vec(),
+        bytes[first + 2 + r..].to_vec(),
+    )
+}
+
+fn join(mut header: serde_json::Value, records: &[u8], engine: &[u8]) -> Vec<u8> {
+    let mut crc = crc32fast::Hasher::new();
+    crc.update(records);
+    crc.update(engine);
+    header["records_bytes"] = records.len().into();
+    header["engine_bytes"] = engine.len().into();
+    header["crc32"] = crc.finalize().into();
+    let mut bytes = serde_json::to_vec(&header).unwrap();
+    bytes.push(b'\n');
+    bytes.extend(records);
+    bytes.push(b'\n');
+    bytes.extend(engine);
+    bytes
+}
+
+fn damaged(good: &[u8], damage: &Damage) -> Vec<u8> {
+    match *damage {
+        Damage::Flip { at, bit } => {
+            let mut b = good.to_vec();
+            let at = at % b.len();
+            b[at] ^= 1 << bit;
+            b
+        }
+        Damage::Truncate { at } => good[..at % good.len()].to_vec(),
+        Damage::ForgeRecords { at, value } => {
+            let (header, records, engine) = split(good);
+            let text = String::from_utf8(records).unwrap();
+            // Replace the digits of one number (found from a random place on).
+            let start = at % text.len();
+            let Some(i) = text[start..]
+                .find(|c: char| c.is_ascii_digit())
+                .map(|i| i + start)
+            else {
+                return good.to_vec();
+            };
+            let end = text[i..]
+                .find(|c: char| !(c.is_ascii_digit() || "+-.eE".contains(c)))
+                .map_or(text.len(), |e| e + i);
+            let forged = format!("{}{}{}", &text[..i], VALUES[value], &text[end..]);
+            join(header, forged.as_bytes(), &engine)
+        }
+        Damage::ForgeEngine { at, with } => {
+            let (header, records, mut engine) = split(good);
+            if engine.len() >= 8 {
+                let at = at % (engine.len() - 7);
+                engine[at..at + 8].copy_from_slice(&with.to_le_bytes());
+            }
+            join(header, &records, &engine)
+        }
+    }
+}
+
+/// Feeds one damaged check-point to the driver: refused properly, or (a harmless edit)
+/// continued with finite outputs.
+fn check_checkpoint(dir: &Path, bytes: &[u8]) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+    std::fs::write(dir.join(sim::checkpoint::FILE_NAME), bytes).map_err(|e| e.to_string())?;
+    let mut run = match Simulation::resume(dir) {
+        Ok(run) => run,
+        Err(e) => return refused_properly(&e),
+    };
+    if !small(run.description()) {
+        return Ok(());
+    }
+    match run.run(&mut (), None) {
+        Ok(_) => outputs_finite(&run),
+        Err(e) => refused_properly(&e),
+    }
+}
+
+fn check_points(cases: u32) {
+    let seeds = checkpoints();
+    static CASE: AtomicUsize = AtomicUsize::new(0);
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = (0..SEEDS.len(), damage());
+    runner
+        .run(&strategy, |(seed, damage)| {
+            let bytes = damaged(&seeds[seed].1, &damage);
+            watch(format!("check-point of seed {seed}, {damage:?}"));
+            let case = CASE.fetch_add(1, Ordering::Relaxed);
+            let dir =
+                std::env::temp_dir().join(format!("haff-fuzz-{}-case{case}", std::process::id()));
+            let result = no_panic(|| check_checkpoint(&dir, &bytes));
+            std::fs::remove_dir_all(&dir).ok();
+            result.map_err(|e| TestCaseError::fail(format!("{e}\n--- damage: {damage:?}")))
+        })
+        .unwrap();
+}
+
+fn cases_from_env(default: u32) -> u32 {
+    std::env::var("FUZZ_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(default)
+}
+
+#[test]
+fn mutated_run_files_never_panic() {
+    run_files(300);
+}
+
+#[test]
+fn damaged_check_points_never_panic() {
+    check_points(300);
+}
+
+#[test]
+#[ignore]
+fn mutated_inputs_at_length() {
+    let cases = cases_from_env(50_000);
+    run_files(cases);
+    check_points(cases);
+    eprintln!("{cases} mutated run files and {cases} damaged check-points: no panic");
+}
