@@ -12,6 +12,19 @@ const MAX_ORDER: usize = 100;
 const MAX_DEGREE: usize = 60;
 const MAX_DIGITS: usize = 60;
 
+/// The longest `cor coefficients` may take (bounded work).
+const MAX_SECONDS: f64 = 60.0;
+
+/// The time of the chain on this machine kind, fitted to measurements of
+/// `cor coefficients` (chain order K, trajectory order N, bits): (20, 150, 256) 0.32 s,
+/// (20, 300, 256) 2.3 s, (20, 150, 1024) 0.50 s, (40, 300, 256) 7.1 s, (c: 100, 300, 512)
+/// 33 s, (h: 100, 300, 528) 40 s; the fit is within 15 % of each.
+fn estimated_seconds(settings: &Settings) -> f64 {
+    0.32 * (settings.trajectory_order as f64 / 150.0).powf(2.85)
+        * (settings.bits as f64 / 256.0).powf(0.32)
+        * (settings.order.max(2) as f64 / 20.0).powf(1.6)
+}
+
 /// `haff cor coefficients`: CSV `k,value`, k from 0.
 pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
     let kind: Kind = args
@@ -27,6 +40,18 @@ pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
     }
     if let Some(text) = &args.bits {
         settings.bits = parse_count("--bits", text, 64, 8192)?;
+    }
+    let seconds = estimated_seconds(&settings);
+    if seconds > MAX_SECONDS {
+        return Err(CliError::argument(
+            "--order",
+            format!(
+                "with --trajectory-order {} and --bits {} the chain needs about {seconds:.0} s; \
+                 allowed: at most about {MAX_SECONDS} s (the cost grows as N^2.85 in the trajectory \
+                 order, K^1.6 in the chain order and bits^0.32)",
+                settings.trajectory_order, settings.bits
+            ),
+        ));
     }
     // a, b and c do not need the premature end of contact (the costly part at high order).
     let chain = if kind == Kind::H {
@@ -55,7 +80,19 @@ pub fn pade(args: &PadeArgs) -> CliResult {
     let m = parse_count("--m", &args.m, 0, MAX_DEGREE)?;
     let n = parse_count("--n", &args.n, 0, MAX_DEGREE)?;
     let digits = parse_count("--digits", &args.digits, 1, MAX_DIGITS)?;
-    let chain = compute(Settings::for_order((m + n).max(2)));
+    let settings = Settings::for_order((m + n).max(2));
+    let seconds = estimated_seconds(&settings);
+    if seconds > MAX_SECONDS {
+        return Err(CliError::argument(
+            "--m/--n",
+            format!(
+                "[{m}/{n}] needs h_0..h_{} and about {seconds:.0} s; allowed: at most about \
+                 {MAX_SECONDS} s, m + n <= 100",
+                m + n
+            ),
+        ));
+    }
+    let chain = compute(settings);
     let approximant =
         series::pade::pade(&chain.h, m, n).map_err(|e| CliError::argument("--m/--n", e))?;
     let cell = |c: &[series::power::Real], i: usize| {

@@ -20,6 +20,14 @@ use std::io::Write;
 /// Most trajectory points `cor collision` writes.
 const MAX_POINTS: usize = 1_000_000;
 
+/// The beta (any unit system) `cor eps --v` accepts: beyond it the speeds of v* <= 1e6,
+/// v <= (1e6 / beta^(1/2))^10, underflow (or overflow) f64.
+const BETA_RANGE: (f64, f64) = (1e-30, 1e30);
+
+fn beta_range() -> Allowed {
+    Allowed::between("beta", BETA_RANGE.0, BETA_RANGE.1)
+}
+
 /// The scaled speeds every law accepts.
 fn vstar_range() -> Allowed {
     Allowed::between("v*", 0.0, VSTAR_MAX)
@@ -66,6 +74,7 @@ pub fn eps(args: &EpsArgs) -> CliResult {
 fn scaled_eps(args: &EpsArgs, vstars: &str) -> CliResult<EpsTable> {
     let vstars = parse_list("--vstar", vstars, vstar_range())?;
     let law = parse_law(&args.law)?;
+    warn_outside_validity(&law, &vstars);
     let rows = vstars
         .into_iter()
         .map(|vstar| EpsRow {
@@ -80,6 +89,21 @@ fn scaled_eps(args: &EpsArgs, vstars: &str) -> CliResult<EpsTable> {
         units: None,
         rows,
     })
+}
+
+/// Warns on stderr when an approximation is evaluated beyond its validity (a Padé past a
+/// pole or outside [0, 1], a series beyond its radius of convergence): the values are
+/// printed, as the approximation gives them, for whoever studies its divergence.
+fn warn_outside_validity(form: &ScaledForm, vstars: &[f64]) {
+    let validity = form.validity();
+    let beyond = vstars.iter().filter(|&&v| !validity.contains(v)).count();
+    if beyond > 0 {
+        eprintln!(
+            "haff: warning: --law {form} is {validity}: {beyond} of the {} values printed \
+             are the approximation's, not the viscoelastic law's",
+            vstars.len()
+        );
+    }
 }
 
 /// Rejects `--beta` and `--units`, which only apply to the physical speeds of `--v`.
@@ -98,13 +122,28 @@ fn forbid_without_v(args: &EpsArgs) -> CliResult {
 fn physical_eps(args: &EpsArgs, speeds: &str) -> CliResult<EpsTable> {
     let units = parse_units(args.units.as_deref())?;
     let beta = match args.beta.as_deref() {
-        Some(text) => parse_number("--beta", text, Allowed::positive("beta"))?,
-        None => units.beta_from_si(material_beta(args)?),
+        Some(text) => parse_number("--beta", text, beta_range())?,
+        None => {
+            let beta = units.beta_from_si(material_beta(args)?);
+            if !(BETA_RANGE.0..=BETA_RANGE.1).contains(&beta) {
+                return Err(CliError::argument(
+                    "--dissipative-constant",
+                    format!(
+                        "with this material and radius beta = {beta:e}; allowed: {} <= beta <= {} \
+                         (so that v* = 1e6 is reached at a speed v > 0)",
+                        BETA_RANGE.0, BETA_RANGE.1
+                    ),
+                ));
+            }
+            beta
+        }
     };
     let v_max = speed_from_vstar(beta, VSTAR_MAX).map_err(|e| CliError::library("--beta", e))?;
     let speeds = parse_list("--v", speeds, Allowed::between("v", 0.0, v_max))?;
     let form = parse_law(&args.law)?;
     let law = Viscoelastic::new(beta, form).map_err(|e| CliError::library("--beta", e))?;
+    let vstars: Vec<f64> = speeds.iter().map(|&v| law.vstar(v)).collect();
+    warn_outside_validity(law.form(), &vstars);
     let rows = speeds
         .into_iter()
         .map(|v| EpsRow {
@@ -349,7 +388,8 @@ fn material_beta(args: &EpsArgs) -> CliResult<f64> {
             .or(from_base)
             .ok_or_else(|| CliError::argument(flag, "missing: give it or --material"))
     };
-    let a = parse_number("--dissipative-constant", a_text, Allowed::non_negative("A"))?;
+    // A = 0 is an elastic material (eps = 1 at every speed), not a viscoelastic law.
+    let a = parse_number("--dissipative-constant", a_text, Allowed::positive("A"))?;
     let material = Material::new(
         base.as_ref().map_or("command line", |m| m.name.as_str()),
         pick(young, base.as_ref().map(|m| m.young_modulus), "--young")?,

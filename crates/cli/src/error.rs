@@ -96,6 +96,18 @@ impl From<sim::Error> for CliError {
 impl CliError {
     /// An error of `haff ... --resume DIR`: a check-point that cannot be read is named by
     /// the flag.
+    /// An error of the run file `path` (its reading, its keys, the run it describes before
+    /// it starts): the message names the file first.
+    pub fn in_file(path: &std::path::Path) -> impl Fn(sim::Error) -> Self + '_ {
+        move |error| {
+            let mut e = CliError::from(error);
+            if !e.message.contains(&path.display().to_string()) {
+                e.message = format!("{}: {}", path.display(), e.message);
+            }
+            e
+        }
+    }
+
     pub fn resume(error: sim::Error) -> Self {
         match error {
             sim::Error::Checkpoint { .. } => CliError::argument("--resume", error),

@@ -90,7 +90,8 @@ pub struct RodsTwoRodsArgs {
 /// Arguments of `haff rods deterministic`.
 #[derive(Debug, Args)]
 pub struct RodsDeterministicArgs {
-    /// Length ratio(s) gamma = l1/l2, comma-separated, 1e-3 <= gamma <= 1e3.
+    /// Length ratio(s) gamma = l1/l2, comma-separated, 1e-3 <= gamma <= 1e3 (the work grows as
+    /// kappa and as 1/gamma^2 away from 1: a call estimated beyond about a minute is refused).
     #[arg(long, allow_hyphen_values = true)]
     pub gamma: String,
     /// Scaled impact speed(s) kappa = alpha l V / c, comma-separated, 1 <= kappa <= 1e5.
@@ -202,10 +203,11 @@ pub struct CoefficientsArgs {
     /// c_k A^k), a (time of maximal compression), b (maximal compression); A = v*^2.
     #[arg(long)]
     pub kind: String,
-    /// Highest index k, 0 <= K <= 100.
+    /// Highest index k, 0 <= K <= 100 (c, a, b run the chain to 2K; a call estimated beyond
+    /// about a minute is refused).
     #[arg(long, allow_hyphen_values = true)]
     pub order: String,
-    /// Significant digits of the decimal values, 1 <= D <= 60 [default: 20].
+    /// Significant digits of the decimal values, 1 <= D <= 60.
     #[arg(long, default_value = "20", allow_hyphen_values = true)]
     pub digits: String,
     /// Order N of the trajectory series in sqrt(tau) (for convergence studies) [default:
@@ -226,7 +228,7 @@ pub struct PadeArgs {
     /// Degree N of the denominator, 0 <= N <= 60.
     #[arg(long, allow_hyphen_values = true)]
     pub n: String,
-    /// Significant digits of the decimal values, 1 <= D <= 60 [default: 20].
+    /// Significant digits of the decimal values, 1 <= D <= 60.
     #[arg(long, default_value = "20", allow_hyphen_values = true)]
     pub digits: String,
 }

@@ -6,7 +6,7 @@ use crate::output::{number, parse_count, parse_list, parse_number, stdout, write
 use crate::progress::Bar;
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
 use rods::chain::TwoRodSummary;
-use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
+use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric, estimated_work};
 use rods::stochastic::{eps2_histogram, eps2_summary, sample_eps, Eps2Bin, Resolution, Table};
 use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::output::{write_csv_file, write_json_file};
@@ -19,24 +19,65 @@ fn library(flag: &str) -> impl Fn(rods::Error) -> CliError + '_ {
     move |e| CliError::argument(flag, e)
 }
 
+/// Memory-term evaluations per second of `rods::deterministic::integrate` on this machine
+/// kind, the slowest of the measured (gamma, kappa) = (0.6173, 1e5) 2.4e8/s, (0.1, 1e4)
+/// 3.5e8, (0.05, 1e4) 2.7e8, (0.02, 1e4) 3.1e8, (0.01, 1e3) 2.3e8, (1e-3, 100) 1.5e8 (150 s).
+const WORK_PER_SECOND: f64 = 1.5e8;
+
+/// The most work one `rods deterministic` call may ask for: about a minute.
+const DETERMINISTIC_WORK_LIMIT: f64 = 50.0 * WORK_PER_SECOND;
+
 /// `haff rods deterministic`: eps of Eq. (3) at T_bath = 0 for every (gamma, kappa), with
 /// the paper's closed form and the generalized one beside it (solved value last).
 pub fn deterministic(args: &RodsDeterministicArgs) -> CliResult {
     let gammas = parse_list("--gamma", &args.gamma, Allowed::between("gamma", 1e-3, 1e3))?;
     let kappas = parse_list("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e5))?;
     let step = parse_number("--step", &args.step, Allowed::open("h kappa", 0.0, 1.0))?;
+    let work: f64 = gammas
+        .iter()
+        .flat_map(|&g| kappas.iter().map(move |&k| estimated_work(g, k, step / k)))
+        .sum();
+    if work > DETERMINISTIC_WORK_LIMIT {
+        return Err(CliError::argument(
+            "--gamma",
+            format!(
+                "these gamma, kappa and --step need about {:.0} s (the work grows as kappa / step \
+                 and as 1/gamma^2 or gamma^2 away from 1); allowed: at most about {:.0} s per call, \
+                 e.g. fewer values, gamma nearer 1, a smaller kappa or a larger --step",
+                work / WORK_PER_SECOND,
+                DETERMINISTIC_WORK_LIMIT / WORK_PER_SECOND
+            ),
+        ));
+    }
     let mut rows = Vec::new();
+    let mut undefined = false;
+    // The closed forms are asymptotic in kappa |Gamma2 - Gamma1| >> 1; at gamma = 1 the
+    // logarithm is -inf: an empty cell, not a number.
+    let mut closed = |x: f64| {
+        if x.is_finite() {
+            number(x)
+        } else {
+            undefined = true;
+            String::new()
+        }
+    };
     for &gamma in &gammas {
         for &kappa in &kappas {
             let eps = eps_numeric(gamma, kappa, step / kappa);
             rows.push(vec![
                 number(gamma),
                 number(kappa),
-                number(eps_closed_form(gamma, kappa)),
-                number(eps_closed_form_general(gamma, kappa)),
+                closed(eps_closed_form(gamma, kappa)),
+                closed(eps_closed_form_general(gamma, kappa)),
                 number(eps),
             ]);
         }
+    }
+    if undefined {
+        eprintln!(
+            "haff: warning: the closed forms (ln of kappa |Gamma2 - Gamma1|) are undefined at \
+             gamma = 1 and left empty; they need kappa |Gamma2 - Gamma1| >> 1"
+        );
     }
     let header = [
         "gamma",
@@ -70,6 +111,32 @@ pub fn collide(args: &RodsCollideArgs) -> CliResult {
     let ratio = bath_ratio(&args.bath_ratio)?;
     let realizations = parse_count("--realizations", &args.realizations, 1, 10_000_000)?;
     let seed = parse_count("--seed", &args.seed, 0, usize::MAX)? as u64;
+    if let Some(plot) = &args.plot {
+        let parent = plot.parent().filter(|p| !p.as_os_str().is_empty());
+        if parent.is_some_and(|p| !p.is_dir()) {
+            return Err(CliError::argument(
+                "--plot",
+                format!("{}: the directory does not exist", plot.display()),
+            ));
+        }
+    }
+    // Each realization integrates Eq. (3) like `rods deterministic` (plus the noise);
+    // the realizations share the machine's cores.
+    let h = Resolution::default().h(kappa, ratio);
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
+    let work = realizations as f64 * estimated_work(gamma, kappa, h) / cores;
+    if work > DETERMINISTIC_WORK_LIMIT {
+        return Err(CliError::argument(
+            "--realizations",
+            format!(
+                "{realizations} realizations at gamma = {gamma}, kappa = {kappa} need about {:.0} s; \
+                 allowed: at most about {:.0} s per call (fewer realizations, gamma nearer 1 or a \
+                 smaller kappa)",
+                work / WORK_PER_SECOND,
+                DETERMINISTIC_WORK_LIMIT / WORK_PER_SECOND
+            ),
+        ));
+    }
     let eps = sample_eps(gamma, kappa, ratio, realizations, seed).map_err(library("--gamma"))?;
     let mut out = stdout();
     let Some(bins) = &args.histogram else {
@@ -327,7 +394,9 @@ pub fn chain(args: &RunArgs) -> CliResult {
     let (mut run, out) = match (&args.file, &args.resume) {
         (Some(path), None) => {
             let out = args.out.clone().unwrap_or_else(|| path.with_extension(""));
-            (RingRun::new(&RingDescription::from_path(path)?)?, out)
+            let in_file = CliError::in_file(path);
+            let description = RingDescription::from_path(path).map_err(&in_file)?;
+            (RingRun::new(&description).map_err(in_file)?, out)
         }
         (None, Some(dir)) => {
             let run = RingRun::resume(dir).map_err(CliError::resume)?;
@@ -335,8 +404,8 @@ pub fn chain(args: &RunArgs) -> CliResult {
         }
         _ => {
             return Err(CliError::argument(
-                "RUN.toml",
-                "give a run file or --resume DIR (exactly one)",
+                "haff rods chain",
+                "give a run file (haff rods chain FILE.toml) or --resume DIR, exactly one",
             ))
         }
     };

@@ -14,9 +14,10 @@ use std::path::PathBuf;
 pub fn run(args: &RunArgs) -> CliResult {
     let (mut simulation, out) = match (&args.file, &args.resume) {
         (Some(path), None) => {
-            let description = sim::RunDescription::from_path(path)?;
+            let in_file = CliError::in_file(path);
+            let description = sim::RunDescription::from_path(path).map_err(&in_file)?;
             let out = args.out.clone().unwrap_or_else(|| default_out(path));
-            (Simulation::new(&description)?, out)
+            (Simulation::new(&description).map_err(in_file)?, out)
         }
         (None, Some(dir)) => {
             let simulation = Simulation::resume(dir).map_err(CliError::resume)?;
@@ -24,8 +25,8 @@ pub fn run(args: &RunArgs) -> CliResult {
         }
         _ => {
             return Err(CliError::argument(
-                "RUN.toml",
-                "give a run file or --resume DIR (exactly one)",
+                "haff run",
+                "give a run file (haff run FILE.toml) or --resume DIR, exactly one",
             ))
         }
     };

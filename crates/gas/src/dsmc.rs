@@ -59,15 +59,24 @@ pub enum StepSize {
     Fixed(f64),
 }
 
+/// The fewest collisions per particle in a step: 1e4 steps per collision time, far below
+/// where the O(dt) splitting error of a step matters (and a step of 1e-300 collisions would
+/// never end).
+pub const MIN_COLLISIONS_PER_STEP: f64 = 1e-4;
+
 impl StepSize {
     fn check(&self) -> Result<()> {
         match *self {
             StepSize::Auto => Ok(()),
-            StepSize::CollisionsPerParticle(x) if x.is_finite() && x > 0.0 && x <= 100.0 => Ok(()),
+            StepSize::CollisionsPerParticle(x)
+                if (MIN_COLLISIONS_PER_STEP..=100.0).contains(&x) =>
+            {
+                Ok(())
+            }
             StepSize::CollisionsPerParticle(x) => Err(Error::out_of_range(
                 "collisions_per_step",
                 x,
-                "0 < collisions per particle per step <= 100",
+                "1e-4 <= collisions per particle per step <= 100",
             )),
             StepSize::Fixed(dt) => require_positive("time_step", dt).map(|_| ()),
         }

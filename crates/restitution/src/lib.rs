@@ -21,9 +21,11 @@ pub mod ode;
 pub mod pade;
 pub mod series;
 pub mod stochastic;
+pub mod validity;
 
 pub use error::{Error, Result};
 pub use exact::Criterion;
 
 pub use law::{Coefficients, Constant, Dashpot, FormName, Restitution, ScaledForm, Viscoelastic};
 pub use stochastic::{Glauber, StochasticRestitution, Tabulated};
+pub use validity::{Breakdown, Validity};

@@ -56,6 +56,8 @@ pub enum IntegrationFailure {
     StepUnderflow { t: f64 },
     /// More than `max` steps were needed.
     TooManySteps { max: usize },
+    /// The start of an integration was not finite.
+    NonFinite { t: f64 },
 }
 
 impl std::fmt::Display for IntegrationFailure {
@@ -65,6 +67,7 @@ impl std::fmt::Display for IntegrationFailure {
                 write!(f, "step size underflow at t = {t:e}")
             }
             IntegrationFailure::TooManySteps { max } => write!(f, "more than {max} steps"),
+            IntegrationFailure::NonFinite { t } => write!(f, "non-finite state at t = {t:e}"),
         }
     }
 }
@@ -216,6 +219,10 @@ impl Radau5 {
         events: &[EventFn<'_>],
         soft: &[EventFn<'_>],
     ) -> Result<Stop, IntegrationFailure> {
+        // A NaN start would never reach t_end (every comparison with it is false).
+        if !(t0.is_finite() && h0.is_finite() && y0.iter().all(|x| x.is_finite())) {
+            return Err(IntegrationFailure::NonFinite { t: t0 });
+        }
         let dir = if t_end >= t0 { 1.0 } else { -1.0 };
         let mut h = h0.abs().min((t_end - t0).abs()) * dir;
         let (mut t, mut y) = (t0, y0);
@@ -249,7 +256,7 @@ impl Radau5 {
             let earliest = sign_changes(events, &g_old, t1, y1)
                 .into_iter()
                 .map(|(k, gk)| {
-                    let (te, ye) = self.locate(sys, t, y, h, events[k], (g_old[k], gk));
+                    let (te, ye) = self.locate(sys, t, y, (h, y1), events[k], (g_old[k], gk));
                     (k, te, ye)
                 })
                 .min_by(|a, b| ((a.1 - t) * dir).total_cmp(&((b.1 - t) * dir)));
@@ -293,13 +300,15 @@ impl Radau5 {
         self.robust_step(sys, t + 0.5 * s, mid, 0.5 * s, depth - 1)
     }
 
-    /// Finds the step size s in (0, h) at which g(step(s)) = 0 (Illinois regula falsi).
+    /// Finds the step size s in (0, h) at which g(step(s)) = 0 (Illinois regula falsi);
+    /// `y1` is the accepted step's end, the answer if no trial step inside succeeds (stiff
+    /// creeping tails, where a Newton iteration of a partial step can fail).
     fn locate<S: System>(
         &self,
         sys: &S,
         t: f64,
         y: State,
-        h: f64,
+        (h, y1): (f64, State),
         g: EventFn<'_>,
         (g0, g1): (f64, f64),
     ) -> (f64, State) {
@@ -309,7 +318,8 @@ impl Radau5 {
         };
         let (mut a, mut ga) = (0.0, g0);
         let (mut b, mut gb) = (h, g1);
-        let mut best = eval(h).1;
+        let mut best = y1;
+        let mut best_s = h;
         let mut side = 0i8;
         let mut previous = f64::NAN;
         for _ in 0..200 {
@@ -325,10 +335,12 @@ impl Radau5 {
                     break;
                 }
             }
-            best = ys;
+            if ys.iter().all(|x| x.is_finite()) {
+                (best, best_s) = (ys, s);
+            }
             // Converged when g vanishes or the step size stops moving at round-off level.
             if gs == 0.0 || (s - previous).abs() <= 2.0 * f64::EPSILON * (t.abs() + s.abs()) {
-                return (t + s, ys);
+                return (t + best_s, best);
             }
             previous = s;
             if (gs > 0.0) == (ga > 0.0) {
@@ -352,10 +364,10 @@ impl Radau5 {
         }
         let s = 0.5 * (a + b);
         let (_, ys) = eval(s);
-        if ys[0].is_finite() {
-            best = ys;
+        if ys.iter().all(|x| x.is_finite()) {
+            (best, best_s) = (ys, s);
         }
-        (t + s, best)
+        (t + best_s, best)
     }
 }
 

@@ -77,3 +77,23 @@ fn higher_pade_orders_do_improve_on_3_6() {
     assert_eq!(poles.len(), 1);
     assert!((poles[0] - 3.6874).abs() < 1e-3, "{poles:?}");
 }
+
+/// The radius of convergence behind `validity::SERIES_RADIUS`, by the root test
+/// R_k = (max_{k-9..k} |h_k|)^(-1/k) (Cauchy-Hadamard; the window covers the sign pattern
+/// of the h_k, which vanish or change sign irregularly): R_50 and R_60 agree to 0.005 (the
+/// estimate drifts as O(ln k / k)), and the constant is a lower bound within 0.02 of both.
+#[test]
+fn series_radius_from_the_root_test() {
+    use restitution::validity::SERIES_RADIUS;
+    let h = Series::computed(60).unwrap().coefficients().to_vec();
+    let root = |k: usize| {
+        let largest = h[k - 9..=k].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        largest.powf(-1.0 / k as f64)
+    };
+    let (r50, r60) = (root(50), root(60));
+    eprintln!("root test: R_50 = {r50:.4}, R_60 = {r60:.4}; SERIES_RADIUS = {SERIES_RADIUS}");
+    assert!((r50 - r60).abs() < 0.005, "{r50} vs {r60}");
+    for r in [r50, r60] {
+        assert!((SERIES_RADIUS..SERIES_RADIUS + 0.02).contains(&r), "{r}");
+    }
+}

@@ -34,6 +34,20 @@ pub fn eps_closed_form_general(gamma: f64, kappa: f64) -> f64 {
     gamma.min(1.0 / gamma) + (kappa * span).ln() / kappa
 }
 
+/// An estimate of the work of [`integrate`] in memory-term evaluations: about three
+/// windows of Γ1 + Γ2 after z0/κ (the stop criterion needs two after the collision), each
+/// of (Γ1 + Γ2)/h steps, each summing W at every lag nΓ_i back to the start, about
+/// τ/Γ1 + τ/Γ2 terms. Grows as κ/(hκ) and, for γ -> 0 or infinity, as 1/γ² (or γ²): the
+/// long rod's period Γ_l ~ 1/γ fills the window while the short one's Γ_s ~ 1 sets the
+/// number of memory terms.
+pub fn estimated_work(gamma: f64, kappa: f64, h: f64) -> f64 {
+    let (g1, g2) = (1.0 + gamma, 1.0 + 1.0 / gamma);
+    let horizon = Z0 / kappa + 3.0 * (g1 + g2);
+    let steps = horizon / h;
+    let terms = 0.5 * horizon * (1.0 / g1 + 1.0 / g2);
+    steps * (1.0 + terms)
+}
+
 /// Result of one integration of Eq. (3) of Giese.
 #[derive(Clone, Copy, Debug)]
 pub struct Solution {

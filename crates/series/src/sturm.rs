@@ -48,6 +48,16 @@ impl Dyadic {
     }
 }
 
+/// [`positive_real_roots`] of a polynomial with f64 coefficients (converted exactly); a
+/// non-finite coefficient yields `None`.
+pub fn positive_real_roots_of_floats(coefficients: &[f64], limit: f64) -> Option<Vec<f64>> {
+    let exact: Option<Vec<Real>> = coefficients
+        .iter()
+        .map(|&c| Real::try_from(c).ok())
+        .collect();
+    Some(positive_real_roots(&exact?, limit))
+}
+
 /// The distinct real zeros on (0, limit] of the polynomial sum_i c_i x^i, ascending.
 ///
 /// Method and guarantee: the coefficients, which are binary floats, are converted *exactly*

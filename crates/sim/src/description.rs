@@ -96,6 +96,18 @@ pub enum LawKind {
     Stochastic,
 }
 
+impl LawKind {
+    /// The name in the run file.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::Constant => "constant",
+            LawKind::Dashpot => "dashpot",
+            LawKind::Viscoelastic => "viscoelastic",
+            LawKind::Stochastic => "stochastic",
+        }
+    }
+}
+
 /// `collision.distribution` of the stochastic law.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]

@@ -5,8 +5,12 @@ use crate::validate::{LawSpec, StochasticTable};
 use restitution::{Constant, Dashpot, Glauber, Restitution, Viscoelastic};
 use std::path::Path;
 
-/// The law of `spec`. Errors name the key of the run file that set the failing value.
-pub fn build(spec: &LawSpec) -> Result<Box<dyn Restitution>> {
+/// The law of `spec` for a run whose impact speeds stay below `max_speed`
+/// ([`crate::Plan::max_impact_speed`]). Errors name the key of the run file that set the
+/// failing value; an approximate viscoelastic form that such a speed would evaluate
+/// beyond its validity (a Padé past a pole or outside [0, 1], a series beyond its radius
+/// of convergence) is refused.
+pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
     let input = |key: &'static str| move |e: restitution::Error| Error::law(key, e);
     Ok(match spec {
         LawSpec::Constant(eps) => {
@@ -21,7 +25,21 @@ pub fn build(spec: &LawSpec) -> Result<Box<dyn Restitution>> {
         ),
         LawSpec::Viscoelastic { beta, form } => {
             let form = form.build().map_err(input("collision.form"))?;
-            Box::new(Viscoelastic::new(*beta, form).map_err(input("collision.beta"))?)
+            let law = Viscoelastic::new(*beta, form).map_err(input("collision.beta"))?;
+            let (validity, reach) = (law.form().validity(), law.vstar(max_speed));
+            if !validity.contains(reach) {
+                return Err(Error::input(
+                    "collision.form",
+                    format!(
+                        "{} is {validity}, but a collision of this run can reach v* = {reach:.6} \
+                         (collision.beta = {beta} with all the initial kinetic energy in one \
+                         pair); allowed: a form valid there (exact, fast, or a Padé \
+                         approximant such as pade:3/6)",
+                        law.form()
+                    ),
+                ));
+            }
+            Box::new(law)
         }
         LawSpec::Stochastic {
             modes,
@@ -39,9 +57,16 @@ pub fn build(spec: &LawSpec) -> Result<Box<dyn Restitution>> {
 /// The tabulated stochastic law from a table written by `haff rods table`, for particles
 /// with `modes` internal modes; errors name `key`.
 pub fn tabulated(path: &Path, modes: u32, key: &str) -> Result<Box<dyn Restitution>> {
+    let table = read_table(path, key)?;
+    let law = table
+        .law(modes)
+        .map_err(|e| Error::input(key, format!("{}: {e}", path.display())))?;
+    Ok(Box::new(law))
+}
+
+/// A table written by `haff rods table`; errors name `key` and the file.
+pub fn read_table(path: &Path, key: &str) -> Result<rods::stochastic::Table> {
     let fail = |e: String| Error::input(key, format!("{}: {e}", path.display()));
     let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
-    let table: rods::stochastic::Table =
-        serde_json::from_str(&text).map_err(|e| fail(e.to_string()))?;
-    Ok(Box::new(table.law(modes).map_err(|e| fail(e.to_string()))?))
+    serde_json::from_str(&text).map_err(|e| fail(e.to_string()))
 }

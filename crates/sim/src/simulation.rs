@@ -104,7 +104,7 @@ impl Simulation {
     pub fn new(description: &RunDescription) -> Result<Self> {
         let clock = Instant::now();
         let plan = validate(description)?;
-        let law = law::build(&plan.law)?;
+        let law = law::build(&plan.law, plan.max_impact_speed())?;
         let bins = plan
             .description
             .run
@@ -146,7 +146,7 @@ impl Simulation {
         if !records.every.is_none_or(|k| (1..=1_000_000).contains(&k)) {
             return Err(sections.error("every: allowed 1 ..= 1e6 samples"));
         }
-        let law = law::build(&plan.law).map_err(|e| sections.error(e))?;
+        let law = law::build(&plan.law, plan.max_impact_speed()).map_err(|e| sections.error(e))?;
         let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::resumed(
             &plan,
             engines::restore::<D>(&plan, law, &sections)?,

@@ -141,6 +141,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         }
     };
     check_histograms(r, stop)?;
+    check_time_step(r, stop)?;
     let mut description = description.clone();
     description.normalize();
     Ok(Plan {
@@ -231,20 +232,66 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
     let c = &description.collision;
     let need =
         |key: &str, x: Option<f64>| x.ok_or_else(|| Error::input(key, "missing for this law"));
-    if c.law != LawKind::Stochastic {
-        for (key, given) in [
-            ("collision.distribution", c.distribution.is_some()),
-            ("collision.modes", c.modes.is_some()),
-            ("collision.bath_temperature", c.bath_temperature.is_some()),
-            ("collision.table", c.table.is_some()),
-        ] {
-            if given {
-                return Err(Error::input(key, "only for law = \"stochastic\""));
-            }
-        }
+    // Every key belongs to one law: a key of another law would be recorded and ignored.
+    let keys = [
+        (
+            "collision.restitution",
+            c.restitution.is_some(),
+            LawKind::Constant,
+        ),
+        (
+            "collision.damping_ratio",
+            c.damping_ratio.is_some(),
+            LawKind::Dashpot,
+        ),
+        (
+            "collision.criterion",
+            c.criterion.is_some(),
+            LawKind::Dashpot,
+        ),
+        ("collision.beta", c.beta.is_some(), LawKind::Viscoelastic),
+        ("collision.form", c.form.is_some(), LawKind::Viscoelastic),
+        (
+            "collision.distribution",
+            c.distribution.is_some(),
+            LawKind::Stochastic,
+        ),
+        ("collision.modes", c.modes.is_some(), LawKind::Stochastic),
+        (
+            "collision.bath_temperature",
+            c.bath_temperature.is_some(),
+            LawKind::Stochastic,
+        ),
+        ("collision.table", c.table.is_some(), LawKind::Stochastic),
+    ];
+    if let Some((key, _, owner)) = keys
+        .iter()
+        .find(|(_, given, owner)| *given && *owner != c.law)
+    {
+        return Err(Error::input(
+            *key,
+            format!(
+                "only for law = \"{}\" (this run has law = \"{}\")",
+                owner.name(),
+                c.law.name()
+            ),
+        ));
     }
     Ok(match c.law {
-        LawKind::Constant => LawSpec::Constant(need("collision.restitution", c.restitution)?),
+        LawKind::Constant => {
+            let eps = need("collision.restitution", c.restitution)?;
+            let tc = c.tc.is_some_and(|t| t > 0.0);
+            if eps == 0.0 && description.run.engine == EngineKind::EventDriven && !tc {
+                return Err(Error::out_of_range(
+                    "collision.restitution",
+                    eps,
+                    "0 < restitution <= 1 in an event-driven run (at 0 the spheres stick: \
+                     they collide again at once, forever, and time stops); or set \
+                     collision.tc, the TC model, or use engine = \"dsmc\"",
+                ));
+            }
+            LawSpec::Constant(eps)
+        }
         LawKind::Dashpot => LawSpec::Dashpot {
             damping_ratio: need("collision.damping_ratio", c.damping_ratio)?,
             criterion: c.criterion.unwrap_or(Criterion::Improved),
@@ -307,11 +354,11 @@ fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
     let step = match (r.collisions_per_step, r.time_step) {
         (None, None) => StepSize::Auto,
         (Some(c), None) => {
-            if !(c.is_finite() && c > 0.0 && c <= 100.0) {
+            if !(gas::dsmc::MIN_COLLISIONS_PER_STEP..=100.0).contains(&c) {
                 return Err(Error::out_of_range(
                     "run.collisions_per_step",
                     c,
-                    "0 < value <= 100",
+                    "1e-4 <= value <= 100",
                 ));
             }
             StepSize::CollisionsPerParticle(c)
@@ -369,6 +416,36 @@ fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
     }
 }
 
+/// The most DSMC steps a run with a fixed `run.time_step` may take.
+const MAX_STEPS: f64 = 1e8;
+
+/// A fixed DSMC time step: a bounded number of steps to `run.end_time`. With a stop by
+/// collisions the number of steps is unbounded (a cooling gas collides ever more slowly:
+/// reaching C collisions per particle at a constant restitution takes a time exponential
+/// in C), so that combination is refused.
+fn check_time_step(r: &RunSection, stop: Stop) -> Result<()> {
+    let Some(dt) = r.time_step else {
+        return Ok(());
+    };
+    match stop {
+        Stop::Time(end) if end / dt <= MAX_STEPS => Ok(()),
+        Stop::Time(end) => Err(Error::out_of_range(
+            "run.time_step",
+            dt,
+            &format!(
+                "run.end_time / time_step <= 1e8 steps, i.e. time_step >= {:e}",
+                end / MAX_STEPS
+            ),
+        )),
+        Stop::CollisionsPerParticle(_) => Err(Error::input(
+            "run.time_step",
+            "a fixed time step with run.collisions_per_particle: a cooling gas collides ever \
+             more slowly, so the steps to reach the collisions are unbounded; give run.end_time, \
+             or run.collisions_per_step (a step that follows the collision rate)",
+        )),
+    }
+}
+
 /// `run.histogram_at` and `run.histogram_bins`.
 fn check_histograms(r: &RunSection, stop: Stop) -> Result<()> {
     if let Some(bins) = r.histogram_bins {
@@ -412,5 +489,18 @@ impl Plan {
     /// Whether the samples are log-spaced.
     pub fn log_spacing(&self) -> bool {
         self.description.run.spacing == Spacing::Log
+    }
+
+    /// An upper bound of every normal impact speed of the run: a cooling gas never gains
+    /// energy, so no pair can approach faster than with all the initial kinetic energy,
+    /// N (D/2) T0, in its relative motion at the smallest reduced mass (half the smallest
+    /// mass): g <= (2 E / mu)^(1/2) = (2 N D T0 / m_min)^(1/2).
+    pub fn max_impact_speed(&self) -> f64 {
+        let s = &self.description.system;
+        let lightest = match &s.species {
+            None => s.mass.unwrap_or(1.0),
+            Some(entries) => entries.iter().map(|x| x.mass).fold(f64::INFINITY, f64::min),
+        };
+        (2.0 * s.particles as f64 * f64::from(s.dimension) * s.temperature / lightest).sqrt()
     }
 }

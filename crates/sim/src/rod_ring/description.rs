@@ -158,7 +158,34 @@ impl RingDescription {
                 "give a table exactly when compare holds \"tabulated\"",
             ));
         }
+        if let Some(path) = &run.table {
+            let table = crate::law::read_table(path, "run.table")?;
+            self.check_table_gamma(table.gamma)
+                .map_err(|e| Error::input("run.table", format!("{}: {e}", path.display())))?;
+        }
         Ok(ring)
+    }
+
+    /// The table's length ratio is that of every pair of neighbouring rods on the ring,
+    /// gamma or 1/gamma (the collision of two rods does not depend on which is called
+    /// first), to 1e-3 (tables name gamma to four digits, 0.6173 for 0.80865/1.31001).
+    fn check_table_gamma(&self, gamma: f64) -> std::result::Result<(), String> {
+        let lengths = &self.chain.lengths;
+        let n = self.chain.rods;
+        let length = |i: usize| lengths[i % lengths.len()];
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-3 * b;
+        // The pattern's pairs and the one that closes the ring.
+        for i in (0..n.min(lengths.len())).chain([n - 1]) {
+            let ratio = length(i) / length((i + 1) % n);
+            if !(close(ratio, gamma) || close(1.0 / ratio, gamma)) {
+                return Err(format!(
+                    "built for gamma = {gamma}, but rods {i} and {} have l1/l2 = {ratio}; \
+                     build a table for these rods with `haff rods table --gamma {ratio}`",
+                    (i + 1) % n
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
