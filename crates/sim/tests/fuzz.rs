@@ -182,10 +182,11 @@ fn mutate(text: &str, mutations: &[Mutation]) -> String {
     lines.join("\n") + "\n"
 }
 
-/// A refusal is an input error with a one-line message.
+/// A refusal is an input error (exit 2 in the CLI) with a one-line message.
 fn refused_properly(error: &Error) -> Result<(), String> {
     let message = error.to_string();
-    if !error.is_input() && !matches!(error, Error::Numerical { .. }) {
+    // A numerical failure on accepted input (exit 1) is a finding too.
+    if !error.is_input() {
         return Err(format!("not an input error: {message}"));
     }
     if message.contains('\n') || message.is_empty() {
