@@ -89,6 +89,8 @@ fn approximations_beyond_their_validity_are_refused_in_runs() {
     };
     assert_run_rejected(&file("series:20", 1.0), "collision.form");
     assert_run_rejected(&file("pade:2/1", 1.0), "collision.form");
+    // v* = 1e150: beyond the exact law's range (and a Padé form's polynomials overflow).
+    assert_run_rejected(&file("pade:3/6", 1e300), "collision.beta");
     let dir = std::env::temp_dir().join(format!("haff-valid-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for (k, (form, beta)) in [("series:20", 0.3), ("pade-paper:3/6", 1.0), ("fast", 100.0)]

@@ -27,6 +27,20 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
             let form = form.build().map_err(input("collision.form"))?;
             let law = Viscoelastic::new(*beta, form).map_err(input("collision.beta"))?;
             let (validity, reach) = (law.form().validity(), law.vstar(max_speed));
+            // Beyond the exact law's range eps is ~1e-20 (sticking spheres), and the
+            // polynomials of a Padé form overflow f64 from v* ~ 1e50 on.
+            if reach > restitution::exact::VSTAR_MAX {
+                return Err(Error::out_of_range(
+                    "collision.beta",
+                    crate::output::number(*beta),
+                    &format!(
+                        "a beta with which no collision of this run exceeds v* = 1e6 (the range \
+                         of the exact law); here v* can reach {reach:e} (all the initial kinetic \
+                         energy in one pair): beta <= {:e}",
+                        beta * (restitution::exact::VSTAR_MAX / reach).powi(2)
+                    ),
+                ));
+            }
             if !validity.contains(reach) {
                 return Err(Error::input(
                     "collision.form",

@@ -166,7 +166,11 @@ fn in_scale(key: &str, x: f64) -> Result<f64> {
     if (SCALE.0..=SCALE.1).contains(&x) {
         Ok(x)
     } else {
-        Err(Error::out_of_range(key, x, "1e-30 <= value <= 1e30"))
+        Err(Error::out_of_range(
+            key,
+            crate::output::number(x),
+            "1e-30 <= value <= 1e30",
+        ))
     }
 }
 

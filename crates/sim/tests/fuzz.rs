@@ -304,6 +304,15 @@ fn watch(case: String) {
     });
 }
 
+/// Every 10000 cases of a long run, a line on stderr (the long run takes minutes).
+fn report_progress(what: &str) {
+    static CASES: AtomicUsize = AtomicUsize::new(0);
+    let n = CASES.fetch_add(1, Ordering::Relaxed) + 1;
+    if n % 10_000 == 0 {
+        eprintln!("{n} cases ({what})");
+    }
+}
+
 /// Runs `check` without letting a panic escape: a panic is a failure.
 fn no_panic(check: impl FnOnce() -> Result<(), String>) -> Result<(), String> {
     catch_unwind(AssertUnwindSafe(check)).unwrap_or_else(|p| {
@@ -327,6 +336,7 @@ fn run_files(cases: u32) {
         .run(&strategy, |(seed, mutations)| {
             let text = mutate(SEEDS[seed], &mutations);
             watch(format!("run file:\n{text}"));
+            report_progress("run files");
             no_panic(|| check_run_file(&text))
                 .map_err(|e| TestCaseError::fail(format!("{e}\n--- input:\n{text}")))
         })
@@ -494,6 +504,7 @@ fn check_points(cases: u32) {
         .run(&strategy, |(seed, damage)| {
             let bytes = damaged(&seeds[seed].1, &damage);
             watch(format!("check-point of seed {seed}, {damage:?}"));
+            report_progress("check-points");
             let case = CASE.fetch_add(1, Ordering::Relaxed);
             let dir =
                 std::env::temp_dir().join(format!("haff-fuzz-{}-case{case}", std::process::id()));
