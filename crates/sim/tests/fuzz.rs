@@ -308,7 +308,7 @@ fn watch(case: String) {
 fn report_progress(what: &str) {
     static CASES: AtomicUsize = AtomicUsize::new(0);
     let n = CASES.fetch_add(1, Ordering::Relaxed) + 1;
-    if n % 10_000 == 0 {
+    if n.is_multiple_of(10_000) {
         eprintln!("{n} cases ({what})");
     }
 }
