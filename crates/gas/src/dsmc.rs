@@ -186,6 +186,31 @@ impl<const D: usize, O> Snapshot<D, O> {
         }
         self.system.check(in_box)
     }
+
+    /// For a stepped scheme: the step temperature is the kinetic temperature of the saved
+    /// velocities, sum m |v - mean|^2 / (N D) (the engine sets it from them after every
+    /// step; 1e-6 covers the round-off of summing in another order, ~N eps). A forged one
+    /// would set a step of any number of collisions.
+    pub fn check_step_temperature(&self) -> Result<()> {
+        let s = &self.system;
+        let mean = crate::observe::mass_weighted_mean(&s.velocities, &s.masses);
+        let spread: f64 = s
+            .velocities
+            .iter()
+            .zip(&s.masses)
+            .map(|(v, m)| m * (0..D).map(|k| (v[k] - mean[k]).powi(2)).sum::<f64>())
+            .sum();
+        let kinetic = spread / (s.len() * D) as f64;
+        if (self.temperature - kinetic).abs() <= 1e-6 * kinetic {
+            Ok(())
+        } else {
+            Err(Error::out_of_range(
+                "temperature",
+                self.temperature,
+                format!("the kinetic temperature of the velocities, {kinetic}"),
+            ))
+        }
+    }
 }
 
 /// Snapshot of a [`HomogeneousDsmc`].

@@ -319,11 +319,13 @@ fn stochastic_spec(description: &RunDescription) -> Result<LawSpec> {
         ));
     }
     let bath_temperature = c.bath_temperature.unwrap_or(0.0);
-    if !(bath_temperature.is_finite() && bath_temperature >= 0.0) {
+    // 0 (cold baths) or within the scale of a temperature (the baths feed their energy to
+    // the translation: 1e300 would overflow v^2).
+    if bath_temperature != 0.0 && !(SCALE.0..=SCALE.1).contains(&bath_temperature) {
         return Err(Error::out_of_range(
             "collision.bath_temperature",
-            bath_temperature,
-            "a finite number >= 0",
+            crate::output::number(bath_temperature),
+            "0, or 1e-30 <= value <= 1e30",
         ));
     }
     let modes = c

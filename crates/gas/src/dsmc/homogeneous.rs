@@ -110,6 +110,9 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
     pub fn restore(snapshot: HomogeneousSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        if matches!(snapshot.options, Scheme::Blocks { .. }) {
+            snapshot.check_step_temperature()?;
+        }
         let HomogeneousSnapshot {
             system,
             packing_fraction,
@@ -124,6 +127,21 @@ impl<const D: usize> HomogeneousDsmc<D> {
             temperature,
         } = snapshot;
         let mut engine = Self::new(system, packing_fraction, law, seed, options)?;
+        // The exact scheme's majorant must bound every speed (it only ever grows to the
+        // largest one seen): a smaller one would accept with probabilities above 1.
+        if matches!(options, Scheme::Exact) {
+            let largest = match &engine.store {
+                Store::Uniform(now, _) => kernel::speed_bound(now, &reference_velocity),
+                Store::Mixed(now, _) => kernel::speed_bound(now, &reference_velocity),
+            };
+            if !(speed_bound >= largest) {
+                return Err(Error::out_of_range(
+                    "speed_bound",
+                    speed_bound,
+                    format!("at least the largest |v - reference_velocity|, {largest}"),
+                ));
+            }
+        }
         let core = &mut engine.core;
         core.time = time;
         core.steps = steps;

@@ -181,6 +181,7 @@ impl<const D: usize> SpatialDsmc<D> {
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
     pub fn restore(snapshot: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        snapshot.check_step_temperature()?;
         let mut engine = Self::new(
             snapshot.system,
             snapshot.packing_fraction,
