@@ -187,6 +187,35 @@ impl<const D: usize, O> Snapshot<D, O> {
         self.system.check(in_box)
     }
 
+    /// The reference velocity is the mean velocity of the saved velocities (collisions
+    /// conserve momentum: the mean when it was taken is the mean now), to 1e-6 of the rms
+    /// speed (round-off of the sums). A forged one would make every speed bound huge.
+    pub fn check_reference_velocity(&self) -> Result<()> {
+        let s = &self.system;
+        let mean = crate::observe::mass_weighted_mean(&s.velocities, &s.masses);
+        let total: f64 = s.masses.iter().sum();
+        let energy: f64 = s
+            .velocities
+            .iter()
+            .zip(&s.masses)
+            .map(|(v, m)| m * v.iter().map(|x| x * x).sum::<f64>())
+            .sum();
+        let rms = (energy / total).sqrt();
+        let off: f64 = (0..D)
+            .map(|k| (self.reference_velocity[k] - mean[k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if off <= 1e-6 * rms {
+            Ok(())
+        } else {
+            Err(Error::out_of_range(
+                "reference_velocity",
+                format!("{:?}", self.reference_velocity),
+                format!("the mean velocity of the particles, {mean:?}"),
+            ))
+        }
+    }
+
     /// For a stepped scheme: the step temperature is the kinetic temperature of the saved
     /// velocities, sum m |v - mean|^2 / (N D) (the engine sets it from them after every
     /// step; 1e-6 covers the round-off of summing in another order, ~N eps). A forged one

@@ -113,6 +113,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         if matches!(snapshot.options, Scheme::Blocks { .. }) {
             snapshot.check_step_temperature()?;
         }
+        snapshot.check_reference_velocity()?;
         let HomogeneousSnapshot {
             system,
             packing_fraction,
