@@ -128,14 +128,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
             temperature,
         } = snapshot;
         let mut engine = Self::new(system, packing_fraction, law, seed, options)?;
-        // The exact scheme's majorant must bound every speed (it only ever grows to the
-        // largest one seen): a smaller one would accept with probabilities above 1.
+        // The exact scheme's majorant (finite: `Snapshot::check`) must bound every speed (it
+        // only ever grows to the largest one seen): a smaller one would accept with
+        // probabilities above 1.
         if matches!(options, Scheme::Exact) {
             let largest = match &engine.store {
                 Store::Uniform(now, _) => kernel::speed_bound(now, &reference_velocity),
                 Store::Mixed(now, _) => kernel::speed_bound(now, &reference_velocity),
             };
-            if !(speed_bound >= largest) {
+            if speed_bound < largest {
                 return Err(Error::out_of_range(
                     "speed_bound",
                     speed_bound,
