@@ -192,15 +192,9 @@ impl<const D: usize, O> Snapshot<D, O> {
     /// speed (round-off of the sums). A forged one would make every speed bound huge.
     pub fn check_reference_velocity(&self) -> Result<()> {
         let s = &self.system;
-        let mean = crate::observe::mass_weighted_mean(&s.velocities, &s.masses);
+        let (mean, _) = crate::observe::mean_velocity(s);
         let total: f64 = s.masses.iter().sum();
-        let energy: f64 = s
-            .velocities
-            .iter()
-            .zip(&s.masses)
-            .map(|(v, m)| m * v.iter().map(|x| x * x).sum::<f64>())
-            .sum();
-        let rms = (energy / total).sqrt();
+        let rms = (2.0 * crate::observe::kinetic_energy(s) / total).sqrt();
         let off: f64 = (0..D)
             .map(|k| (self.reference_velocity[k] - mean[k]).powi(2))
             .sum::<f64>()
@@ -221,15 +215,7 @@ impl<const D: usize, O> Snapshot<D, O> {
     /// step; 1e-6 covers the round-off of summing in another order, ~N eps). A forged one
     /// would set a step of any number of collisions.
     pub fn check_step_temperature(&self) -> Result<()> {
-        let s = &self.system;
-        let mean = crate::observe::mass_weighted_mean(&s.velocities, &s.masses);
-        let spread: f64 = s
-            .velocities
-            .iter()
-            .zip(&s.masses)
-            .map(|(v, m)| m * (0..D).map(|k| (v[k] - mean[k]).powi(2)).sum::<f64>())
-            .sum();
-        let kinetic = spread / (s.len() * D) as f64;
+        let kinetic = crate::observe::temperature(&self.system);
         if (self.temperature - kinetic).abs() <= 1e-6 * kinetic {
             Ok(())
         } else {

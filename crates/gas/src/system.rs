@@ -70,12 +70,7 @@ impl<const D: usize> System<D> {
                 index,
             });
         }
-        let energy: f64 = self
-            .velocities
-            .iter()
-            .zip(&self.masses)
-            .map(|(v, m)| m * dot(v, v))
-            .sum();
+        let energy = crate::observe::kinetic_energy(self);
         if !energy.is_finite() {
             return Err(Error::out_of_range(
                 "velocities",

@@ -268,12 +268,7 @@ fn no_energy_gained<const D: usize>(
 ) -> std::result::Result<(), String> {
     let s = &plan.description.system;
     let n = system.len() as f64;
-    let kinetic: f64 = system
-        .velocities
-        .iter()
-        .zip(&system.masses)
-        .map(|(v, m)| 0.5 * m * v.iter().map(|x| x * x).sum::<f64>())
-        .sum();
+    let kinetic = gas::observe::kinetic_energy(system);
     let mut initial = n * 0.5 * D as f64 * s.temperature;
     let mut now = kinetic;
     if let LawSpec::Stochastic {

@@ -211,9 +211,9 @@ fn small(description: &RunDescription) -> bool {
     let phi = s.packing_fraction;
     let rate = |d: usize| {
         let volume = match d {
-            1 => diameter,
-            2 => std::f64::consts::PI / 4.0 * diameter * diameter,
-            _ => std::f64::consts::PI / 6.0 * diameter.powi(3),
+            1 => gas::system::ball_volume::<1>(0.5 * diameter),
+            2 => gas::system::ball_volume::<2>(0.5 * diameter),
+            _ => gas::system::ball_volume::<3>(0.5 * diameter),
         };
         let density = phi / volume;
         match d {
