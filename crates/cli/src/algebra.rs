@@ -3,27 +3,11 @@
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, write_csv};
 use crate::{CoefficientsArgs, PadeArgs};
-use series::coefficients::{compute, compute_naive, decimal, Kind, Settings};
+use series::coefficients::{
+    compute, decimal, of_kind, Kind, Settings, MAX_DIGITS, MAX_ORDER, MAX_SECONDS,
+};
+use series::pade::MAX_DEGREE;
 use std::io::Write;
-
-/// Largest index K accepted by `cor coefficients` (h_100 takes about a minute).
-const MAX_ORDER: usize = 100;
-/// Largest numerator or denominator degree of `cor pade`.
-const MAX_DEGREE: usize = 60;
-const MAX_DIGITS: usize = 60;
-
-/// The longest `cor coefficients` may take (bounded work).
-const MAX_SECONDS: f64 = 60.0;
-
-/// The time of the chain on this machine kind, fitted to measurements of
-/// `cor coefficients` (chain order K, trajectory order N, bits): (20, 150, 256) 0.32 s,
-/// (20, 300, 256) 2.3 s, (20, 150, 1024) 0.50 s, (40, 300, 256) 7.1 s, (c: 100, 300, 512)
-/// 33 s, (h: 100, 300, 528) 40 s; the fit is within 15 % of each.
-fn estimated_seconds(settings: &Settings) -> f64 {
-    0.32 * (settings.trajectory_order as f64 / 150.0).powf(2.85)
-        * (settings.bits as f64 / 256.0).powf(0.32)
-        * (settings.order.max(2) as f64 / 20.0).powf(1.6)
-}
 
 /// `haff cor coefficients`: CSV `k,value`, k from 0.
 pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
@@ -41,7 +25,7 @@ pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
     if let Some(text) = &args.bits {
         settings.bits = parse_count("--bits", text, 64, 8192)?;
     }
-    let seconds = estimated_seconds(&settings);
+    let seconds = settings.estimated_seconds();
     if seconds > MAX_SECONDS {
         return Err(CliError::argument(
             "--order",
@@ -53,20 +37,8 @@ pub fn coefficients(args: &CoefficientsArgs) -> CliResult {
             ),
         ));
     }
-    // a, b and c do not need the premature end of contact (the costly part at high order).
-    let chain = if kind == Kind::H {
-        compute(settings)
-    } else {
-        compute_naive(settings)
-    };
-    let values = chain.of(kind);
-    if values.len() <= order {
-        return Err(CliError::argument(
-            "--order",
-            "beyond what the chain provides",
-        ));
-    }
-    let rows = values[..=order]
+    let values = of_kind(kind, order, settings).map_err(|e| CliError::argument("--order", e))?;
+    let rows = values
         .iter()
         .enumerate()
         .map(|(k, x)| vec![k.to_string(), decimal(x, digits)]);
@@ -81,7 +53,7 @@ pub fn pade(args: &PadeArgs) -> CliResult {
     let n = parse_count("--n", &args.n, 0, MAX_DEGREE)?;
     let digits = parse_count("--digits", &args.digits, 1, MAX_DIGITS)?;
     let settings = Settings::for_order((m + n).max(2));
-    let seconds = estimated_seconds(&settings);
+    let seconds = settings.estimated_seconds();
     if seconds > MAX_SECONDS {
         return Err(CliError::argument(
             "--m/--n",

@@ -6,7 +6,9 @@ use crate::output::{number, parse_count, parse_list, parse_number, stdout, write
 use crate::progress::Bar;
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
 use rods::chain::TwoRodSummary;
-use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric, estimated_work};
+use rods::deterministic::{
+    eps_closed_form, eps_closed_form_general, eps_numeric, estimated_work, WORK_PER_SECOND,
+};
 use rods::stochastic::{eps2_histogram, eps2_summary, sample_eps, Eps2Bin, Resolution, Table};
 use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::output::{write_csv_file, write_json_file};
@@ -19,13 +21,8 @@ fn library(flag: &str) -> impl Fn(rods::Error) -> CliError + '_ {
     move |e| CliError::argument(flag, e)
 }
 
-/// Memory-term evaluations per second of `rods::deterministic::integrate` on this machine
-/// kind, the slowest of the measured (gamma, kappa) = (0.6173, 1e5) 2.4e8/s, (0.1, 1e4)
-/// 3.5e8, (0.05, 1e4) 2.7e8, (0.02, 1e4) 3.1e8, (0.01, 1e3) 2.3e8, (1e-3, 100) 1.5e8 (150 s).
-const WORK_PER_SECOND: f64 = 1.5e8;
-
 /// The most work one `rods deterministic` call may ask for: about a minute.
-const DETERMINISTIC_WORK_LIMIT: f64 = 50.0 * WORK_PER_SECOND;
+const DETERMINISTIC_WORK_LIMIT: f64 = rods::deterministic::WORK_LIMIT;
 
 /// `haff rods deterministic`: eps of Eq. (3) at T_bath = 0 for every (gamma, kappa), with
 /// the paper's closed form and the generalized one beside it (solved value last).

@@ -143,7 +143,7 @@ fn check_points_edited_with_a_fixed_checksum_are_refused() {
         (
             "sample time",
             Box::new(|r| r["timeseries"]["samples"][3]["time"] = (-1.0).into()),
-            "last sample",
+            "sample 3",
         ),
         (
             "phi",

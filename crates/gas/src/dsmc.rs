@@ -362,6 +362,9 @@ macro_rules! dsmc_engine {
             fn run_collisions(&mut self, collisions: u64) {
                 $engine::run_collisions(self, collisions)
             }
+            fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+                $engine::run_paused(self, end, collisions, pause)
+            }
             fn time(&self) -> f64 {
                 $engine::time(self)
             }

@@ -454,6 +454,28 @@ impl<const D: usize> EventDriven<D> {
             self.time = self.time.max(t);
         }
     }
+
+    /// Runs until the time reaches `end` or the collision tally reaches `collisions`,
+    /// whichever first. Particles are brought to the present lazily, so stopping after a
+    /// collision and going on changes nothing (see [`crate::Engine::run_paused`]).
+    pub fn run_bounded(&mut self, end: f64, collisions: u64) {
+        while self.tally.collisions < collisions {
+            match self.queue.peek() {
+                Some((_, next)) if next <= end => {
+                    if !self.step() {
+                        return;
+                    }
+                }
+                _ => {
+                    // Nothing left before `end`: the time reaches it (as in run_until).
+                    if self.collapsed.is_none() && end.is_finite() {
+                        self.time = self.time.max(end);
+                    }
+                    return;
+                }
+            }
+        }
+    }
 }
 
 /// Asks the processor to bring both cache lines of a particle record into cache.

@@ -49,6 +49,24 @@ pub trait Engine<const D: usize> {
     /// end of a step; see theirs).
     fn run_collisions(&mut self, collisions: u64);
 
+    /// Runs toward `end` in time and `collisions` in the collision tally (a total, not an
+    /// increment), stopping at whichever comes first, but pauses once the tally reaches
+    /// `pause`: the run driver advances in such pieces to look for interruptions between
+    /// them. Pieces compose: running toward (t, c) paused at p1, then at p2 > p1, and so on,
+    /// is bit-identical to running toward (t, c) at once (`run_until(t)` when
+    /// c = `u64::MAX`, `run_collisions` up to c when t is infinite): stepped engines pause at
+    /// the end of a step, and choose their steps by (t, c) only. The default ignores `pause`
+    /// (the engine is then interrupted less often, never wrongly) and serves runs bounded by
+    /// time or by collisions, not both.
+    fn run_paused(&mut self, end: f64, collisions: u64, _pause: u64) {
+        if end.is_finite() {
+            self.run_until(end);
+        } else {
+            let have = self.counters().collisions;
+            self.run_collisions(collisions.saturating_sub(have));
+        }
+    }
+
     fn time(&self) -> f64;
 
     fn counters(&self) -> Counters;

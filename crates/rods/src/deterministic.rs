@@ -7,6 +7,15 @@
 /// τ = 0 is e^{−30}.
 pub const Z0: f64 = 30.0;
 
+/// Memory-term evaluations per second of [`integrate`] on this machine kind, the slowest of
+/// the measured (gamma, kappa) = (0.6173, 1e5) 2.4e8/s, (0.1, 1e4) 3.5e8, (0.05, 1e4) 2.7e8,
+/// (0.02, 1e4) 3.1e8, (0.01, 1e3) 2.3e8, (1e-3, 100) 1.5e8 (150 s): turns
+/// [`estimated_work`] into seconds.
+pub const WORK_PER_SECOND: f64 = 1.5e8;
+
+/// The most work one call of the haff command or Python may ask for: about 50 s.
+pub const WORK_LIMIT: f64 = 50.0 * WORK_PER_SECOND;
+
 /// The integration stops once the exponent of Eq. (3) has stayed below this value for a
 /// whole window of length Γ1 + Γ2 (each noise process then has run through a full period)
 /// and the window maximum fell with respect to the previous window.

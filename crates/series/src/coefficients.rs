@@ -26,6 +26,15 @@ use crate::trajectory::Trajectory;
 use crate::Error;
 use dashu_ratio::RBig;
 
+/// Largest index k of one family that the haff command and Python compute (h_100 takes
+/// about a minute).
+pub const MAX_ORDER: usize = 100;
+/// Most significant digits printed of a coefficient.
+pub const MAX_DIGITS: usize = 60;
+/// The longest a call of the haff command or Python may compute coefficients (bounded
+/// work; see [`Settings::estimated_seconds`]).
+pub const MAX_SECONDS: f64 = 60.0;
+
 /// How far and how precisely to compute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Settings {
@@ -47,6 +56,35 @@ impl Settings {
             bits: 256.max(128 + 4 * order),
         }
     }
+
+    /// The seconds the chain takes on this machine kind, fitted to measurements of
+    /// `haff cor coefficients` (chain order K, trajectory order N, bits): (20, 150, 256)
+    /// 0.32 s, (20, 300, 256) 2.3 s, (20, 150, 1024) 0.50 s, (40, 300, 256) 7.1 s,
+    /// (c: 100, 300, 512) 33 s, (h: 100, 300, 528) 40 s; the fit is within 15 % of each.
+    pub fn estimated_seconds(&self) -> f64 {
+        0.32 * (self.trajectory_order as f64 / 150.0).powf(2.85)
+            * (self.bits as f64 / 256.0).powf(0.32)
+            * (self.order.max(2) as f64 / 20.0).powf(1.6)
+    }
+}
+
+/// The coefficients 0..=`order` of `kind`, computed with `settings` (whose chain order
+/// must cover `kind.chain_order(order)`). Only h needs the premature end of contact, the
+/// costly part at high order; a, b and c come from the naive chain.
+pub fn of_kind(kind: Kind, order: usize, settings: Settings) -> Result<Vec<Real>, crate::Error> {
+    let chain = if kind == Kind::H {
+        compute(settings)
+    } else {
+        compute_naive(settings)
+    };
+    let values = chain.of(kind);
+    if values.len() <= order {
+        return Err(crate::Error::OrderBeyondChain {
+            order,
+            provided: values.len(),
+        });
+    }
+    Ok(values[..=order].to_vec())
 }
 
 /// Every coefficient of the chain.

@@ -12,6 +12,9 @@ pub enum Error {
         allowed = Kind::ALL.map(Kind::name).join(", ")
     )]
     UnknownKind { given: String },
+    /// More coefficients asked for than the chain's settings provide.
+    #[error("index {order} is beyond what the chain provides (0..{provided})")]
+    OrderBeyondChain { order: usize, provided: usize },
     /// A Padé approximant that cannot be built ([`crate::pade::pade`]).
     #[error(transparent)]
     Pade(#[from] PadeError),

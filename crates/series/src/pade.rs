@@ -37,6 +37,9 @@ use crate::power::{Real, Scalar, Series};
 // The poles and zeros of an approximant are found by it; re-exported for callers of `pade`.
 pub use crate::sturm::positive_real_roots;
 
+/// Largest numerator or denominator degree the haff command and Python build.
+pub const MAX_DEGREE: usize = 60;
+
 /// Why an approximant could not be built.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum PadeError {

@@ -72,15 +72,25 @@ impl Sections {
     }
 }
 
-/// Writes the check-point of `format` into `dir` atomically (a partial file, then renamed),
-/// so that an interrupted write never destroys the last one.
+/// Writes the check-point of `format` into `dir` ([`FILE_NAME`]); see [`write_to`].
 pub fn write<R: Serialize, S: Serialize>(
     dir: &Path,
     format: &str,
     records: &R,
     engine: &S,
 ) -> Result<()> {
-    let path = dir.join(FILE_NAME);
+    write_to(&dir.join(FILE_NAME), format, records, engine)
+}
+
+/// Writes the check-point of `format` as the file `path` atomically (a partial file, then
+/// renamed), so that an interrupted write never destroys the last one.
+pub fn write_to<R: Serialize, S: Serialize>(
+    path: &Path,
+    format: &str,
+    records: &R,
+    engine: &S,
+) -> Result<()> {
+    let path = path.to_path_buf();
     let records = serde_json::to_vec(records).map_err(|e| Error::write(&path, e.into()))?;
     let engine =
         postcard::to_stdvec(engine).map_err(|e| Error::write(&path, std::io::Error::other(e)))?;
@@ -109,23 +119,26 @@ pub fn write<R: Serialize, S: Serialize>(
 /// of its content.
 pub fn read(dir: &Path, format: &str) -> Result<Sections> {
     let path = dir.join(FILE_NAME);
+    if !path.exists() && dir.join(LEGACY_FILE_NAME).exists() {
+        return Err(Error::Checkpoint {
+            path: dir.join(LEGACY_FILE_NAME),
+            message: format!(
+                "a check-point of an older haff (format version 1 or 2, all JSON); this haff \
+                 reads version {VERSION} ({FILE_NAME})"
+            ),
+        });
+    }
+    read_from(&path, format)
+}
+
+/// Reads the check-point file `path` of `format` and verifies it, as [`read`] does.
+pub fn read_from(path: &Path, format: &str) -> Result<Sections> {
+    let path = path.to_path_buf();
     let fail = |message: String| Error::Checkpoint {
         path: path.clone(),
         message,
     };
-    let bytes = match std::fs::read(&path) {
-        Ok(bytes) => bytes,
-        Err(e) if dir.join(LEGACY_FILE_NAME).exists() => {
-            return Err(Error::Checkpoint {
-                path: dir.join(LEGACY_FILE_NAME),
-                message: format!(
-                    "a check-point of an older haff (format version 1 or 2, all JSON); this \
-                     haff reads version {VERSION} ({FILE_NAME}) ({e})"
-                ),
-            })
-        }
-        Err(e) => return Err(fail(e.to_string())),
-    };
+    let bytes = std::fs::read(&path).map_err(|e| fail(e.to_string()))?;
     let end = bytes
         .iter()
         .take(MAX_HEADER)

@@ -39,16 +39,17 @@ pub(crate) struct RecordsRef<'a> {
     pub histograms: &'a VelocityHistograms,
 }
 
-/// An engine the driver runs: the engine interface and a check-point writer.
-pub(crate) trait Driven<const D: usize>: Engine<D> {
-    /// Saves the engine's state with `records` as the check-point of `dir`.
-    fn write_checkpoint(&mut self, dir: &Path, records: RecordsRef<'_>) -> Result<()>;
+/// An engine the driver runs: the engine interface and a check-point writer. Engines are
+/// `Send`, so that a run can go on in another thread (Python releases the GIL).
+pub(crate) trait Driven<const D: usize>: Engine<D> + Send {
+    /// Saves the engine's state with `records` as the check-point file `path`.
+    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>) -> Result<()>;
 }
 
-impl<const D: usize, E: Checkpoint<D>> Driven<D> for E {
-    fn write_checkpoint(&mut self, dir: &Path, records: RecordsRef<'_>) -> Result<()> {
+impl<const D: usize, E: Checkpoint<D> + Send> Driven<D> for E {
+    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>) -> Result<()> {
         let state = self.save();
-        checkpoint::write(dir, FORMAT, &records, &state)
+        checkpoint::write_to(path, FORMAT, &records, &state)
     }
 }
 
@@ -134,7 +135,7 @@ pub(crate) fn restore<const D: usize>(
     }
 }
 
-fn restore_as<const D: usize, E: Planned<D> + 'static>(
+fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(
     plan: &Plan,
     law: Box<dyn Restitution>,
     sections: &Sections,

@@ -34,6 +34,10 @@ pub enum Error {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// The run was interrupted between two pieces (Ctrl-C in Python): it stands where it
+    /// stopped and can go on.
+    #[error("interrupted at t = {time}")]
+    Interrupted { time: f64 },
     /// A figure that could not be drawn.
     #[error("writing {}: {message}", path.display())]
     Plot { path: PathBuf, message: String },
@@ -57,7 +61,10 @@ impl Error {
     pub fn is_input(&self) -> bool {
         !matches!(
             self,
-            Error::Write { .. } | Error::Plot { .. } | Error::Numerical { .. }
+            Error::Write { .. }
+                | Error::Plot { .. }
+                | Error::Numerical { .. }
+                | Error::Interrupted { .. }
         )
     }
 

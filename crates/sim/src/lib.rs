@@ -36,5 +36,5 @@ pub mod validate;
 
 pub use description::RunDescription;
 pub use error::{Error, Result};
-pub use simulation::{Outcome, Progress, Simulation};
+pub use simulation::{Outcome, Particles, Point, Progress, Simulation, PIECE_COLLISIONS};
 pub use validate::{validate, Plan};

@@ -135,6 +135,28 @@ impl OutputDir {
         }
     }
 
+    /// The directory a run's outputs are written into again and again (Python's
+    /// `Simulation.write`): new, empty, or holding the outputs of the same run (updated);
+    /// another run's outputs are replaced only with `force`; other files never.
+    pub fn for_writing(path: &Path, command: &str, hash: &str, force: bool) -> Result<Self> {
+        match read_manifest(path)? {
+            Contents::Run(old) if old.command == command && old.run_hash == hash => {
+                Self::for_resume(path, command, hash)
+            }
+            Contents::Run(old) if !force => Err(Error::input(
+                "--out",
+                format!(
+                    "{}: holds the outputs of another haff run (haff {}, {}); write with force \
+                     to replace them",
+                    path.display(),
+                    old.command,
+                    old.run_hash
+                ),
+            )),
+            _ => Self::claim(path, command, hash, force),
+        }
+    }
+
     /// Checks that `path`, where a check-point is read, holds the outputs of the run with
     /// description hash `hash` (the check-point's).
     pub fn verify(path: &Path, command: &str, hash: &str) -> Result<()> {

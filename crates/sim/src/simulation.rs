@@ -26,6 +26,47 @@ pub trait Progress {
     fn sample(&mut self, _done: usize, _note: &str) {}
     /// The run stopped (complete or not).
     fn finish(&mut self) {}
+    /// Asked between pieces of a run (every [`PIECE_COLLISIONS`] collisions or one step of a
+    /// stepped engine, whichever is longer): false interrupts the run ([`Error::Interrupted`]),
+    /// which stands where it stopped and can go on (Ctrl-C in Python).
+    fn keep_going(&mut self) -> bool {
+        true
+    }
+}
+
+/// Collisions per piece of a run, between which the driver asks [`Progress::keep_going`]:
+/// about 0.1 s of event-driven MD. Pieces are counted from the start of the run, so a run
+/// cut into them is the same whoever drives it (the `haff` command, Python, a resumed run;
+/// see `gas::Engine::run_paused`).
+pub const PIECE_COLLISIONS: u64 = 1 << 16;
+
+/// A point of a run short of its end, where [`Simulation::advance`] stops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Point {
+    Time(f64),
+    CollisionsPerParticle(f64),
+}
+
+impl Point {
+    /// The argument that gave it.
+    pub fn key(self) -> &'static str {
+        match self {
+            Point::Time(_) => "time",
+            Point::CollisionsPerParticle(_) => "collisions_per_particle",
+        }
+    }
+
+    fn value(self) -> f64 {
+        match self {
+            Point::Time(t) => t,
+            Point::CollisionsPerParticle(c) => c,
+        }
+    }
+}
+
+/// The collision tally at `c` collisions per particle among `particles`.
+fn collisions_at(c: f64, particles: f64) -> u64 {
+    (c * particles / 2.0).round() as u64
 }
 
 impl Progress for () {}
@@ -37,6 +78,17 @@ pub struct Outcome {
     /// samples).
     pub complete: bool,
     pub counters: Counters,
+}
+
+/// The particles of a run at one moment, in the engine's current order: positions (in the
+/// box) and velocities row by row (particle i at `i * dimension ..`), radii and masses.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Particles {
+    pub dimension: usize,
+    pub positions: Vec<f64>,
+    pub velocities: Vec<f64>,
+    pub radii: Vec<f64>,
+    pub masses: Vec<f64>,
 }
 
 /// A run: its plan, its engine and its observers.
@@ -138,6 +190,26 @@ impl Simulation {
     pub fn resume(dir: &Path) -> Result<Self> {
         let clock = Instant::now();
         let sections = checkpoint::read(dir, engines::FORMAT)?;
+        let mut run = Self::from_sections(&sections, clock)?;
+        run.checkpoint_dir = Some(dir.to_path_buf());
+        Ok(run)
+    }
+
+    /// The run saved by [`Simulation::save`] as the file `path` (or in the directory
+    /// `path`, as `checkpoint.bin`), checked as [`Simulation::resume`] checks it. Further
+    /// check-points are written only when set ([`Simulation::set_checkpoints`]).
+    pub fn load(path: &Path) -> Result<Self> {
+        if path.is_dir() {
+            let mut run = Self::resume(path)?;
+            run.checkpoint_dir = None;
+            return Ok(run);
+        }
+        let clock = Instant::now();
+        Self::from_sections(&checkpoint::read_from(path, engines::FORMAT)?, clock)
+    }
+
+    /// The run of a verified check-point, checked for meaning.
+    fn from_sections(sections: &checkpoint::Sections, clock: Instant) -> Result<Self> {
         let records: Records = sections.records()?;
         let plan = validate(&records.description).map_err(|e| sections.error(e))?;
         if records.description != plan.description {
@@ -149,7 +221,7 @@ impl Simulation {
         let law = law::build(&plan.law, plan.max_impact_speed()).map_err(|e| sections.error(e))?;
         let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::resumed(
             &plan,
-            engines::restore::<D>(&plan, law, &sections)?,
+            engines::restore::<D>(&plan, law, sections)?,
             records.timeseries,
             records.histograms,
         )
@@ -158,9 +230,23 @@ impl Simulation {
             plan,
             run,
             checkpoint_every: records.every,
-            checkpoint_dir: Some(dir.to_path_buf()),
+            checkpoint_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
         })
+    }
+
+    /// Writes the state now as a check-point: the file `path`, or `checkpoint.bin` in the
+    /// directory `path`. A run may be saved anywhere (between samples too) and loaded
+    /// with [`Simulation::load`]; saving brings the event-driven engine's particles to the
+    /// present, so the run goes on as one resumed from there (bit for bit the same).
+    pub fn save(&mut self, path: &Path) -> Result<()> {
+        let file = if path.is_dir() {
+            path.join(checkpoint::FILE_NAME)
+        } else {
+            path.to_path_buf()
+        };
+        let (plan, every) = (&self.plan, self.checkpoint_every);
+        each!(&mut self.run, r => r.write_checkpoint(plan, &file, every))
     }
 
     /// Saves the state to the check-point of `dir` every `every` samples (None: never).
@@ -198,6 +284,25 @@ impl Simulation {
         each!(&self.run, r => r.engine.time())
     }
 
+    /// The particles now (copies; see [`Particles`]).
+    pub fn particles(&mut self) -> Particles {
+        each!(&mut self.run, r => {
+            let system = r.engine.system();
+            Particles {
+                dimension: system.positions.first().map_or(0, |x| x.len()),
+                positions: system.positions.iter().flatten().copied().collect(),
+                velocities: system.velocities.iter().flatten().copied().collect(),
+                radii: system.radii.clone(),
+                masses: system.masses.clone(),
+            }
+        })
+    }
+
+    /// The granular temperature now, T = <m c^2> / D ([`gas::observe::temperature`]).
+    pub fn temperature(&mut self) -> f64 {
+        each!(&mut self.run, r => gas::observe::temperature(r.engine.system()))
+    }
+
     pub fn counters(&self) -> Counters {
         each!(&self.run, r => r.engine.counters())
     }
@@ -214,16 +319,54 @@ impl Simulation {
         progress: &mut dyn Progress,
         stop_after: Option<usize>,
     ) -> Result<Outcome> {
+        self.go(progress, stop_after, None)?;
+        Ok(Outcome {
+            complete: self.is_complete(),
+            counters: self.counters(),
+        })
+    }
+
+    /// Runs to `point` (a time, or collisions per particle), taking the samples of the
+    /// schedule on the way, or to the end of the run if that comes first. Returns whether
+    /// the run stands at the point. A point in the unit of the stop criterion must lie
+    /// between the run's position and its end; a point behind the run is refused.
+    pub fn advance(&mut self, point: Point, progress: &mut dyn Progress) -> Result<bool> {
+        let value = point.value();
+        let particles = self.plan.description.system.particles as f64;
+        let now = match point {
+            Point::Time(_) => self.time(),
+            Point::CollisionsPerParticle(_) => 2.0 * self.counters().collisions as f64 / particles,
+        };
+        let end = match (point, self.plan.stop) {
+            (Point::Time(_), Stop::Time(end))
+            | (Point::CollisionsPerParticle(_), Stop::CollisionsPerParticle(end)) => end,
+            _ => f64::INFINITY,
+        };
+        if !(value.is_finite() && value >= now && value <= end) {
+            let allowed = if end.is_finite() {
+                format!("{now} ..= {end} (from where the run stands to its end)")
+            } else {
+                format!("a finite number >= {now} (where the run stands)")
+            };
+            return Err(Error::out_of_range(point.key(), value, &allowed));
+        }
+        self.go(progress, None, Some(point))?;
+        Ok(each!(&self.run, r => r.reached(point, particles)))
+    }
+
+    /// Runs through the schedule (see [`Run::go`]), keeping the wall-clock time.
+    fn go(
+        &mut self,
+        progress: &mut dyn Progress,
+        stop_after: Option<usize>,
+        point: Option<Point>,
+    ) -> Result<()> {
         let clock = Instant::now();
         let saving = self.checkpoint_dir.as_deref().zip(self.checkpoint_every);
         let plan = &self.plan;
-        let result = each!(&mut self.run, r => r.run(plan, saving, progress, stop_after));
+        let result = each!(&mut self.run, r => r.go(plan, saving, progress, stop_after, point));
         self.wall_seconds += clock.elapsed().as_secs_f64();
-        let complete = result?;
-        Ok(Outcome {
-            complete,
-            counters: self.counters(),
-        })
+        result
     }
 
     /// Writes the output files into `dir`: `timeseries.csv`, `velocity_histograms.csv`
@@ -281,8 +424,9 @@ impl<const D: usize> Run<D> {
         }
     }
 
-    /// A run continuing from a check-point, which is written right after a sample: the
-    /// records must be those of the run up to that sample, and the engine must stand there.
+    /// A run continuing from a check-point: the records must be those of the run up to
+    /// its last sample, and the engine must stand there or between it and the next target
+    /// (a run saved between samples).
     fn resumed(
         plan: &Plan,
         engine: Box<dyn Driven<D>>,
@@ -291,22 +435,34 @@ impl<const D: usize> Run<D> {
     ) -> std::result::Result<Self, String> {
         let mut run = Run::new(plan, engine, timeseries, histograms);
         let samples = &run.timeseries.samples;
-        let Some(last) = samples.last() else {
-            return Err("no sample: a check-point follows a sample".into());
+        run.next = match samples.len() {
+            0 => 0,
+            taken => {
+                run.schedule
+                    .iter()
+                    .position(|target| target.sample == Some(taken - 1))
+                    .ok_or(format!(
+                        "{taken} samples where run.samples = {}",
+                        plan.description.run.samples
+                    ))?
+                    + 1
+            }
         };
-        run.next = run
-            .schedule
-            .iter()
-            .position(|target| target.sample == Some(samples.len() - 1))
-            .ok_or(format!(
-                "{} samples where run.samples = {}",
-                samples.len(),
-                plan.description.run.samples
-            ))?
-            + 1;
-        let counters = run.engine.counters();
-        if last.time != run.engine.time() || last.events != counters.events {
-            return Err("the engine does not stand at the last sample".into());
+        run.check_samples(plan.stop)?;
+        let (time, counters) = (run.engine.time(), run.engine.counters());
+        let (last_time, last_events) = samples.last().map_or((0.0, 0), |s| (s.time, s.events));
+        let particles = plan.description.system.particles as f64;
+        let within = match (run.schedule.get(run.next), plan.stop) {
+            (None, _) => time == last_time && counters.events == last_events,
+            (Some(next), Stop::Time(_)) => time <= next.value,
+            (Some(next), Stop::CollisionsPerParticle(_)) => {
+                counters.collisions <= collisions_at(next.value, particles)
+            }
+        };
+        if time < last_time || counters.events < last_events || !within {
+            return Err(
+                "the engine does not stand at the last sample or before the next one".into(),
+            );
         }
         let bins = plan
             .description
@@ -330,73 +486,146 @@ impl<const D: usize> Run<D> {
         Ok(run)
     }
 
-    /// Runs through the remaining targets; false if it stopped after `stop_after` samples.
-    fn run(
+    /// Checks the samples against the schedule: from the start onwards in time, collisions
+    /// and events, and (a run stopped by time) each at the time of its target.
+    fn check_samples(&self, stop: Stop) -> std::result::Result<(), String> {
+        let mut previous = (0.0, 0.0, 0);
+        for (i, sample) in self.timeseries.samples.iter().enumerate() {
+            let now = (sample.time, sample.collisions_per_particle, sample.events);
+            let ordered = now.0 >= previous.0 && now.1 >= previous.1 && now.2 >= previous.2;
+            let target = self.schedule.iter().find(|t| t.sample == Some(i));
+            let on_time = match (stop, target) {
+                (Stop::Time(_), Some(target)) => sample.time == target.value,
+                _ => true,
+            };
+            if !(sample.time.is_finite() && ordered && on_time) {
+                return Err(format!(
+                    "sample {i} (time {}, {} collisions per particle, {} events) is not where \
+                     the schedule and the samples before it put it",
+                    sample.time, sample.collisions_per_particle, sample.events
+                ));
+            }
+            previous = now;
+        }
+        Ok(())
+    }
+
+    /// Runs through the remaining targets, until `stop_after` samples exist or the run
+    /// reaches `point`, whichever first.
+    fn go(
         &mut self,
         plan: &Plan,
         saving: Option<(&Path, usize)>,
         progress: &mut dyn Progress,
         stop_after: Option<usize>,
-    ) -> Result<bool> {
+        point: Option<Point>,
+    ) -> Result<()> {
         let particles = plan.description.system.particles as f64;
         progress.start(plan.description.run.samples, self.timeseries.samples.len());
         let started = Instant::now();
         let result = (|| {
             while self.next < self.schedule.len() {
                 let target = self.schedule[self.next];
-                self.advance(plan.stop, target.value, particles)?;
+                if self.advance(plan.stop, target.value, point, particles, progress)? {
+                    return Ok(());
+                }
                 self.timeseries.observe(&target, self.engine.as_mut());
                 self.histograms.observe(&target, self.engine.as_mut());
                 self.next += 1;
-                if target.sample.is_none() {
-                    continue;
-                }
-                let taken = self.timeseries.samples.len();
-                if let Some((dir, every)) = saving {
-                    if taken.is_multiple_of(every) {
-                        self.write_checkpoint(plan, dir, every)?;
+                if target.sample.is_some() {
+                    let taken = self.timeseries.samples.len();
+                    if let Some((dir, every)) = saving {
+                        if taken.is_multiple_of(every) {
+                            let file = dir.join(checkpoint::FILE_NAME);
+                            self.write_checkpoint(plan, &file, Some(every))?;
+                        }
+                    }
+                    let events = self.engine.counters().events as f64;
+                    let rate = events / started.elapsed().as_secs_f64().max(1e-9);
+                    let temperature = self.timeseries.samples[taken - 1].temperature;
+                    progress.sample(
+                        taken,
+                        &format!("{rate:.3e} events/s, T = {temperature:.4e}"),
+                    );
+                    if stop_after.is_some_and(|k| taken >= k) {
+                        return Ok(());
                     }
                 }
-                let events = self.engine.counters().events as f64;
-                let rate = events / started.elapsed().as_secs_f64().max(1e-9);
-                let temperature = self.timeseries.samples[taken - 1].temperature;
-                progress.sample(
-                    taken,
-                    &format!("{rate:.3e} events/s, T = {temperature:.4e}"),
-                );
-                if stop_after.is_some_and(|k| taken >= k) {
-                    return Ok(self.next == self.schedule.len());
+                if point.is_some_and(|p| self.reached(p, particles)) {
+                    return Ok(());
                 }
             }
-            Ok(true)
+            Ok(())
         })();
         progress.finish();
         result
     }
 
-    /// Brings the engine to `value` of the stop criterion.
-    fn advance(&mut self, stop: Stop, value: f64, particles: f64) -> Result<()> {
-        match stop {
-            Stop::Time(_) => self.engine.run_until(value),
-            Stop::CollisionsPerParticle(_) => {
-                let want = (value * particles / 2.0).round() as u64;
-                let have = self.engine.counters().collisions;
-                self.engine.run_collisions(want.saturating_sub(have));
+    /// Whether the engine has reached `point`.
+    fn reached(&self, point: Point, particles: f64) -> bool {
+        match point {
+            Point::Time(t) => self.engine.time() >= t,
+            Point::CollisionsPerParticle(c) => {
+                self.engine.counters().collisions >= collisions_at(c, particles)
             }
-        }
-        match self.engine.collapsed() {
-            Some(time) => Err(Error::Collapse { time }),
-            None => Ok(()),
         }
     }
 
-    fn write_checkpoint(&mut self, plan: &Plan, dir: &Path, every: usize) -> Result<()> {
+    /// Brings the engine to `value` of the stop criterion, or to `point` if that comes
+    /// first, in pieces of [`PIECE_COLLISIONS`] collisions with [`Progress::keep_going`]
+    /// asked between them. Returns true if it stopped at the point short of `value`.
+    fn advance(
+        &mut self,
+        stop: Stop,
+        value: f64,
+        point: Option<Point>,
+        particles: f64,
+        progress: &mut dyn Progress,
+    ) -> Result<bool> {
+        let (mut end, mut total) = match stop {
+            Stop::Time(_) => (value, u64::MAX),
+            Stop::CollisionsPerParticle(_) => (f64::INFINITY, collisions_at(value, particles)),
+        };
+        match point {
+            Some(Point::Time(t)) => end = end.min(t),
+            Some(Point::CollisionsPerParticle(c)) => total = total.min(collisions_at(c, particles)),
+            None => {}
+        }
+        loop {
+            let (time, counters) = (self.engine.time(), self.engine.counters());
+            if time >= end || counters.collisions >= total {
+                break;
+            }
+            // Asked only short of the target: an interrupted run never stands at a target
+            // it has not observed.
+            if !progress.keep_going() {
+                return Err(Error::Interrupted { time });
+            }
+            let pause = (counters.collisions / PIECE_COLLISIONS + 1) * PIECE_COLLISIONS;
+            self.engine.run_paused(end, total, pause);
+            if let Some(time) = self.engine.collapsed() {
+                return Err(Error::Collapse { time });
+            }
+            if self.engine.time() == time && self.engine.counters() == counters {
+                break; // nothing more happens (no collision left to count)
+            }
+        }
+        let at_target = match stop {
+            Stop::Time(_) => self.engine.time() >= value,
+            Stop::CollisionsPerParticle(_) => {
+                self.engine.counters().collisions >= collisions_at(value, particles)
+            }
+        };
+        Ok(!at_target && point.is_some_and(|p| self.reached(p, particles)))
+    }
+
+    fn write_checkpoint(&mut self, plan: &Plan, file: &Path, every: Option<usize>) -> Result<()> {
         let records = RecordsRef {
             description: &plan.description,
-            every: Some(every),
+            every,
             timeseries: &self.timeseries,
             histograms: &self.histograms,
         };
-        self.engine.write_checkpoint(dir, records)
+        self.engine.write_checkpoint(file, records)
     }
 }

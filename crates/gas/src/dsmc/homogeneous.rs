@@ -256,19 +256,25 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// nothing can collide (all particles at rest relative to each other).
     pub fn run_collisions(&mut self, collisions: u64) {
         let target = self.core.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target);
+        self.run(f64::INFINITY, target, u64::MAX);
     }
 
     /// Runs until the time reaches `t` (no effect if it already has).
     pub fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX);
+        self.run(t, u64::MAX, u64::MAX);
     }
 
-    fn run(&mut self, end: f64, target: u64) {
+    /// Runs toward `end` and `collisions`, pausing where the tally reaches `pause` (the
+    /// blocks scheme at the end of a step; see [`crate::Engine::run_paused`]).
+    pub fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        self.run(end, collisions, pause);
+    }
+
+    fn run(&mut self, end: f64, target: u64, pause: u64) {
         let core = &mut self.core;
         match &mut self.store {
-            Store::Uniform(now, spare) => run_records(core, now, spare, end, target),
-            Store::Mixed(now, spare) => run_records(core, now, spare, end, target),
+            Store::Uniform(now, spare) => run_records(core, now, spare, end, target, pause),
+            Store::Mixed(now, spare) => run_records(core, now, spare, end, target, pause),
         }
     }
 }
@@ -330,11 +336,13 @@ fn run_records<const D: usize, R: Record<D>>(
     spare: &mut Vec<R>,
     end: f64,
     target: u64,
+    pause: u64,
 ) {
     match core.scheme {
-        Scheme::Exact => run_exact(core, now, end, target),
+        // The exact scheme stops at a collision: pausing there is stopping there.
+        Scheme::Exact => run_exact(core, now, end, target.min(pause)),
         Scheme::Blocks { block_size, step } => {
-            run_blocks(core, now, spare, block_size, step, end, target)
+            run_blocks(core, now, spare, block_size, step, end, target, pause)
         }
     }
 }
@@ -428,6 +436,7 @@ impl Blocks {
 }
 
 /// The block scheme: steps until the time reaches `end` or the collisions `target`.
+#[allow(clippy::too_many_arguments)]
 fn run_blocks<const D: usize, R: Record<D>>(
     core: &mut Core<D>,
     now: &mut Vec<R>,
@@ -436,10 +445,11 @@ fn run_blocks<const D: usize, R: Record<D>>(
     step: StepSize,
     end: f64,
     target: u64,
+    pause: u64,
 ) {
     let n = now.len();
     let layout = Blocks::new(n, block_size);
-    while core.tally.collisions < target && core.time < end {
+    while core.tally.collisions < target.min(pause) && core.time < end {
         let omega =
             frequency_estimate::<D>(&core.species, n as f64 - 1.0, core.volume, core.temperature);
         if !positive(omega) {

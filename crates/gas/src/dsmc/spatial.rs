@@ -299,17 +299,24 @@ impl<const D: usize> SpatialDsmc<D> {
     /// steps shortened to the expected remaining count).
     pub fn run_collisions(&mut self, collisions: u64) {
         let target = self.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target);
+        self.run(f64::INFINITY, target, u64::MAX);
     }
 
     /// Runs until the time reaches `t` (the last step shortened to end there).
     pub fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX);
+        self.run(t, u64::MAX, u64::MAX);
     }
 
-    fn run(&mut self, end: f64, target: u64) {
+    /// Runs toward `end` and `collisions`, pausing at the end of the step where the tally
+    /// reaches `pause` (see [`crate::Engine::run_paused`]).
+    pub fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        self.run(end, collisions, pause);
+    }
+
+    /// Steps toward `end` and `target` (which choose the steps), pausing at `pause`.
+    fn run(&mut self, end: f64, target: u64, pause: u64) {
         let n = self.len() as f64;
-        while self.tally.collisions < target && self.time < end {
+        while self.tally.collisions < target.min(pause) && self.time < end {
             let density = n * self.weight / self.length.powi(D as i32);
             let omega = frequency_estimate::<D>(&self.species, density, 1.0, self.temperature);
             if !positive(omega) {

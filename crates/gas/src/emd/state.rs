@@ -135,6 +135,9 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
     fn run_collisions(&mut self, collisions: u64) {
         EventDriven::run_collisions(self, collisions)
     }
+    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        EventDriven::run_bounded(self, end, collisions.min(pause))
+    }
     fn time(&self) -> f64 {
         self.time
     }

@@ -1,0 +1,39 @@
+"""haff — the physics of granular gases, exactly.
+
+Coefficients of restitution (viscoelastic exact / series / Padé / fast, dash-pot),
+the computer algebra behind them, Giese's vibrating rods, and granular-gas runs
+(event-driven MD, DSMC) — the same Rust code as the ``haff`` command, giving the
+same numbers bit for bit.
+
+Quick start::
+
+    import haff
+    haff.eps([0.1, 1.0, 10.0], law="exact")          # eps(v*), scaled speeds
+    sim = haff.Simulation({"system": {"particles": 1000, "packing_fraction": 0.1},
+                           "collision": {"law": "constant", "restitution": 0.9},
+                           "run": {"collisions_per_particle": 20, "samples": 21}})
+    sim.run()
+    sim.timeseries["temperature"]
+
+Bad input raises :class:`haff.ConfigError` (a ``ValueError``) whose message names the
+key or argument and what is allowed.
+"""
+
+from ._haff import ConfigError, __version__
+from ._cor import beta, coefficients, dashpot_eps, eps, eps_v, pade
+from ._simulation import Simulation
+from . import rods, theory
+
+__all__ = [
+    "ConfigError",
+    "Simulation",
+    "beta",
+    "coefficients",
+    "dashpot_eps",
+    "eps",
+    "eps_v",
+    "pade",
+    "rods",
+    "theory",
+    "__version__",
+]

@@ -1,0 +1,239 @@
+"""Granular-gas runs from Python, on the library run driver that ``haff run`` drives."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+from pathlib import Path
+from typing import Any, Dict, List, Mapping, Optional, Union
+
+import numpy as np
+
+from . import _haff
+from ._haff import ConfigError
+from ._progress import progress_callback
+
+Config = Union[Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+def _toml_value(value: Any, key: str) -> str:
+    """One TOML value (inline tables and arrays nested)."""
+    if isinstance(value, bool) or isinstance(value, np.bool_):
+        return "true" if value else "false"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        if math.isnan(x):
+            return "nan"
+        if math.isinf(x):
+            return "inf" if x > 0 else "-inf"
+        return repr(x)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, Mapping):
+        items = ", ".join(f"{_toml_key(k)} = {_toml_value(v, f'{key}.{k}')}"
+                          for k, v in value.items())
+        return "{ " + items + " }" if items else "{}"
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml_value(v, key) for v in list(value)) + "]"
+    if value is None:
+        raise ConfigError(f"{key}: None is not a value; leave the key out for its default")
+    raise ConfigError(f"{key}: a value of type {type(value).__name__} is not allowed")
+
+
+def _toml_key(key: Any) -> str:
+    if not isinstance(key, str):
+        raise ConfigError(f"{key!r}: keys are strings")
+    return key if key and all(c.isalnum() or c in "_-" for c in key) else json.dumps(key)
+
+
+def config_to_toml(config: Mapping[str, Any]) -> str:
+    """A dict with the run file's structure as TOML text (sections as tables)."""
+    lines: List[str] = []
+    for section, body in config.items():
+        if not isinstance(body, Mapping):
+            lines.insert(0, f"{_toml_key(section)} = {_toml_value(body, str(section))}")
+            continue
+        lines.append(f"[{_toml_key(section)}]")
+        for key, value in body.items():
+            lines.append(f"{_toml_key(key)} = {_toml_value(value, f'{section}.{key}')}")
+    return "\n".join(lines) + "\n"
+
+
+def _build(config: Config) -> "_haff._Simulation":
+    if isinstance(config, Mapping):
+        return _haff._Simulation.from_toml(config_to_toml(config), "<dict>")
+    if isinstance(config, os.PathLike):
+        return _haff._Simulation.from_path(os.fspath(config))
+    if isinstance(config, str):
+        if os.path.isfile(config):
+            return _haff._Simulation.from_path(config)
+        if "=" in config or "[" in config or "\n" in config:
+            return _haff._Simulation.from_toml(config, "<toml text>")
+        raise ConfigError(f"{config}: no such run file (or give TOML text or a dict)")
+    raise ConfigError(
+        f"config: a dict, a path to a TOML file or TOML text, not {type(config).__name__}")
+
+
+class Simulation:
+    """A granular-gas run: event-driven MD or DSMC, as ``haff run`` runs it.
+
+    Parameters
+    ----------
+    config : dict, str or path
+        The run file's structure as a dict (``{"system": {...}, "collision": {...},
+        "run": {...}}``), a path to a TOML run file, or TOML text. Every key, default and
+        check is that of ``haff run`` (see the README); a bad value raises
+        :class:`haff.ConfigError` naming the key, e.g. ``system.packing_fraction``.
+
+    The same description and seed give the same numbers as ``haff run``, bit for bit.
+    Runs go on with the GIL released; Ctrl-C interrupts them between pieces (about
+    0.1 s), leaving the run where it stopped, ready to go on.
+    """
+
+    def __init__(self, config: Config):
+        self._sim = _build(config)
+
+    @classmethod
+    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Simulation":
+        """The run saved by :meth:`save` (a file, or a directory holding
+        ``checkpoint.bin``, such as a ``haff run`` output directory), checked as
+        ``haff run --resume`` checks it; it continues bit for bit."""
+        self = cls.__new__(cls)
+        self._sim = _haff._Simulation.load(os.fspath(path))
+        return self
+
+    def run(self, progress: Optional[bool] = None) -> "Simulation":
+        """Runs to the end of the run (``run.end_time`` or ``run.collisions_per_particle``),
+        taking the samples of ``run.samples``.
+
+        progress: a progress bar (tqdm's, in a notebook or terminal, if tqdm is installed;
+        else a line on stderr) when True, or when None and the session is interactive.
+        Returns the simulation itself.
+        """
+        self._sim.run(progress_callback(progress))
+        return self
+
+    def advance(self, time: Optional[float] = None,
+                collisions_per_particle: Optional[float] = None,
+                progress: Optional[bool] = False) -> bool:
+        """Runs part of the run: to `time` or to `collisions_per_particle` (exactly one),
+        taking the samples of the schedule on the way. Returns True if the run stands at
+        that point, False if the run ended before it. A point in the unit of the run's stop
+        criterion must lie between where the run stands and its end.
+
+        Stopping between samples and going on changes nothing for event-driven runs (bit
+        for bit); a DSMC run stopped at a time shortens one step to end there.
+        """
+        return self._sim.advance(time, collisions_per_particle, progress_callback(progress))
+
+    @property
+    def timeseries(self) -> Dict[str, np.ndarray]:
+        """The samples so far: column name -> array, with the columns of
+        ``timeseries.csv`` (time, collisions_per_particle, temperature, a2, energy_lost,
+        pressure, events; bath_temperature with a stochastic law)."""
+        return self._sim.timeseries()
+
+    def timeseries_frame(self):
+        """The time series as a pandas DataFrame (needs pandas)."""
+        try:
+            import pandas
+        except ImportError:  # pragma: no cover - depends on the environment
+            raise ImportError("timeseries_frame needs pandas: pip install pandas") from None
+        return pandas.DataFrame(self.timeseries)
+
+    @property
+    def velocity_histograms(self) -> List[Dict[str, Any]]:
+        """The velocity histograms taken at ``run.histogram_at``: dicts with ``target``,
+        ``time``, ``collisions_per_particle``, ``c`` (bin centres of the scaled velocity
+        component c = v / sqrt(2 T / m)), ``density`` and ``maxwellian``
+        (exp(-c^2) / sqrt(pi)), as the rows of ``velocity_histograms.csv``."""
+        out = []
+        for target, time, cpp, c, density in self._sim.velocity_histograms():
+            out.append({"target": target, "time": time, "collisions_per_particle": cpp,
+                        "c": c, "density": density,
+                        "maxwellian": np.exp(-c * c) / math.sqrt(math.pi)})
+        return out
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Positions now, an (N, D) array (a copy), in the box [0, L)^D."""
+        return self._sim.particles()[0]
+
+    @property
+    def velocities(self) -> np.ndarray:
+        """Velocities now, an (N, D) array (a copy)."""
+        return self._sim.particles()[1]
+
+    @property
+    def radii(self) -> np.ndarray:
+        return self._sim.particles()[2]
+
+    @property
+    def masses(self) -> np.ndarray:
+        return self._sim.particles()[3]
+
+    @property
+    def time(self) -> float:
+        """The time of the run now."""
+        return self._sim.time
+
+    @property
+    def temperature(self) -> float:
+        """The granular temperature now, T = <m c^2> / D."""
+        return self._sim.temperature()
+
+    @property
+    def collisions(self) -> int:
+        """Collisions so far (DSMC: accepted candidates)."""
+        return self._sim.counters()[0]
+
+    @property
+    def events(self) -> int:
+        """Events so far (event-driven: collisions, cell crossings, stale predictions)."""
+        return self._sim.counters()[1]
+
+    @property
+    def collisions_per_particle(self) -> float:
+        return 2.0 * self.collisions / self._sim.particle_count
+
+    @property
+    def energy_lost(self) -> float:
+        return self._sim.counters()[2]
+
+    @property
+    def complete(self) -> bool:
+        """Whether every sample of the run has been taken."""
+        return self._sim.complete
+
+    @property
+    def config(self) -> Dict[str, Any]:
+        """The run description, normalized (defaults filled in), as a dict."""
+        return json.loads(self._sim.description_json())
+
+    @property
+    def wall_seconds(self) -> float:
+        """Wall-clock seconds spent building and running in this process."""
+        return self._sim.wall_seconds
+
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes a check-point: the file `path`, or ``checkpoint.bin`` in the directory
+        `path`. :meth:`load` continues from it (as does ``haff run --resume DIR``)."""
+        self._sim.save(os.fspath(path))
+
+    def write(self, dir: Union[str, "os.PathLike[str]"], force: bool = False) -> None:
+        """Writes the files ``haff run --out DIR`` writes into `dir`: ``haff-run.json``,
+        ``timeseries.csv``, ``velocity_histograms.csv`` (with ``run.histogram_at``),
+        ``temperature.png`` and ``summary.json``. A directory holding another run's outputs
+        is refused unless `force`."""
+        Path(dir).mkdir(parents=True, exist_ok=True)
+        self._sim.write(os.fspath(dir), bool(force))
+
+    def __repr__(self) -> str:
+        c = self.config
+        return (f"<haff.Simulation {c['system']['dimension']}D N={c['system']['particles']} "
+                f"engine={c['run'].get('engine', 'event-driven')} t={self.time:.6g} "
+                f"samples={len(self.timeseries['time'])} complete={self.complete}>")

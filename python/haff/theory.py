@@ -1,0 +1,40 @@
+"""Kinetic theory of the homogeneous cooling state, as haff's own checks use it.
+
+Brilliantov & Pöschel, *Kinetic Theory of Granular Gases* (2004): the Enskog collision
+frequency, Haff's law T(t) = T0 / (1 + t/tau)^2 and the Sonine coefficient a2.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _haff
+
+__all__ = ["collision_frequency", "haff_time", "haff_temperature", "a2"]
+
+
+def collision_frequency(dimension: int, packing_fraction: float, temperature: float = 1.0,
+                        diameter: float = 1.0, mass: float = 1.0) -> float:
+    """The Enskog collision frequency of one sphere in a Maxwellian gas,
+    omega = g2(phi) n sigma^(D-1) S_D sqrt(T / (pi m)) with n = phi / V_ball(sigma / 2) and
+    g2 the contact value of the pair correlation (Carnahan-Starling in 3D, Henderson in 2D,
+    exact in 1D)."""
+    return _haff.theory_collision_frequency(int(dimension), float(packing_fraction),
+                                            float(temperature), float(diameter), float(mass))
+
+
+def haff_time(dimension: int, restitution: float, omega0: float) -> float:
+    """Haff's time tau = 2 D / ((1 - eps^2) omega0) of a gas of constant restitution eps
+    with collision frequency omega0 at t = 0 (Maxwellian cooling rate)."""
+    return _haff.theory_haff_time(int(dimension), float(restitution), float(omega0))
+
+
+def haff_temperature(t, t0: float, tau: float):
+    """Haff's law T(t) = T0 / (1 + t/tau)^2."""
+    return t0 / (1.0 + np.asarray(t, float) / tau) ** 2
+
+
+def a2(dimension: int, restitution: float) -> float:
+    """a2 of the homogeneous cooling state, first Sonine approximation linearized in a2
+    (van Noije & Ernst 1998)."""
+    return _haff.theory_a2(int(dimension), float(restitution))

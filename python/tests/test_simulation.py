@@ -1,0 +1,284 @@
+"""haff.Simulation: the same run as `haff run`, bit for bit; advance, save/load, write;
+bad configs raise ConfigError naming the key; the GIL is released; Ctrl-C interrupts."""
+
+import _thread
+import json
+import threading
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import haff
+from conftest import read_csv
+from gil import longest_pause_while
+
+CONFIGS = {
+    "event-driven": {
+        "system": {"dimension": 3, "particles": 500, "packing_fraction": 0.1, "seed": 7},
+        "collision": {"law": "constant", "restitution": 0.8},
+        "run": {"collisions_per_particle": 40.0, "samples": 9, "histogram_at": [0.0, 40.0]},
+    },
+    "viscoelastic-2d-by-time": {
+        "system": {"dimension": 2, "particles": 400, "packing_fraction": 0.2, "seed": 3,
+                   "temperature": 2.0},
+        "collision": {"law": "viscoelastic", "form": "fast", "beta": 0.3},
+        "run": {"end_time": 3.0, "samples": 7, "spacing": "linear"},
+    },
+    "dsmc-spatial": {
+        "system": {"particles": 2000, "packing_fraction": 0.05, "seed": 11},
+        "collision": {"law": "constant", "restitution": 0.9},
+        "run": {"engine": "dsmc", "dsmc_scheme": "spatial", "end_time": 4.0, "samples": 5},
+    },
+    "dsmc-blocks": {
+        "system": {"particles": 3000, "packing_fraction": 0.05, "seed": 5},
+        "collision": {"law": "constant", "restitution": 0.7},
+        "run": {"engine": "dsmc", "collisions_per_particle": 30.0, "samples": 6},
+    },
+}
+
+
+def toml_of(config):
+    return haff._simulation.config_to_toml(config)
+
+
+def csv_columns(path: Path):
+    header, rows = read_csv(path.read_text())
+    return {name: [row[i] for row in rows] for i, name in enumerate(header)}
+
+
+def assert_equals_csv(timeseries, path: Path):
+    """Every column equal to the CSV's, bit for bit (the CSV prints f64 exactly)."""
+    columns = csv_columns(path)
+    assert list(timeseries) == list(columns)
+    for name, values in timeseries.items():
+        kind = int if name == "events" else float
+        np.testing.assert_array_equal(values, np.array([kind(x) for x in columns[name]]),
+                                      err_msg=name)
+
+
+@pytest.mark.parametrize("name", list(CONFIGS))
+def test_a_run_equals_the_command_bit_for_bit(tmp_path, cli, name):
+    config = CONFIGS[name]
+    file = tmp_path / "gas.toml"
+    file.write_text(toml_of(config))
+    cli("run", str(file), "--out", str(tmp_path / "cli"))
+    sim = haff.Simulation(config).run(progress=False)
+    assert sim.complete
+    assert_equals_csv(sim.timeseries, tmp_path / "cli" / "timeseries.csv")
+    summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    assert sim.collisions == summary["collisions"] and sim.events == summary["events"]
+    assert sim.config == summary["parameters"]
+    # The same run from the file and from TOML text.
+    for source in (file, str(file), file.read_text()):
+        other = haff.Simulation(source).run(progress=False)
+        np.testing.assert_array_equal(other.timeseries["temperature"],
+                                      sim.timeseries["temperature"])
+
+
+def test_state_arrays_and_observables():
+    sim = haff.Simulation(CONFIGS["event-driven"])
+    assert sim.positions.shape == (500, 3) and sim.velocities.dtype == np.float64
+    sim.run(progress=False)
+    v, m = sim.velocities, sim.masses
+    # T = <m c^2> / D about the mean velocity (zero for a gas started at rest overall).
+    c = v - v.mean(axis=0)
+    assert sim.temperature == pytest.approx((m[:, None] * c * c).sum() / (3 * 500), rel=1e-12)
+    assert sim.timeseries["temperature"][-1] == sim.temperature
+    assert sim.time == sim.timeseries["time"][-1]
+    assert sim.collisions_per_particle == pytest.approx(40.0, abs=2 / 500)
+    positions = sim.positions
+    positions[0, 0] = -1.0  # a copy: the run is untouched
+    assert sim.positions[0, 0] >= 0.0
+    # Haff's law decreases the temperature; a2 small in 3D at eps = 0.8.
+    t = sim.timeseries["temperature"]
+    assert np.all(np.diff(t) < 0)
+    assert abs(sim.timeseries["a2"][-1]) < 0.1
+    hist = sim.velocity_histograms
+    assert [h["target"] for h in hist] == [0.0, 40.0]
+    assert hist[1]["c"].shape == hist[1]["density"].shape == hist[1]["maxwellian"].shape
+
+
+def test_timeseries_frame():
+    pandas = pytest.importorskip("pandas")
+    sim = haff.Simulation(CONFIGS["dsmc-blocks"]).run(progress=False)
+    frame = sim.timeseries_frame()
+    assert isinstance(frame, pandas.DataFrame)
+    assert list(frame.columns) == list(sim.timeseries)
+    assert len(frame) == 6
+
+
+@pytest.mark.parametrize("name", ["event-driven", "viscoelastic-2d-by-time"])
+def test_advance_in_parts_equals_one_run(name):
+    whole = haff.Simulation(CONFIGS[name]).run(progress=False)
+    parts = haff.Simulation(CONFIGS[name])
+    stop = CONFIGS[name]["run"]
+    if "end_time" in stop:
+        assert parts.advance(time=1.234)
+        assert parts.time == 1.234
+        assert parts.advance(collisions_per_particle=parts.collisions_per_particle + 1.5)
+    else:
+        assert parts.advance(collisions_per_particle=7.3)
+        assert parts.collisions == round(7.3 * 500 / 2)
+        assert parts.advance(time=parts.time + 0.05)
+    assert not parts.complete
+    parts.run(progress=False)
+    # The event-driven engine brings particles to the present lazily: stopping between
+    # samples changes nothing.
+    for key, values in whole.timeseries.items():
+        np.testing.assert_array_equal(parts.timeseries[key], values, err_msg=key)
+
+
+def test_advance_refuses_points_outside_the_run():
+    sim = haff.Simulation(CONFIGS["event-driven"])
+    with pytest.raises(haff.ConfigError, match="^collisions_per_particle: 41"):
+        sim.advance(collisions_per_particle=41.0)
+    sim.advance(collisions_per_particle=10.0)
+    with pytest.raises(haff.ConfigError, match="^collisions_per_particle: 5"):
+        sim.advance(collisions_per_particle=5.0)
+    with pytest.raises(haff.ConfigError, match="^time: NaN"):
+        sim.advance(time=float("nan"))
+    with pytest.raises(haff.ConfigError, match="exactly one"):
+        sim.advance()
+    # A time beyond the end of a run stopped by collisions: the run ends first.
+    assert sim.advance(time=1e9) is False and sim.complete
+
+
+def test_save_and_load_continue_bit_for_bit(tmp_path, cli):
+    config = CONFIGS["event-driven"]
+    a = haff.Simulation(config)
+    a.advance(collisions_per_particle=13.0)  # between two samples
+    a.save(tmp_path / "mid.bin")
+    b = haff.Simulation.load(tmp_path / "mid.bin")
+    assert b.time == a.time and b.collisions == a.collisions
+    np.testing.assert_array_equal(b.velocities, a.velocities)
+    a.run(progress=False)
+    b.run(progress=False)
+    for key, values in a.timeseries.items():
+        np.testing.assert_array_equal(b.timeseries[key], values, err_msg=key)
+    # A check-point saved by Python into a directory resumes with `haff run --resume`, and
+    # both continue the same way.
+    c = haff.Simulation(config)
+    c.advance(collisions_per_particle=25.0)
+    out = tmp_path / "out"
+    c.write(out)
+    c.save(out)
+    cli("run", "--resume", str(out))
+    c.run(progress=False)
+    assert_equals_csv(c.timeseries, out / "timeseries.csv")
+
+
+def test_write_gives_the_files_of_the_command(tmp_path, cli):
+    config = CONFIGS["event-driven"]
+    sim = haff.Simulation(config).run(progress=False)
+    sim.write(tmp_path / "py")
+    file = tmp_path / "gas.toml"
+    file.write_text(toml_of(config))
+    cli("run", str(file), "--out", str(tmp_path / "cli"))
+    names = {p.name for p in (tmp_path / "py").iterdir()}
+    assert names == {p.name for p in (tmp_path / "cli").iterdir()}
+    for name in ["timeseries.csv", "velocity_histograms.csv"]:
+        assert (tmp_path / "py" / name).read_text() == (tmp_path / "cli" / name).read_text()
+    manifest = json.loads((tmp_path / "py" / "haff-run.json").read_text())
+    assert manifest["state"] == "complete"
+    sim.write(tmp_path / "py")  # the same run again: updated
+    other = haff.Simulation(CONFIGS["dsmc-blocks"]).run(progress=False)
+    with pytest.raises(haff.ConfigError, match="^dir: .*another haff run"):
+        other.write(tmp_path / "py")
+    other.write(tmp_path / "py", force=True)
+
+
+@pytest.mark.parametrize(
+    "change, key",
+    [
+        ({"system": {"packing_fraction": 2.0}}, "system.packing_fraction"),
+        ({"system": {"particles": 1}}, "system.particles"),
+        ({"system": {"temperature": float("nan")}}, "system.temperature"),
+        ({"system": {"colour": "red"}}, "system"),
+        ({"collision": {"restitution": 1.5}}, "collision.restitution"),
+        ({"collision": {"law": "sticky"}}, "collision.law"),
+        ({"run": {"samples": "many"}}, "run.samples"),
+        ({"run": {"engine": "dsmc", "dsmc_scheme": "fastest"}}, "run.dsmc_scheme"),
+        ({"collision": {"beta": None}}, "collision.beta"),
+    ],
+)
+def test_bad_configs_name_the_key(change, key):
+    config = json.loads(json.dumps(CONFIGS["event-driven"]))
+    for section, values in change.items():
+        config[section].update(values)
+    with pytest.raises(haff.ConfigError) as error:
+        haff.Simulation(config)
+    assert isinstance(error.value, ValueError)
+    assert str(error.value).startswith(key), str(error.value)
+
+
+def test_bad_sources_and_files(tmp_path):
+    with pytest.raises(haff.ConfigError, match="no such run file"):
+        haff.Simulation("missing.toml")
+    with pytest.raises(haff.ConfigError, match="<toml text>"):
+        haff.Simulation("[system\nparticles = 3")
+    bad = tmp_path / "bad.toml"
+    bad.write_text(toml_of({"system": {"particles": 100, "packing_fraction": -1.0},
+                            "collision": {"law": "constant", "restitution": 0.9},
+                            "run": {"collisions_per_particle": 1.0, "samples": 2}}))
+    with pytest.raises(haff.ConfigError, match=r"bad\.toml: system\.packing_fraction"):
+        haff.Simulation(bad)
+    with pytest.raises(haff.ConfigError, match="config"):
+        haff.Simulation(42)
+    damaged = tmp_path / "damaged.bin"
+    sim = haff.Simulation(CONFIGS["event-driven"])
+    sim.advance(collisions_per_particle=2.0)
+    sim.save(damaged)
+    data = bytearray(damaged.read_bytes())
+    data[-5] ^= 0xFF
+    damaged.write_bytes(bytes(data))
+    with pytest.raises(haff.ConfigError, match="checksum"):
+        haff.Simulation.load(damaged)
+    with pytest.raises(haff.ConfigError, match="not a haff check-point"):
+        haff.Simulation.load(bad)
+
+
+LONG = {
+    "system": {"particles": 4000, "packing_fraction": 0.1, "seed": 2},
+    "collision": {"law": "constant", "restitution": 0.9},
+    "run": {"collisions_per_particle": 400.0, "samples": 3},
+}
+
+
+def test_run_releases_the_gil():
+    sim = haff.Simulation(LONG)
+    seconds, pause = longest_pause_while(lambda: sim.advance(collisions_per_particle=150.0))
+    assert seconds > 0.3, "too short to tell"
+    # Between pieces the driver takes the GIL for a moment; the looping thread must never
+    # wait for a large part of the run.
+    assert pause < 0.25 * seconds, (pause, seconds)
+
+
+def test_ctrl_c_interrupts_and_the_run_goes_on():
+    sim = haff.Simulation(LONG)
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        sim.run(progress=False)
+    timer.join()
+    assert 0 < sim.collisions_per_particle < 400.0
+    # It goes on from where it stopped, to the same end as a run never interrupted.
+    sim.run(progress=False)
+    whole = haff.Simulation(LONG).run(progress=False)
+    for key, values in whole.timeseries.items():
+        np.testing.assert_array_equal(sim.timeseries[key], values, err_msg=key)
+
+
+def test_progress_callback_errors_stop_the_run():
+    seen = []
+
+    def callback(done, total, note):
+        seen.append((done, total))
+        if done == 2:
+            raise RuntimeError("enough")
+
+    sim = haff.Simulation(CONFIGS["event-driven"])
+    with pytest.raises(RuntimeError, match="enough"):
+        sim._sim.run(callback)
+    assert seen[0] == (0, 9) and seen[-1] == (2, 9)
+    assert len(sim.timeseries["time"]) == 2
