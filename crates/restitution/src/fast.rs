@@ -188,7 +188,24 @@ impl Fast {
         let t = self.table;
         if t.buckets.contains(vstar) {
             t.buckets.eval(vstar)
-        } else if vstar < VSTAR_MIN {
+        } else {
+            self.outside_table(vstar)
+        }
+    }
+
+    /// eps at every v* of `vstar` into `out`, bit-identical to [`Fast::eval`], in one loop
+    /// with the table's constants in registers (`haff bench cor`: `fast[]`).
+    pub fn eval_slice(&self, vstar: &[f64], out: &mut [f64]) {
+        self.table
+            .buckets
+            .eval_slice(vstar, out, |v| self.outside_table(v));
+    }
+
+    /// eps beyond the evaluator's range: the small-v* term or the large-v* power law.
+    #[inline]
+    fn outside_table(&self, vstar: f64) -> f64 {
+        let t = self.table;
+        if vstar < VSTAR_MIN {
             1.0 + t.h2 * vstar * vstar
         } else {
             t.tail_coefficient * vstar.powf(t.tail_exponent)

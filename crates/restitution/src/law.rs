@@ -139,6 +139,23 @@ impl ScaledForm {
         }
     }
 
+    /// eps at every scaled speed of `vstar` into `out` (of the same length): the form is
+    /// matched once and its evaluator inlined into the loop, several times faster than
+    /// calling [`ScaledForm::eps`] per value for the fast law (bit-identical to it).
+    pub fn eps_slice(&self, vstar: &[f64], out: &mut [f64]) {
+        assert_eq!(vstar.len(), out.len(), "eps_slice: lengths differ");
+        if let ScaledForm::Fast(f) = self {
+            return f.eval_slice(vstar, out);
+        }
+        let pairs = out.iter_mut().zip(vstar);
+        match self {
+            ScaledForm::Fast(f) => f.eval_slice(vstar, out),
+            ScaledForm::Pade(p) => pairs.for_each(|(o, &v)| *o = p.eval(v)),
+            ScaledForm::Series(s) => pairs.for_each(|(o, &v)| *o = s.eval(v)),
+            ScaledForm::Exact(c) => pairs.for_each(|(o, &v)| *o = exact_or_asymptotic(v, *c)),
+        }
+    }
+
     /// Scaled collision duration tau_c, known to the exact forms.
     pub fn duration(&self, vstar: f64) -> Option<f64> {
         match self {

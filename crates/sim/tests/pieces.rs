@@ -16,7 +16,11 @@ fn toml(engine: &str, stop: &str) -> String {
 /// The run descriptions cut here: event-driven and DSMC, stopped by collisions and by time.
 fn runs() -> Vec<String> {
     let mut out = Vec::new();
-    for engine in ["", "engine = \"dsmc\"\n", "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n"] {
+    for engine in [
+        "",
+        "engine = \"dsmc\"\n",
+        "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n",
+    ] {
         out.push(toml(engine, "collisions_per_particle = 150"));
     }
     out.push(toml("", "end_time = 6.0"));
@@ -77,11 +81,18 @@ fn advanced_saved_and_loaded_runs_keep_their_samples() {
         let by_time = text.contains("end_time");
         // A point between two samples (log-spaced), then one in the other unit.
         let (point, before) = if by_time {
-            let before = reference.samples().iter().filter(|s| s.time < 2.345).count();
+            let before = reference
+                .samples()
+                .iter()
+                .filter(|s| s.time < 2.345)
+                .count();
             (Point::Time(2.345), before)
         } else {
             let samples = reference.samples();
-            let before = samples.iter().filter(|s| s.collisions_per_particle < 47.5).count();
+            let before = samples
+                .iter()
+                .filter(|s| s.collisions_per_particle < 47.5)
+                .count();
             (Point::CollisionsPerParticle(47.5), before)
         };
         assert!((2..reference.samples().len()).contains(&before));
@@ -95,7 +106,10 @@ fn advanced_saved_and_loaded_runs_keep_their_samples() {
         let file = dir.join(format!("run{k}.bin"));
         run.save(&file).unwrap();
         let mut loaded = Simulation::load(&file).unwrap();
-        assert_eq!((loaded.time(), loaded.counters()), (run.time(), run.counters()));
+        assert_eq!(
+            (loaded.time(), loaded.counters()),
+            (run.time(), run.counters())
+        );
         run.run(&mut (), None).unwrap();
         loaded.run(&mut (), None).unwrap();
         assert_eq!(loaded.samples(), run.samples(), "{text}");
@@ -123,11 +137,25 @@ fn points_outside_the_run_are_refused() {
         let error = run.advance(point, &mut ()).unwrap_err().to_string();
         assert!(error.starts_with(says), "{error}");
     };
-    refused(&mut run, Point::CollisionsPerParticle(151.0), "collisions_per_particle: 151");
-    refused(&mut run, Point::CollisionsPerParticle(f64::NAN), "collisions_per_particle: NaN");
+    refused(
+        &mut run,
+        Point::CollisionsPerParticle(151.0),
+        "collisions_per_particle: 151",
+    );
+    refused(
+        &mut run,
+        Point::CollisionsPerParticle(f64::NAN),
+        "collisions_per_particle: NaN",
+    );
     refused(&mut run, Point::Time(-1.0), "time: -1");
-    assert!(run.advance(Point::CollisionsPerParticle(30.0), &mut ()).unwrap());
-    refused(&mut run, Point::CollisionsPerParticle(29.0), "collisions_per_particle: 29");
+    assert!(run
+        .advance(Point::CollisionsPerParticle(30.0), &mut ())
+        .unwrap());
+    refused(
+        &mut run,
+        Point::CollisionsPerParticle(29.0),
+        "collisions_per_particle: 29",
+    );
     // A time beyond the end of a run stopped by collisions: the run ends first.
     assert!(!run.advance(Point::Time(1e12), &mut ()).unwrap());
     assert!(run.is_complete());

@@ -24,6 +24,8 @@ const SCALED_LAWS: [&str; 6] = [
 ];
 /// Laws timed on physical speeds through [`Viscoelastic::eps`].
 const PHYSICAL_LAWS: [&str; 2] = ["fast", "pade:3/6"];
+/// Laws also timed over whole slices (`ScaledForm::eps_slice`, as Python's `haff.eps`).
+const SLICE_LAWS: [&str; 2] = ["fast", "pade:3/6"];
 /// The law every median is compared with.
 const REFERENCE_LAW: &str = "pade:3/6";
 /// beta for the physical-speed path: ice, in (s/cm)^(1/5), so speeds are in cm/s.
@@ -140,6 +142,11 @@ fn time_all_laws(repeats: usize, evaluations: usize) -> CliResult<Vec<LawTiming>
         let work = Workload::scaled(evaluations_for(name, evaluations));
         samples.push((name.to_string(), time_law(|v| form.eps(v), &work, repeats)));
     }
+    for name in SLICE_LAWS {
+        let form = builtin_law(name)?;
+        let work = Workload::scaled(evaluations_for(name, evaluations));
+        samples.push((format!("{name}[]"), time_slice(&form, &work, repeats)));
+    }
     for name in PHYSICAL_LAWS {
         let law = Viscoelastic::new(BETA, builtin_law(name)?)
             .map_err(|e| CliError::library("beta", e))?;
@@ -191,6 +198,23 @@ fn time_law(eps: impl Fn(f64) -> f64, work: &Workload, repeats: usize) -> Vec<f6
         .collect()
 }
 
+/// Nanoseconds per evaluation of `form` over `work` a slice at a time
+/// ([`ScaledForm::eps_slice`]), one sample per repetition.
+fn time_slice(form: &ScaledForm, work: &Workload, repeats: usize) -> Vec<f64> {
+    let mut out = vec![0.0; work.inputs.len()];
+    form.eps_slice(&work.inputs, &mut out);
+    (0..repeats)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..work.passes {
+                form.eps_slice(black_box(&work.inputs), &mut out);
+                black_box(&mut out);
+            }
+            start.elapsed().as_nanos() as f64 / work.evaluations() as f64
+        })
+        .collect()
+}
+
 /// Writes the aligned table and a note on what was measured.
 fn write_report_table(
     out: &mut impl Write,
@@ -216,7 +240,8 @@ fn write_report_table(
         out,
         "note: median/min/max over {repeats} repeats; v* log-spaced in [{VSTAR_LOW:e}, {VSTAR_HIGH:e}]; \
          {evaluations} evaluations per repeat ({} for exact laws); \
-         (v): physical speeds via Viscoelastic::eps with beta = {BETA} (s/cm)^(1/5)",
+         []: a slice at a time (ScaledForm::eps_slice, as Python haff.eps per core); (v): physical \
+         speeds via Viscoelastic::eps with beta = {BETA} (s/cm)^(1/5)",
         evaluations_for("exact", evaluations)
     )?;
     Ok(())
