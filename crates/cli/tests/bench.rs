@@ -29,6 +29,8 @@ fn bench_json_lists_every_law() {
         "pade:1/4",
         "pade:3/6",
         "series:20",
+        "fast[]",
+        "pade:3/6[]",
         "fast(v)",
         "pade:3/6(v)",
     ];
