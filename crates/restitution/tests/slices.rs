@@ -1,5 +1,6 @@
 //! `ScaledForm::eps_slice` is `ScaledForm::eps` value by value, bit for bit, for every kind
-//! of form (inside and outside the fast law's table, at bucket edges).
+//! of form (inside and outside the fast law's table, at bucket edges; the fast law's AVX2
+//! path four values at a time where the processor has it).
 
 use restitution::ScaledForm;
 
@@ -10,6 +11,16 @@ fn slices_equal_single_evaluations() {
         .collect();
     vstars.extend((-14..14).map(|e| 2f64.powi(e)));
     vstars.extend([0.0, 1e-300, 16384.0, 16384.000000001, 1e6]);
+    // Shuffled (lanes of one group in different buckets, some outside the table), and a
+    // length that is not a multiple of four.
+    let mut state = 12345u64;
+    for _ in 0..4001 {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let u = (state >> 11) as f64 / (1u64 << 53) as f64;
+        vstars.push(1e-6 * 1e12f64.powf(u));
+    }
     for law in [
         "fast",
         "fast-naive",

@@ -8,6 +8,9 @@
 //! factor 1 + 2^-sub_bits in x, f changes little across it and the interpolant has a small
 //! *relative* error even where f spans many decades over the whole range.
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 /// Polynomial degree per bucket.
 pub const DEGREE: usize = 11;
 
@@ -77,10 +80,17 @@ impl BucketTable {
         estrin(&self.coefficients[index], t)
     }
 
-    /// f at every x of `xs` into `out`, `outside(x)` where x is not in the table: one loop
-    /// with the table's constants held in registers (bit-identical to [`BucketTable::eval`]).
-    #[inline(always)]
+    /// f at every x of `xs` into `out`, `outside(x)` where x is not in the table,
+    /// bit-identical to [`BucketTable::eval`]: four values at a time on x86_64 processors
+    /// with AVX2 ([`avx2`]), else one loop with the table's constants in registers.
     pub fn eval_slice(&self, xs: &[f64], out: &mut [f64], outside: impl Fn(f64) -> f64) {
+        assert_eq!(xs.len(), out.len(), "eval_slice: lengths differ");
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2 (checked just above).
+            unsafe { avx2::eval_slice(self, xs, out, &outside) };
+            return;
+        }
         for (o, &x) in out.iter_mut().zip(xs) {
             *o = if self.contains(x) {
                 self.eval(x)
