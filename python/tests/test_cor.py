@@ -61,6 +61,7 @@ def test_shapes_and_dtypes():
         (lambda: haff.eps(2e6), "vstar[0]"),
         (lambda: haff.eps(0.5, law="pade:1/x"), "law"),
         (lambda: haff.eps(0.5, law="bogus"), "law"),
+        (lambda: haff.eps(0.5, law="pade:60/60"), "law"),  # about 80 s of algebra: refused
         (lambda: haff.eps("abc"), "vstar"),
         (lambda: haff.eps_v(1.0, beta=0.0), "beta"),
         (lambda: haff.eps_v(-1.0, beta=1.0), "v[0]"),

@@ -92,6 +92,17 @@ impl Pade {
                 "M, N <= 60",
             ));
         }
+        let longest = crate::series::max_chain_order();
+        if m + n > longest {
+            return Err(Error::out_of_range(
+                "pade order M/N",
+                format!("{m}/{n}"),
+                &format!(
+                    "M + N <= {longest} (h_0..h_(M+N) by computer algebra within about {} s)",
+                    series::coefficients::MAX_SECONDS
+                ),
+            ));
+        }
         let h = crate::series::computed_chain(m + n);
         let approximant = series::pade::pade(&h, m, n).map_err(|e| match e {
             series::pade::PadeError::Singular { .. } => Error::Undefined(e.to_string()),

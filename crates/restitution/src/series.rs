@@ -121,6 +121,16 @@ impl Series {
 
 /// The high-precision h_0 ..= h_K (at least) from the chain, cached for the largest order
 /// computed so far (shared by the computed series and Padé approximants).
+/// The largest chain order whose coefficients the computer algebra computes within
+/// [`series::coefficients::MAX_SECONDS`] (bounded work; about 112 on this machine kind).
+pub fn max_chain_order() -> usize {
+    use series::coefficients::{Settings, MAX_SECONDS};
+    (2..=1000)
+        .take_while(|&k| Settings::for_order(k).estimated_seconds() <= MAX_SECONDS)
+        .last()
+        .unwrap_or(2)
+}
+
 pub(crate) fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
     static CACHE: Mutex<Option<Arc<[series::power::Real]>>> = Mutex::new(None);
     let mut cache = CACHE

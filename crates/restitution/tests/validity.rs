@@ -76,3 +76,16 @@ fn exact_and_fast_hold_everywhere() {
         assert!(form(name).validity().contains(1e6), "{name}");
     }
 }
+
+/// Computed Padé forms are bounded in work: [60/60] would need about 80 s of computer
+/// algebra (h_0..h_120) and is refused at once, naming the bound.
+#[test]
+fn computed_pade_orders_are_bounded_in_work() {
+    let longest = restitution::series::max_chain_order();
+    assert!((100..=120).contains(&longest), "{longest}");
+    let error = "pade:60/60"
+        .parse::<restitution::ScaledForm>()
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains(&format!("M + N <= {longest}")), "{error}");
+}
