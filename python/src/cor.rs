@@ -32,12 +32,27 @@ fn parse_law(law: &str) -> PyResult<ScaledForm> {
 /// Values per piece of a parallel evaluation; smaller arrays are evaluated in one thread.
 const PIECE: usize = 1 << 14;
 
-/// A new float64 array of `n` values for [`evaluate`] to fill. numpy allocates it (with
-/// huge pages for large arrays): fresh pages cost ~4 us each to fault in on this machine
-/// kind, 8 ns per value of a 4 KiB page, as much as the fast law itself.
-fn output(py: Python<'_>, n: usize) -> Bound<'_, PyArray1<f64>> {
-    // SAFETY: every element is written by `evaluate` before the array reaches Python.
-    unsafe { PyArray1::new(py, [n], false) }
+/// `f` (a law over a slice) at every value, into a new float64 array, with the GIL released
+/// (see [`evaluate`]); returns the array and the count of values where `valid` is false.
+/// numpy allocates the array (with huge pages for large arrays): fresh pages cost ~4 us
+/// each to fault in on this machine kind, 8 ns per value of a 4 KiB page, as much as the
+/// fast law itself.
+fn evaluated<'py>(
+    py: Python<'py>,
+    key: &str,
+    values: &[f64],
+    range: (f64, f64),
+    f: impl Fn(&[f64], &mut [f64]) + Sync,
+    valid: impl Fn(f64) -> bool + Sync,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, usize)> {
+    // SAFETY: every element is written by `evaluate` before the array reaches Python (or
+    // the array is dropped with the error).
+    let out = unsafe { PyArray1::new(py, [values.len()], false) };
+    // SAFETY: `out` is new, not shared with Python until returned.
+    let slice = unsafe { out.as_slice_mut()? };
+    let (f, valid) = (&f, &valid);
+    let beyond = py.detach(|| evaluate(key, values, slice, range, f, valid))?;
+    Ok((out, beyond))
 }
 
 /// `f` (a law over a slice) at every value into `out`, in pieces on both cores for large
@@ -92,19 +107,14 @@ fn eps<'py>(
     let form = parse_law(law)?;
     let values = vstar.as_slice()?;
     let validity = form.validity();
-    let out = output(py, values.len());
-    // SAFETY: `out` is new, not shared with Python until returned.
-    let slice = unsafe { out.as_slice_mut()? };
-    let beyond = py.detach(|| {
-        evaluate(
-            "vstar",
-            values,
-            slice,
-            (0.0, VSTAR_MAX),
-            |xs, ys| form.eps_slice(xs, ys),
-            |v| validity.contains(v),
-        )
-    })?;
+    let (out, beyond) = evaluated(
+        py,
+        "vstar",
+        values,
+        (0.0, VSTAR_MAX),
+        |xs, ys| form.eps_slice(xs, ys),
+        |v| validity.contains(v),
+    )?;
     Ok((out, beyond, validity.to_string()))
 }
 
@@ -136,23 +146,18 @@ fn eps_v<'py>(
     } else {
         f64::INFINITY
     };
-    let out = output(py, speeds.len());
-    // SAFETY: `out` is new, not shared with Python until returned.
-    let slice = unsafe { out.as_slice_mut()? };
-    let beyond = py.detach(|| {
-        evaluate(
-            "v",
-            speeds,
-            slice,
-            (0.0, v_max),
-            |xs, ys| {
-                for (y, &x) in ys.iter_mut().zip(xs) {
-                    *y = viscoelastic.eps(x);
-                }
-            },
-            |s| s < v_below,
-        )
-    })?;
+    let (out, beyond) = evaluated(
+        py,
+        "v",
+        speeds,
+        (0.0, v_max),
+        |xs, ys| {
+            for (y, &x) in ys.iter_mut().zip(xs) {
+                *y = viscoelastic.eps(x);
+            }
+        },
+        |s| s < v_below,
+    )?;
     Ok((out, beyond, validity.to_string()))
 }
 
