@@ -29,6 +29,8 @@ pub enum DsmcSchemeChoice {
     Blocks,
     /// The exact process over all pairs (serial).
     Exact,
+    /// Spatial DSMC: streaming, sorting into collision cells, collisions in every cell.
+    Spatial,
 }
 
 /// [median, min, max] of a non-empty sample.

@@ -323,9 +323,13 @@ pub struct BenchDsmcArgs {
     /// Timed repetitions; the median is reported.
     #[arg(long, default_value = "3", allow_hyphen_values = true)]
     pub repeats: String,
-    /// Scheme: blocks (parallel) or exact (serial).
+    /// Scheme: blocks (parallel), exact (serial) or spatial (streaming and collision cells).
     #[arg(long, value_enum, default_value_t = bench::DsmcSchemeChoice::Blocks)]
     pub scheme: bench::DsmcSchemeChoice,
+    /// Spatial scheme: simulated particles per collision cell on average (SPARTA's set-up
+    /// for the comparison: 15.6), 1 ..= 1000.
+    #[arg(long, default_value = "15.6", allow_hyphen_values = true)]
+    pub particles_per_cell: String,
     /// The law: `fast` (viscoelastic, with --beta) or a constant eps in [0, 1].
     #[arg(long, default_value = "fast", allow_hyphen_values = true)]
     pub law: String,

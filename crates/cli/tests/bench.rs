@@ -97,3 +97,37 @@ fn bench_dsmc_reports_rates_and_memory() {
     assert_rejected(&["bench", "dsmc", "--scheme", "fast"], "--scheme");
     assert_rejected(&["bench", "emd", "--calendar", "tree"], "--calendar");
 }
+
+#[test]
+fn bench_dsmc_runs_the_spatial_scheme() {
+    let report = json_of(&[
+        "bench",
+        "dsmc",
+        "--scheme",
+        "spatial",
+        "--particles",
+        "20000",
+        "--law",
+        "1",
+        "--collisions",
+        "1",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(report["scheme"], "spatial");
+    assert_eq!(number(&report["particles_per_cell"]), 15.6);
+    assert!(number(&report["collisions_per_second"]) > 0.0);
+    assert_rejected(
+        &[
+            "bench",
+            "dsmc",
+            "--scheme",
+            "spatial",
+            "--particles-per-cell",
+            "0.5",
+        ],
+        "--particles-per-cell",
+    );
+}

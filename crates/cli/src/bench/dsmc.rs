@@ -1,4 +1,5 @@
-//! `haff bench dsmc`: throughput of homogeneous DSMC.
+//! `haff bench dsmc`: throughput of DSMC (homogeneous schemes, or the spatial one with a
+//! given number of particles per cell and steps of a fifth of the mean free time).
 
 use super::{median_min_max, DsmcSchemeChoice};
 use crate::error::{CliError, CliResult};
@@ -10,8 +11,8 @@ use std::time::Instant;
 /// `haff bench dsmc`: accepted collisions per second of homogeneous DSMC in 3D (a cooling
 /// gas, T0 = 1), on all cores or `--threads`, medians of repeats, and memory per particle.
 pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
-    use gas::dsmc::{point_gas, Scheme};
-    use gas::HomogeneousDsmc;
+    use gas::dsmc::{point_gas, Scheme, SpatialOptions, StepSize};
+    use gas::{Engine, HomogeneousDsmc, SpatialDsmc};
     use restitution::{Constant, ScaledForm, Viscoelastic};
     let n = parse_count("--particles", &args.particles, 2, 1_000_000_000)?;
     let phi = crate::output::parse_number(
@@ -25,9 +26,15 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         crate::output::Allowed::between("collisions per particle", 1e-3, 1e4),
     )?;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
+    let per_cell = crate::output::parse_number(
+        "--particles-per-cell",
+        &args.particles_per_cell,
+        crate::output::Allowed::between("particles per cell", 1.0, 1000.0),
+    )?;
     let (scheme, scheme_name) = match args.scheme {
-        DsmcSchemeChoice::Blocks => (Scheme::default(), "blocks"),
-        DsmcSchemeChoice::Exact => (Scheme::Exact, "exact"),
+        DsmcSchemeChoice::Blocks => (Some(Scheme::default()), "blocks"),
+        DsmcSchemeChoice::Exact => (Some(Scheme::Exact), "exact"),
+        DsmcSchemeChoice::Spatial => (None, "spatial"),
     };
     let law: Box<dyn Restitution> = if args.law == "fast" {
         let beta = crate::output::parse_number(
@@ -59,8 +66,24 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     for repeat in 0..repeats {
         let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 1 + repeat as u64)
             .map_err(|e| CliError::argument("--particles", e))?;
-        let mut engine = HomogeneousDsmc::new(system, phi, law.box_clone(), 1, scheme)
-            .map_err(|e| CliError::argument("--particles", e))?;
+        let mut engine: Box<dyn Engine<3> + Send> = match scheme {
+            Some(scheme) => Box::new(
+                HomogeneousDsmc::new(system, phi, law.box_clone(), 1, scheme)
+                    .map_err(|e| CliError::argument("--particles", e))?,
+            ),
+            None => {
+                // Cells holding `per_cell` particles on average; steps of a fifth of the
+                // mean free time (0.2 collisions per particle), SPARTA's dt = tau / 5.
+                let options = SpatialOptions {
+                    cell_width: Some(length * (per_cell / n as f64).cbrt()),
+                    step: StepSize::CollisionsPerParticle(0.2),
+                };
+                Box::new(
+                    SpatialDsmc::new(system, phi, law.box_clone(), 1, options)
+                        .map_err(|e| CliError::argument("--particles", e))?,
+                )
+            }
+        };
         pool.install(|| engine.run_collisions(n as u64 / 2));
         let before = engine.counters().collisions;
         let start = Instant::now();
@@ -84,6 +107,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         "collisions_per_second_per_thread": median / threads as f64,
         // One worker thread per core (the default uses all cores).
         "collisions_per_second_per_core": median / threads as f64,
+        "particles_per_cell": if scheme.is_none() { Some(per_cell) } else { None },
         "bytes_per_particle": bytes as f64 / n as f64,
     });
     let mut out = stdout();
