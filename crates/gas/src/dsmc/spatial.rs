@@ -357,12 +357,7 @@ impl<const D: usize> SpatialDsmc<D> {
             }
         });
         let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
-        self.simulators.par_sort_by_key(key);
-        let sims = &self.simulators;
-        let starts: Vec<usize> = (0..sims.len())
-            .into_par_iter()
-            .filter(|&i| i == 0 || key(&sims[i]) != key(&sims[i - 1]))
-            .collect();
+        let starts = sort_into_cells(&mut self.simulators, key, cells.pow(D as u32));
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
             law: self.law.as_ref(),
@@ -409,6 +404,57 @@ fn cell_key<const D: usize>(x: &Vector<D>, width: f64, cells: u64) -> u64 {
     })
 }
 
+/// Counting sort pays while the cells are at most this many per particle (its counts array
+/// is O(cells)); beyond, a stable comparison sort.
+const COUNTING_SORT_CELLS_PER_PARTICLE: u64 = 4;
+
+/// Sorts `sims` by `key` (a cell index below `cells`) stably, and returns where each
+/// non-empty cell starts. Stable: the order within a cell is the order before, so a
+/// counting sort (O(N + cells): keys, counts, one scatter) gives exactly what the stable
+/// merge sort gives, which it replaces where the cells are few enough. The merge sort took
+/// ~80 % of the instructions of a step (callgrind, N = 1e5, 15.6 particles per cell).
+fn sort_into_cells<T: Copy + Send + Sync>(
+    sims: &mut Vec<T>,
+    key: impl Fn(&T) -> u64 + Sync,
+    cells: u64,
+) -> Vec<usize> {
+    if cells > COUNTING_SORT_CELLS_PER_PARTICLE * sims.len() as u64 {
+        sims.par_sort_by_key(&key);
+        let sims = &*sims;
+        return (0..sims.len())
+            .into_par_iter()
+            .filter(|&i| i == 0 || key(&sims[i]) != key(&sims[i - 1]))
+            .collect();
+    }
+    let keys: Vec<u64> = sims.par_iter().map(&key).collect();
+    let mut next = vec![0usize; cells as usize];
+    for &k in &keys {
+        next[k as usize] += 1;
+    }
+    let mut starts = Vec::new();
+    let mut at = 0;
+    for slot in next.iter_mut() {
+        let count = *slot;
+        if count > 0 {
+            starts.push(at);
+        }
+        *slot = at;
+        at += count;
+    }
+    let mut sorted = Vec::with_capacity(sims.len());
+    let spare = sorted.spare_capacity_mut();
+    for (sim, &k) in sims.iter().zip(&keys) {
+        let slot = &mut next[k as usize];
+        spare[*slot].write(*sim);
+        *slot += 1;
+    }
+    // SAFETY: the counts of all cells sum to sims.len(), so the scatter wrote every slot
+    // 0..sims.len() exactly once.
+    unsafe { sorted.set_len(sims.len()) };
+    *sims = sorted;
+    starts
+}
+
 fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
     let mut parts = Vec::with_capacity(starts.len());
     let mut at = 0;
@@ -420,4 +466,35 @@ fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mu
     }
     parts.push(data);
     parts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counting sort gives exactly the stable comparison sort's order and cell starts
+    /// (many particles per cell, empty cells, the order within a cell kept).
+    #[test]
+    fn counting_sort_is_the_stable_sort() {
+        let mut state = 7u64;
+        let items: Vec<(u64, u32)> = (0..5000)
+            .map(|i| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((state >> 33) % 700, i)
+            })
+            .collect();
+        let key = |x: &(u64, u32)| x.0;
+        let mut counted = items.clone();
+        let starts = sort_into_cells(&mut counted, key, 700);
+        let mut merged = items.clone();
+        // More cells than COUNTING_SORT_CELLS_PER_PARTICLE per item: the comparison sort.
+        let merged_starts = sort_into_cells(&mut merged, key, 4 * 5000 + 1);
+        assert_eq!(counted, merged);
+        assert_eq!(starts, merged_starts);
+        let mut expected = items;
+        expected.sort_by_key(key);
+        assert_eq!(counted, expected);
+    }
 }
