@@ -217,16 +217,12 @@ fn dashpot_eps<'py>(
     damping_ratio: PyReadonlyArray1<'py, f64>,
     criterion: &str,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let criterion = match criterion.trim() {
-        "improved" => DashpotCriterion::Improved,
-        "naive" => DashpotCriterion::Naive,
-        other => {
-            return Err(config_error(
-                "criterion",
-                format!("'{other}' is not a criterion; allowed: improved, naive"),
-            ))
-        }
-    };
+    // The viscoelastic criterion's names, as `haff cor dashpot --criterion` parses them.
+    let criterion: DashpotCriterion = criterion
+        .trim()
+        .parse::<restitution::exact::Criterion>()
+        .map_err(|e| config_error("criterion", e))?
+        .into();
     let ratios = damping_ratio.as_slice()?;
     if let Some(i) = ratios.iter().position(|r| !(0.0..=f64::MAX).contains(r)) {
         return Err(out_of_range(
