@@ -16,11 +16,13 @@ pub mod error;
 pub mod exact;
 pub mod fast;
 pub mod law;
+mod manifold;
 pub mod material;
 pub mod ode;
 pub mod pade;
 pub mod series;
 pub mod stochastic;
+mod taylor;
 pub mod validity;
 
 pub use error::{Error, Result};

@@ -3,11 +3,14 @@
 //! Taylor-series (automatic differentiation) integrator of order 28 in tau with
 //! Jorba-Zou step control, events located on the step polynomials.
 //!
-//! Observed (opt-level 3): the crate and the reference agree in eps, tau_c, x_max, tau_max
-//! and x_c to
-//! - improved criterion, 0 <= v* <= 1e6: worst relative difference 1.6e-13 (v* = 1e-4, x_c);
-//!   eps alone <= 1.1e-13;
-//! - naive criterion, 0 <= v* <= 100: worst 1.5e-13 (v* = 1, eps);
+//! Observed (opt-level 3): `solve` (the Taylor path) and the reference agree in eps, tau_c,
+//! x_max, tau_max and x_c to
+//! - improved criterion, 0 <= v* <= 1e6: worst relative difference 2.8e-15;
+//! - naive criterion, 0 <= v* <= 20: worst 8.4e-16; v* = 30, 50, 100: 2.8e-15 (these end
+//!   on the slow manifold, crate::manifold, while the reference integrates the creep);
+//!
+//! and `solve_radau` (the Radau path) and the reference to 1.6e-13 (improved, v* = 1e-4,
+//! x_c; eps alone <= 1.1e-13) and 1.5e-13 (naive, v* = 1, eps).
 //!
 //! and the reference agrees with itself (other order / tolerances / series order / state
 //! variables) to 3e-15 (asserted <= 1e-12). The bound asserted against the crate is the
@@ -59,6 +62,16 @@ fn diffs(c: &Collision, r: &RefCollision) -> [f64; 5] {
 /// Compares crate and reference at every v*, prints a table and returns the worst
 /// relative difference; fails if any exceeds `bound`.
 fn compare(vstars: &[f64], criterion: Criterion, bound: f64) -> f64 {
+    compare_with(solve, vstars, criterion, bound)
+}
+
+/// As [`compare`] for any solver of the crate.
+fn compare_with(
+    solve: fn(f64, Criterion) -> restitution::Result<Collision>,
+    vstars: &[f64],
+    criterion: Criterion,
+    bound: f64,
+) -> f64 {
     let reference = Reference::default();
     let mut worst = 0.0f64;
     let mut failures = Vec::new();
@@ -333,4 +346,25 @@ fn naive_criterion_matches_reference_when_overdamped() {
     let t = Instant::now();
     let worst = compare(&[30.0, 50.0, 100.0], Criterion::Naive, TARGET);
     println!("naive, overdamped: worst {worst:.2e}, {:?}", t.elapsed());
+}
+
+/// The Radau path (`solve_radau`, the cross-check of `solve`) against the reference on the
+/// listed speeds and a coarse grid, both criteria. Worst observed: 1.6e-13.
+#[test]
+fn radau_path_matches_reference() {
+    let mut vs: Vec<f64> = LISTED.to_vec();
+    vs.extend(log_grid(1e-4, 1e4, 2));
+    compare_with(
+        restitution::exact::solve_radau,
+        &vs,
+        Criterion::Improved,
+        TARGET,
+    );
+    let naive: Vec<f64> = vs.into_iter().filter(|&v| v <= 20.0).collect();
+    compare_with(
+        restitution::exact::solve_radau,
+        &naive,
+        Criterion::Naive,
+        TARGET,
+    );
 }
