@@ -130,12 +130,12 @@ def test_dashpot_equals_the_command(cli):
 
 
 def test_eps_releases_the_gil():
-    # The exact law integrates an ODE per value (~0.1 ms): 3000 values take a fraction of a
+    # The exact law integrates an ODE per value (~15 us): 50000 values take a fraction of a
     # second. A thread that notes the time in a loop keeps running meanwhile only if the
     # GIL is released: its longest pause must be far shorter than the call.
     from gil import longest_pause_while
 
-    values = np.linspace(0.01, 5, 3000)
+    values = np.linspace(0.01, 5, 50000)
     call_seconds, pause = longest_pause_while(lambda: haff.eps(values, "exact"))
     assert call_seconds > 0.1, "too short to tell"
     assert pause < 0.5 * call_seconds, (pause, call_seconds)

@@ -311,9 +311,10 @@ pub struct BenchEmdArgs {
 /// Arguments of `haff bench dsmc`.
 #[derive(Debug, Args)]
 pub struct BenchDsmcArgs {
-    /// Number of particles, 2 <= N <= 1e9.
-    #[arg(long, default_value = "10000000", allow_hyphen_values = true)]
-    pub particles: String,
+    /// Number of particles, 2 <= N <= 1e9 (default: 1e7; 1e6 for the spatial scheme, the
+    /// set-up of the SPARTA comparison).
+    #[arg(long, allow_hyphen_values = true)]
+    pub particles: Option<String>,
     /// Packing fraction (sets the Enskog factor and the time scale), 0 < phi <= 0.45.
     #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
     pub packing_fraction: String,
@@ -330,13 +331,14 @@ pub struct BenchDsmcArgs {
     /// for the comparison: 15.6), 1 ..= 1000.
     #[arg(long, default_value = "15.6", allow_hyphen_values = true)]
     pub particles_per_cell: String,
-    /// The law: `fast` (viscoelastic, with --beta) or a constant eps in [0, 1].
-    #[arg(long, default_value = "fast", allow_hyphen_values = true)]
-    pub law: String,
+    /// The law: `fast` (viscoelastic, with --beta) or a constant eps in [0, 1] (default:
+    /// fast; 1, elastic, for the spatial scheme, the set-up of the SPARTA comparison).
+    #[arg(long, allow_hyphen_values = true)]
+    pub law: Option<String>,
     /// beta of the viscoelastic law in simulation units (T = m = sigma = 1).
     #[arg(long, default_value = "0.3", allow_hyphen_values = true)]
     pub beta: String,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; 1 for the serial exact scheme).
     #[arg(long, allow_hyphen_values = true)]
     pub threads: Option<String>,
     /// Output format.

@@ -93,6 +93,27 @@ fn bench_dsmc_reports_rates_and_memory() {
     );
     let bytes = number(&report["bytes_per_particle"]);
     assert!((24.0..200.0).contains(&bytes), "{bytes}");
+    // Every collision is an accepted candidate.
+    assert!(number(&report["candidates_per_collision"]) >= 1.0);
+    // The exact scheme's speed classes: about 1.5 candidates per collision in a
+    // near-Maxwellian gas (the count over 5000 collisions is sharp to ~1 %; the blocks'
+    // single majorant needs ~4).
+    let exact = json_of(&[
+        "bench",
+        "dsmc",
+        "--scheme",
+        "exact",
+        "--particles",
+        "20000",
+        "--collisions",
+        "0.5",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    let per_collision = number(&exact["candidates_per_collision"]);
+    assert!((1.0..1.8).contains(&per_collision), "{per_collision}");
     assert_rejected(&["bench", "dsmc", "--law", "1.5"], "--law");
     assert_rejected(&["bench", "dsmc", "--scheme", "fast"], "--scheme");
     assert_rejected(&["bench", "emd", "--calendar", "tree"], "--calendar");

@@ -22,6 +22,7 @@
 //! sums are reduced in a fixed order. See [`kernel`] for the collision scheme and its
 //! exactness, [`crate::theory`] for the kinetic theory the tests compare with.
 
+mod cell_sort;
 mod homogeneous;
 pub mod kernel;
 mod spatial;
@@ -151,7 +152,9 @@ pub struct Snapshot<const D: usize, O> {
     pub speed_bound: f64,
     /// [`Scheme::Exact`]: 64-bit draws taken from the random stream.
     pub draws: u64,
-    /// The temperature that sets the next step of a stepped scheme.
+    /// The temperature that sets the next step of a stepped scheme; for
+    /// [`Scheme::Exact`], the temperature at the last recompute of the speed bound, which
+    /// sets the width of the speed classes.
     pub temperature: f64,
 }
 

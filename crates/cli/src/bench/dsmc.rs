@@ -14,7 +14,16 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     use gas::dsmc::{point_gas, Scheme, SpatialOptions, StepSize};
     use gas::{Engine, HomogeneousDsmc, SpatialDsmc};
     use restitution::{Constant, ScaledForm, Viscoelastic};
-    let n = parse_count("--particles", &args.particles, 2, 1_000_000_000)?;
+    let spatial = matches!(args.scheme, DsmcSchemeChoice::Spatial);
+    let particles =
+        args.particles
+            .as_deref()
+            .unwrap_or(if spatial { "1000000" } else { "10000000" });
+    let n = parse_count("--particles", particles, 2, 1_000_000_000)?;
+    let law_name = args
+        .law
+        .as_deref()
+        .unwrap_or(if spatial { "1" } else { "fast" });
     let phi = crate::output::parse_number(
         "--packing-fraction",
         &args.packing_fraction,
@@ -36,7 +45,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         DsmcSchemeChoice::Exact => (Some(Scheme::Exact), "exact"),
         DsmcSchemeChoice::Spatial => (None, "spatial"),
     };
-    let law: Box<dyn Restitution> = if args.law == "fast" {
+    let law: Box<dyn Restitution> = if law_name == "fast" {
         let beta = crate::output::parse_number(
             "--beta",
             &args.beta,
@@ -47,13 +56,15 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     } else {
         let eps = crate::output::parse_number(
             "--law",
-            &args.law,
+            law_name,
             crate::output::Allowed::between("fast, or a constant eps", 0.0, 1.0),
         )?;
         Box::new(Constant::new(eps).map_err(|e| CliError::library("--law", e))?)
     };
     let threads = match &args.threads {
         Some(t) => parse_count("--threads", t, 1, 4096)?,
+        // The exact scheme is serial: one thread unless asked otherwise.
+        None if matches!(args.scheme, DsmcSchemeChoice::Exact) => 1,
         None => rayon::current_num_threads(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -63,6 +74,8 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
     let collisions = (per_particle * n as f64 / 2.0).round().max(1.0) as u64;
     let (mut rates, mut bytes) = (Vec::new(), 0);
+    // Candidates drawn and collisions accepted in the timed runs (the majorant's efficiency).
+    let (mut candidates, mut accepted) = (0u64, 0u64);
     for repeat in 0..repeats {
         let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 1 + repeat as u64)
             .map_err(|e| CliError::argument("--particles", e))?;
@@ -85,19 +98,23 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
             }
         };
         pool.install(|| engine.run_collisions(n as u64 / 2));
-        let before = engine.counters().collisions;
+        let before = engine.counters();
         let start = Instant::now();
         pool.install(|| engine.run_collisions(collisions));
         let seconds = start.elapsed().as_secs_f64();
-        rates.push((engine.counters().collisions - before) as f64 / seconds);
+        let after = engine.counters();
+        rates.push((after.collisions - before.collisions) as f64 / seconds);
+        candidates += after.events - before.events;
+        accepted += after.collisions - before.collisions;
         bytes = engine.memory_bytes();
     }
     let [median, min, max] = median_min_max(rates);
+    let candidates_per_collision = candidates as f64 / accepted.max(1) as f64;
     let report = serde_json::json!({
         "particles": n,
         "packing_fraction": phi,
         "scheme": scheme_name,
-        "law": args.law,
+        "law": law_name,
         "threads": threads,
         "collisions_per_repeat": collisions,
         "repeats": repeats,
@@ -109,15 +126,16 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         "collisions_per_second_per_core": median / threads as f64,
         "particles_per_cell": if scheme.is_none() { Some(per_cell) } else { None },
         "bytes_per_particle": bytes as f64 / n as f64,
+        "candidates_per_collision": candidates_per_collision,
     });
     let mut out = stdout();
     match args.format {
         ReportFormat::Json => crate::output::write_json(&mut out, &report)?,
         ReportFormat::Table => writeln!(
             out,
-            "N = {n}, phi = {phi}, {} scheme, law {}: {median:.3e} collisions/s (min {min:.3e}, max {max:.3e}) on {threads} threads, {:.3e} per thread, {:.0} bytes/particle (median of {repeats})",
+            "N = {n}, phi = {phi}, {} scheme, law {}: {median:.3e} collisions/s (min {min:.3e}, max {max:.3e}) on {threads} threads, {:.3e} per thread, {:.0} bytes/particle, {candidates_per_collision:.3} candidates/collision (median of {repeats})",
             scheme_name,
-            args.law,
+            law_name,
             median / threads as f64,
             bytes as f64 / n as f64
         )?,

@@ -1,4 +1,9 @@
-//! The homogeneous DSMC engine: velocities only, exact serial or blocked parallel.
+//! The homogeneous DSMC engine: velocities only, exact serial or blocked parallel. The
+//! exact scheme runs the process with the speed-class majorants of [`classes`] (about 1.5
+//! candidates per collision instead of the kernel's 4); the blocks keep the kernel's single
+//! majorant, which is faster there (see [`block_step`]).
+
+mod classes;
 
 use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
 use super::species::Species;
@@ -11,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::rng::{Purpose, Stream};
 use crate::system::{dot, System, Vector};
 use crate::theory;
+use classes::{class_width, Classes};
 use rayon::prelude::*;
 use restitution::Restitution;
 
@@ -42,7 +48,14 @@ struct Core<const D: usize> {
     /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
     speed_bound: f64,
     stream: Stream,
+    /// Blocks: the temperature at the end of the last step (sets the step and the class
+    /// width); exact: at the last recompute of the bound (sets the class width).
     temperature: f64,
+    /// [`Scheme::Exact`]: the speed classes of the records (sorted by class) and the class
+    /// of each record; `None` until the first run after a start, a restore or a recompute
+    /// of the bound (the sort is then the identity on records saved sorted).
+    classes: Option<Classes>,
+    class: Vec<u8>,
 }
 
 /// DSMC of a spatially homogeneous granular gas (see the [module](super) documentation).
@@ -87,6 +100,8 @@ impl<const D: usize> HomogeneousDsmc<D> {
             speed_bound: 0.0,
             stream: Stream::new(seed, Purpose::Exact, 0, 0),
             temperature: 0.0,
+            classes: None,
+            class: Vec::new(),
         };
         let store = make_store(&core.species, system.velocities, &index);
         let (bound, moments) = match &store {
@@ -211,8 +226,9 @@ impl<const D: usize> HomogeneousDsmc<D> {
         self.core.volume
     }
 
-    /// The temperature at the end of the last step (blocks) or at the start (exact); use
-    /// `observe::temperature(self.system())` for the current one.
+    /// The temperature at the end of the last step (blocks) or at the last recompute of the
+    /// speed bound, every N collisions (exact); use `observe::temperature(self.system())`
+    /// for the current one.
     pub fn step_temperature(&self) -> f64 {
         self.core.temperature
     }
@@ -236,8 +252,9 @@ impl<const D: usize> HomogeneousDsmc<D> {
         &self.system
     }
 
-    /// Bytes held by the engine: records, the re-mixing buffer, the output of
-    /// [`HomogeneousDsmc::system`] once taken, and the species tables.
+    /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
+    /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
+    /// and the species tables.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let records = match &self.store {
@@ -247,7 +264,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         let s = &self.system;
         let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
             + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
-        records + output + self.core.species.memory_bytes()
+        records + self.core.class.capacity() + output + self.core.species.memory_bytes()
     }
 
     /// Runs until `collisions` more collisions have happened. The exact scheme stops at
@@ -347,9 +364,10 @@ fn run_records<const D: usize, R: Record<D>>(
     }
 }
 
-/// The exact scheme: the kernel over all particles, its speed bound recomputed from scratch
-/// (about the current mean velocity) after every N collisions: it only ever rises inside
-/// the kernel, while inelastic collisions slow particles down.
+/// The exact scheme: the speed-class process over all particles (records kept sorted by
+/// class), its speed bound, reference velocity, temperature and classes recomputed from
+/// scratch (about the current mean velocity) after every N collisions: the bound only ever
+/// rises inside the kernel, while inelastic collisions slow particles down.
 fn run_exact<const D: usize, R: Record<D>>(
     core: &mut Core<D>,
     records: &mut [R],
@@ -376,18 +394,33 @@ fn run_exact<const D: usize, R: Record<D>>(
             law: core.law.as_ref(),
             species: &core.species,
         };
-        core.time = collider.run(
+        let classes = core.classes.get_or_insert_with(|| {
+            let width = class_width(core.temperature, core.species.min_mass, core.speed_bound);
+            Classes::sort(
+                records,
+                &mut core.class,
+                &core.reference,
+                width,
+                core.speed_bound,
+            )
+        });
+        core.time = collider.run_classes(
             records,
+            &mut core.class,
+            classes,
             &core.reference,
             pair_rate,
             window,
-            &mut core.speed_bound,
             &mut core.stream,
             &mut core.tally,
         );
+        core.speed_bound = classes.bound();
         if core.tally.collisions == next_recompute {
-            core.reference = Moments::of(records, &core.species).mean();
+            let moments = Moments::of(records, &core.species);
+            core.reference = moments.mean();
+            core.temperature = moments.spread / (n as usize * D) as f64;
             core.speed_bound = kernel::speed_bound(records, &core.reference);
+            core.classes = None;
         }
     }
 }
@@ -485,7 +518,9 @@ fn run_blocks<const D: usize, R: Record<D>>(
 
 /// One step: every destination block gathers its particles (lane c from block
 /// b + offset_c) and their speed bound about the reference velocity (the gas's mean at the
-/// end of the last step), runs the exact process for `dt`, shuffles itself and sums its
+/// end of the last step), runs the exact process for `dt` with the kernel's single
+/// majorant (speed classes halve the candidates here but cost twice the time: the blocks are
+/// small and re-sorted every step; docs/performance.md), shuffles itself and sums its
 /// mass, momentum and m |v - reference|^2. Returns the tally, the mean velocity and the
 /// spread (sum of m |v - <v>|^2) of the gas.
 fn block_step<const D: usize, R: Record<D>>(
@@ -545,6 +580,34 @@ fn block_step<const D: usize, R: Record<D>>(
     (tally, mean, spread)
 }
 
+/// Lanes ahead of the one being copied whose source [`gather`] asks the processor for.
+const PREFETCH_LANES: usize = 4;
+
+/// Asks the processor to bring every cache line of `records` into cache (a hint: results
+/// never depend on it).
+#[inline(always)]
+fn prefetch<R>(records: &[R]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        let base = records.as_ptr().cast::<i8>();
+        let bytes = std::mem::size_of_val(records);
+        let mut offset = 0;
+        while offset < bytes {
+            // SAFETY: prefetching is a hint that never faults; every address lies in
+            // `records`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(offset)) };
+            offset += 64;
+        }
+        if bytes > 0 {
+            // SAFETY: as above; the last byte of `records`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(bytes - 1)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = records;
+}
+
 /// Copies a lane as a fixed-size array (inline moves rather than a call to memmove).
 #[inline(always)]
 fn copy_lane<R: Copy>(from: &[R], to: &mut [R]) {
@@ -571,8 +634,14 @@ fn gather<const D: usize, R: Record<D>>(
             largest = largest.max(dot(&d, &d));
         }
     };
-    for (c, &offset) in offsets.iter().enumerate() {
-        let source = layout.start((b + offset) % layout.count) + c * LANE;
+    let source_of = |c: usize| layout.start((b + offsets[c]) % layout.count) + c * LANE;
+    for c in 0..offsets.len() {
+        // The lanes come from all over the records: ask for one a few lanes ahead.
+        if c + PREFETCH_LANES < offsets.len() {
+            let ahead = source_of(c + PREFETCH_LANES);
+            prefetch(&now[ahead..ahead + LANE]);
+        }
+        let source = source_of(c);
         let lane = &mut block[c * LANE..(c + 1) * LANE];
         copy_lane(&now[source..source + LANE], lane);
         note(lane);

@@ -118,8 +118,10 @@ impl Collider<'_> {
     /// bound on exit. Returns the time reached: `window.end`, or the time of the last
     /// collision if `max_collisions` were reached first. Nothing happens (and `window.end`
     /// is returned) if the group cannot collide (fewer than 2 particles, or all at
-    /// `reference`).
+    /// `reference`). (The homogeneous engine runs the speed-class process instead; this
+    /// single-majorant process is its reference in the tests.)
     #[allow(clippy::too_many_arguments)]
+    #[cfg_attr(not(test), allow(dead_code))]
     pub fn run<const D: usize, R: Record<D>>(
         &self,
         group: &mut [R],
@@ -239,10 +241,11 @@ impl Collider<'_> {
     }
 
     /// The collision of a and b (relative velocity g = v_a - v_b, |g|^2 = g2 > 0) with a random
-    /// impact direction. Returns the larger |v - reference|^2 of the two afterwards.
+    /// impact direction. Returns the larger |v - reference|^2 of the two afterwards. (Also
+    /// the collision of the speed-class process of the homogeneous engine.)
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn collide<const D: usize, R: Record<D>>(
+    pub(crate) fn collide<const D: usize, R: Record<D>>(
         &self,
         a: &mut R,
         b: &mut R,

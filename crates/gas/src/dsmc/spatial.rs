@@ -1,13 +1,14 @@
 //! The spatially resolved DSMC engine: free streaming in a periodic box, then the exact
 //! majorant process inside each collision cell.
 
-use super::kernel::{self, Collider, Moments, Simulator};
+use super::cell_sort::CellSorter;
+use super::kernel::{self, Collider, Moments, Record, Simulator};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
 use crate::rng::{Purpose, Stream};
-use crate::system::{wrap, System, Vector};
+use crate::system::{dot, wrap, System, Vector};
 use crate::theory;
 use rayon::prelude::*;
 use restitution::Restitution;
@@ -77,6 +78,8 @@ pub struct SpatialDsmc<const D: usize> {
     tally: Counters,
     temperature: f64,
     system: System<D>,
+    /// Scratch of the sort into cells.
+    sorter: CellSorter,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -176,6 +179,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 radii: Vec::new(),
                 masses: Vec::new(),
             },
+            sorter: CellSorter::default(),
         })
     }
 
@@ -283,13 +287,14 @@ impl<const D: usize> SpatialDsmc<D> {
         &self.system
     }
 
-    /// Bytes held between steps: records, the output of [`SpatialDsmc::system`] once
-    /// taken, the species tables. A step also allocates the sort's buffer (N/2 records) and
-    /// one entry per occupied cell, freed at its end.
+    /// Bytes held between steps: records, the sort's scratch (4 per particle and per
+    /// cell), the output of [`SpatialDsmc::system`] once taken, the species tables. A step
+    /// also allocates one entry per occupied cell, freed at its end.
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let s = &self.system;
         self.simulators.capacity() * size_of::<Simulator<D>>()
+            + self.sorter.memory_bytes()
             + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
             + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
             + self.species.memory_bytes()
@@ -351,13 +356,15 @@ impl<const D: usize> SpatialDsmc<D> {
     fn step(&mut self, dt: f64) {
         let (length, cells) = (self.length, self.cells_per_side);
         let width = self.cell_width();
-        self.simulators.par_iter_mut().for_each(|p| {
+        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        let stream = |p: &mut Simulator<D>| {
             for k in 0..D {
                 p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
             }
-        });
-        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
-        let starts = sort_into_cells(&mut self.simulators, key, cells.pow(D as u32));
+        };
+        let starts =
+            self.sorter
+                .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key);
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
             law: self.law.as_ref(),
@@ -370,21 +377,27 @@ impl<const D: usize> SpatialDsmc<D> {
             .into_par_iter()
             .map(|cell| {
                 let mut tally = Counters::default();
-                if cell.len() >= 2 {
-                    let mean = Moments::of(cell, species).mean();
-                    let mut bound = kernel::speed_bound(cell, &mean);
-                    let mut rng = Stream::new(seed, Purpose::Cell, step, key(&cell[0]));
-                    collider.run_for(
-                        cell,
-                        &mean,
-                        pair_rate,
-                        (0.0, dt),
-                        &mut bound,
-                        &mut rng,
-                        &mut tally,
-                    );
+                let (mass, momentum) = mass_and_momentum(cell, species);
+                if cell.len() < 2 {
+                    return (tally, spread_about_mean(cell, species, mass, momentum));
                 }
-                (tally, Moments::of(cell, species))
+                let mean = scaled(&momentum, mass);
+                let mut bound = kernel::speed_bound(cell, &mean);
+                let mut rng = Stream::new(seed, Purpose::Cell, step, key(&cell[0]));
+                collider.run_for(
+                    cell,
+                    &mean,
+                    pair_rate,
+                    (0.0, dt),
+                    &mut bound,
+                    &mut rng,
+                    &mut tally,
+                );
+                if tally.collisions == 0 {
+                    return (tally, spread_about_mean(cell, species, mass, momentum));
+                }
+                let (mass, momentum) = mass_and_momentum(cell, species);
+                (tally, spread_about_mean(cell, species, mass, momentum))
             })
             .collect();
         for (t, _) in &results {
@@ -396,63 +409,76 @@ impl<const D: usize> SpatialDsmc<D> {
     }
 }
 
+/// The mass and momentum of a cell, summed in the order of [`Moments::of`] (so bit for bit
+/// its values), in one pass, without a mass lookup per particle for one species.
+#[inline]
+fn mass_and_momentum<const D: usize>(cell: &[Simulator<D>], species: &Species) -> (f64, Vector<D>) {
+    // -0.0: the start of std's float `Sum`, which `Moments::of` uses.
+    let mut mass = -0.0;
+    let mut momentum = [-0.0; D];
+    let mut add = |m: f64, v: &Vector<D>| {
+        mass += m;
+        for k in 0..D {
+            momentum[k] += m * v[k];
+        }
+    };
+    if species.len() == 1 {
+        let m = species.masses[0];
+        cell.iter().for_each(|r| add(m, &r.velocity));
+    } else {
+        cell.iter()
+            .for_each(|r| add(species.masses[r.species()], &r.velocity));
+    }
+    (mass, momentum)
+}
+
+/// The [`Moments`] of a cell from its mass and momentum (as [`Moments::of`] computes them,
+/// bit for bit): the spread sum of m |v - mean|^2 in a second pass.
+#[inline]
+fn spread_about_mean<const D: usize>(
+    cell: &[Simulator<D>],
+    species: &Species,
+    mass: f64,
+    momentum: Vector<D>,
+) -> Moments<D> {
+    let mean = scaled(&momentum, mass);
+    let term = |m: f64, v: &Vector<D>| {
+        let d: Vector<D> = std::array::from_fn(|k| v[k] - mean[k]);
+        m * dot(&d, &d)
+    };
+    let spread = if species.len() == 1 {
+        let m = species.masses[0];
+        cell.iter().map(|r| term(m, &r.velocity)).sum()
+    } else {
+        cell.iter()
+            .map(|r| term(species.masses[r.species()], &r.velocity))
+            .sum()
+    };
+    Moments {
+        mass,
+        momentum,
+        spread,
+    }
+}
+
+/// x / mass (zero for no mass), as [`Moments::mean`].
+#[inline]
+fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
+    if mass > 0.0 {
+        std::array::from_fn(|k| x[k] / mass)
+    } else {
+        [0.0; D]
+    }
+}
+
 /// Linear index of the cell holding x (in [0, L)^D).
 #[inline]
 fn cell_key<const D: usize>(x: &Vector<D>, width: f64, cells: u64) -> u64 {
     (0..D).rev().fold(0, |key, k| {
-        key * cells + ((x[k] / width) as u64).min(cells - 1)
+        // Through i64 (x / width is in [0, cells)): the same value as `as u64`, which x86
+        // converts with a branchy sequence of instructions.
+        key * cells + ((x[k] / width) as i64 as u64).min(cells - 1)
     })
-}
-
-/// Counting sort pays while the cells are at most this many per particle (its counts array
-/// is O(cells)); beyond, a stable comparison sort.
-const COUNTING_SORT_CELLS_PER_PARTICLE: u64 = 4;
-
-/// Sorts `sims` by `key` (a cell index below `cells`) stably, and returns where each
-/// non-empty cell starts. Stable: the order within a cell is the order before, so a
-/// counting sort (O(N + cells): keys, counts, one scatter) gives exactly what the stable
-/// merge sort gives, which it replaces where the cells are few enough. The merge sort took
-/// ~80 % of the instructions of a step (callgrind, N = 1e5, 15.6 particles per cell).
-fn sort_into_cells<T: Copy + Send + Sync>(
-    sims: &mut Vec<T>,
-    key: impl Fn(&T) -> u64 + Sync,
-    cells: u64,
-) -> Vec<usize> {
-    if cells > COUNTING_SORT_CELLS_PER_PARTICLE * sims.len() as u64 {
-        sims.par_sort_by_key(&key);
-        let sims = &*sims;
-        return (0..sims.len())
-            .into_par_iter()
-            .filter(|&i| i == 0 || key(&sims[i]) != key(&sims[i - 1]))
-            .collect();
-    }
-    let keys: Vec<u64> = sims.par_iter().map(&key).collect();
-    let mut next = vec![0usize; cells as usize];
-    for &k in &keys {
-        next[k as usize] += 1;
-    }
-    let mut starts = Vec::new();
-    let mut at = 0;
-    for slot in next.iter_mut() {
-        let count = *slot;
-        if count > 0 {
-            starts.push(at);
-        }
-        *slot = at;
-        at += count;
-    }
-    let mut sorted = Vec::with_capacity(sims.len());
-    let spare = sorted.spare_capacity_mut();
-    for (sim, &k) in sims.iter().zip(&keys) {
-        let slot = &mut next[k as usize];
-        spare[*slot].write(*sim);
-        *slot += 1;
-    }
-    // SAFETY: the counts of all cells sum to sims.len(), so the scatter wrote every slot
-    // 0..sims.len() exactly once.
-    unsafe { sorted.set_len(sims.len()) };
-    *sims = sorted;
-    starts
 }
 
 fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
@@ -466,35 +492,4 @@ fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mu
     }
     parts.push(data);
     parts
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The counting sort gives exactly the stable comparison sort's order and cell starts
-    /// (many particles per cell, empty cells, the order within a cell kept).
-    #[test]
-    fn counting_sort_is_the_stable_sort() {
-        let mut state = 7u64;
-        let items: Vec<(u64, u32)> = (0..5000)
-            .map(|i| {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((state >> 33) % 700, i)
-            })
-            .collect();
-        let key = |x: &(u64, u32)| x.0;
-        let mut counted = items.clone();
-        let starts = sort_into_cells(&mut counted, key, 700);
-        let mut merged = items.clone();
-        // More cells than COUNTING_SORT_CELLS_PER_PARTICLE per item: the comparison sort.
-        let merged_starts = sort_into_cells(&mut merged, key, 4 * 5000 + 1);
-        assert_eq!(counted, merged);
-        assert_eq!(starts, merged_starts);
-        let mut expected = items;
-        expected.sort_by_key(key);
-        assert_eq!(counted, expected);
-    }
 }

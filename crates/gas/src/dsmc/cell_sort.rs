@@ -1,0 +1,176 @@
+//! Sorting the spatial engine's particles into collision cells, in place.
+//!
+//! A stable counting sort: one key per particle (its cell), counts per cell, each
+//! particle's place from the running counts, and the permutation applied in place by
+//! following its cycles. Stable: the order within a cell is the order before, so the result
+//! is exactly that of any stable sort (the merge sort this replaced, which took ~80 % of the
+//! instructions of a step). In place: the only extra memory is 4 bytes per particle (the
+//! places) and 4 per cell, where a scatter into a second array would double the 56 bytes
+//! of a record.
+
+use rayon::prelude::*;
+
+/// Counting sort pays while the cells are at most this many per particle (its counts array
+/// is O(cells)); beyond, a stable comparison sort.
+const COUNTING_SORT_CELLS_PER_PARTICLE: u64 = 4;
+
+/// The scratch arrays of the sort, kept between steps.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct CellSorter {
+    /// Per particle: its cell, then its place in the sorted order.
+    places: Vec<u32>,
+    /// Per cell: particles counted, then the next free place.
+    counts: Vec<u32>,
+}
+
+impl CellSorter {
+    /// Bytes held between steps.
+    pub fn memory_bytes(&self) -> usize {
+        (self.places.capacity() + self.counts.capacity()) * 4
+    }
+
+    /// Applies `update` to every item (in parallel), then sorts the items stably by `key`
+    /// (a cell index below `cells`), and returns where each non-empty cell starts.
+    pub fn update_and_sort<T: Copy + Send + Sync>(
+        &mut self,
+        items: &mut [T],
+        cells: u64,
+        update: impl Fn(&mut T) + Sync,
+        key: impl Fn(&T) -> u64 + Sync,
+    ) -> Vec<usize> {
+        let n = items.len();
+        let counting = cells <= COUNTING_SORT_CELLS_PER_PARTICLE * n as u64
+            && cells <= u32::MAX as u64
+            && n <= u32::MAX as usize;
+        if !counting {
+            items.par_iter_mut().for_each(&update);
+            items.par_sort_by_key(&key);
+            let items = &*items;
+            return (0..n)
+                .into_par_iter()
+                .filter(|&i| i == 0 || key(&items[i]) != key(&items[i - 1]))
+                .collect();
+        }
+        self.places.resize(n, 0);
+        const CHUNK: usize = 4096;
+        items
+            .par_chunks_mut(CHUNK)
+            .zip(self.places.par_chunks_mut(CHUNK))
+            .for_each(|(items, places)| {
+                for (item, place) in items.iter_mut().zip(places) {
+                    update(item);
+                    *place = key(item) as u32;
+                }
+            });
+        // Counts per chunk of particles (one chunk per thread, if the counts stay below N):
+        // the place of a particle is the start of its cell, plus the particles of that
+        // cell in earlier chunks, plus those before it in its chunk: the stable order,
+        // whatever the number of chunks.
+        let cells = cells as usize;
+        let threads = rayon::current_num_threads().max(1);
+        let chunks = if cells.saturating_mul(threads) <= n {
+            threads
+        } else {
+            1
+        };
+        let chunk = n.div_ceil(chunks).max(1);
+        self.counts.clear();
+        self.counts.resize(cells * chunks, 0);
+        self.counts
+            .par_chunks_mut(cells)
+            .zip(self.places.par_chunks(chunk))
+            .for_each(|(counts, keys)| {
+                for &k in keys {
+                    counts[k as usize] += 1;
+                }
+            });
+        let mut starts = Vec::new();
+        let mut at = 0u32;
+        for cell in 0..cells {
+            let first = at;
+            for c in 0..chunks {
+                let slot = &mut self.counts[c * cells + cell];
+                let count = *slot;
+                *slot = at;
+                at += count;
+            }
+            if at > first {
+                starts.push(first as usize);
+            }
+        }
+        self.counts
+            .par_chunks_mut(cells)
+            .zip(self.places.par_chunks_mut(chunk))
+            .for_each(|(next, places)| {
+                for place in places.iter_mut() {
+                    let slot = &mut next[*place as usize];
+                    *place = *slot;
+                    *slot += 1;
+                }
+            });
+        permute_in_place(items, &mut self.places);
+        starts
+    }
+}
+
+/// Moves items[i] to items[places[i]] for every i (`places` a permutation of 0..n, left as
+/// the identity), following the permutation's cycles: each item is read and written once.
+fn permute_in_place<T: Copy>(items: &mut [T], places: &mut [u32]) {
+    for i in 0..items.len() {
+        let mut to = places[i] as usize;
+        if to == i {
+            continue;
+        }
+        let mut carried = items[i];
+        while to != i {
+            let displaced = items[to];
+            let onward = places[to] as usize;
+            items[to] = carried;
+            places[to] = to as u32;
+            carried = displaced;
+            to = onward;
+        }
+        items[i] = carried;
+        places[i] = i as u32;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counting sort gives exactly the stable comparison sort's order and cell starts
+    /// (many particles per cell, empty cells, the order within a cell kept), and so does
+    /// the comparison sort it falls back to for many cells.
+    #[test]
+    fn counting_sort_is_the_stable_sort() {
+        let mut state = 7u64;
+        let items: Vec<(u64, u32)> = (0..5000)
+            .map(|i| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                ((state >> 33) % 700, i)
+            })
+            .collect();
+        let key = |x: &(u64, u32)| x.0;
+        let mut expected = items.clone();
+        expected.sort_by_key(key);
+        let expected_starts: Vec<usize> = (0..expected.len())
+            .filter(|&i| i == 0 || expected[i].0 != expected[i - 1].0)
+            .collect();
+        let mut sorter = CellSorter::default();
+        for cells in [700, 3000, 4 * 5000 + 1] {
+            let mut sorted = items.clone();
+            let starts = sorter.update_and_sort(&mut sorted, cells, |_| {}, key);
+            assert_eq!(sorted, expected, "{cells} cells");
+            assert_eq!(starts, expected_starts, "{cells} cells");
+        }
+        // The update is applied before the keys are taken.
+        let mut shifted = items.clone();
+        sorter.update_and_sort(&mut shifted, 700, |x| x.0 = (x.0 + 1) % 700, key);
+        let mut want: Vec<(u64, u32)> = items.iter().map(|&(k, i)| ((k + 1) % 700, i)).collect();
+        want.sort_by_key(key);
+        assert_eq!(shifted, want);
+    }
+}
