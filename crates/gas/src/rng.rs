@@ -96,7 +96,7 @@ impl Stream {
 
     /// Uniform in [0, n) from the 32-bit word `x` (Lemire), drawing anew only on rejection.
     #[inline]
-    fn below_u32(&mut self, x: u32, n: u32) -> u32 {
+    pub(crate) fn below_u32(&mut self, x: u32, n: u32) -> u32 {
         let mut m = x as u64 * n as u64;
         if (m as u32) < n {
             let threshold = n.wrapping_neg() % n;

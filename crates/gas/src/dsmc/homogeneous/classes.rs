@@ -215,13 +215,13 @@ impl Classes {
         let x = rng.next_u64();
         let (r, j) = if self.total <= u32::MAX as u64 {
             (
-                below_u32(rng, x as u32, self.total as u32) as usize,
-                below_u32(rng, (x >> 32) as u32, (n - 1) as u32) as usize,
+                rng.below_u32(x as u32, self.total as u32) as usize,
+                rng.below_u32((x >> 32) as u32, (n - 1) as u32) as usize,
             )
         } else {
             (
                 rng.below(self.total) as usize,
-                below_u32(rng, (x >> 32) as u32, (n - 1) as u32) as usize,
+                rng.below_u32((x >> 32) as u32, (n - 1) as u32) as usize,
             )
         };
         let i = self.locate(n, r);
@@ -329,20 +329,6 @@ impl Classes {
 fn speed2<const D: usize, R: Record<D>>(r: &R, reference: &Vector<D>) -> f64 {
     let d: Vector<D> = std::array::from_fn(|k| r.velocity()[k] - reference[k]);
     dot(&d, &d)
-}
-
-/// Uniform in [0, n) from the 32-bit word `x` (Lemire 2019), drawing anew only on
-/// rejection (as `Stream::pair`).
-#[inline]
-fn below_u32(rng: &mut Stream, x: u32, n: u32) -> u32 {
-    let mut m = x as u64 * n as u64;
-    if (m as u32) < n {
-        let threshold = n.wrapping_neg() % n;
-        while (m as u32) < threshold {
-            m = (rng.next_u64() as u32) as u64 * n as u64;
-        }
-    }
-    (m >> 32) as u32
 }
 
 impl Collider<'_> {
