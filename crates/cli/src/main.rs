@@ -12,6 +12,7 @@ mod demo;
 mod error;
 mod output;
 mod progress;
+mod reproduce;
 mod rods;
 mod run;
 
@@ -44,6 +45,25 @@ enum Command {
     /// Giese's vibrating rods: the collision equation, p(eps^2), the rod-chain MD.
     #[command(subcommand)]
     Rods(RodsCommand),
+    /// The figures and tables of the papers, recomputed: CSV, PNG, SVG and a note per ID.
+    Reproduce(ReproduceArgs),
+}
+
+/// Arguments of `haff reproduce`.
+#[derive(Debug, Args)]
+pub struct ReproduceArgs {
+    /// The item to reproduce (see --list), or `all`.
+    #[arg(required_unless_present = "list")]
+    pub id: Option<String>,
+    /// Output directory: ID.csv, ID.png, ID.svg, ID.md per item.
+    #[arg(long, default_value = "reproduce")]
+    pub out: std::path::PathBuf,
+    /// Fewer points and lower orders (seconds for all items).
+    #[arg(long)]
+    pub quick: bool,
+    /// One line per ID: paper, figure or table, typical time, what it shows.
+    #[arg(long, conflicts_with = "id")]
+    pub list: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -500,6 +520,7 @@ fn run(command: Command) -> CliResult {
         Command::Rods(RodsCommand::Table(args)) => rods::table(&args),
         Command::Rods(RodsCommand::TwoRods(args)) => rods::two_rods(&args),
         Command::Rods(RodsCommand::Chain(args)) => rods::chain(&args),
+        Command::Reproduce(args) => reproduce::reproduce(&args),
     }
 }
 

@@ -35,3 +35,39 @@ impl sim::Progress for Bar {
         self.bar.finish_and_clear();
     }
 }
+
+/// A bar over the steps of a command (e.g. the items of `haff reproduce all`), with lines
+/// printed above it.
+pub struct Steps {
+    bar: ProgressBar,
+}
+
+impl Steps {
+    pub fn new(total: usize, unit: &str) -> Self {
+        let bar = ProgressBar::new(total as u64);
+        bar.set_style(
+            ProgressStyle::with_template(&format!("{{bar:40}} {{pos}}/{{len}} {unit} {{msg}}"))
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        Steps { bar }
+    }
+
+    /// What is being done now.
+    pub fn message(&mut self, text: &str) {
+        self.bar.set_message(text.to_string());
+    }
+
+    /// One step done.
+    pub fn step(&mut self) {
+        self.bar.inc(1);
+    }
+
+    /// A line on stdout above the bar.
+    pub fn println(&mut self, line: &str) {
+        self.bar.suspend(|| println!("{line}"));
+    }
+
+    pub fn finish(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}

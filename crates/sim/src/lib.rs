@@ -29,6 +29,7 @@ pub mod observer;
 pub mod outdir;
 pub mod output;
 pub mod plot;
+pub mod reproduce;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;

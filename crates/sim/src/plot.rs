@@ -260,64 +260,84 @@ impl Figure {
             .margin_left(10)
             .x_label_area_size(70)
             .y_label_area_size(105);
-        let label = |v: &f64| tick_label(*v);
-        macro_rules! finish {
-            ($chart:expr) => {{
-                let mut chart = $chart;
-                chart
-                    .configure_mesh()
-                    .x_desc(self.x.as_str())
-                    .y_desc(self.y.as_str())
-                    .axis_desc_style((FONT, AXIS_LABEL_SIZE))
-                    .label_style((FONT, TICK_SIZE))
-                    .x_label_formatter(&label)
-                    .y_label_formatter(&label)
-                    .x_labels(8)
-                    .y_labels(8)
-                    .bold_line_style(RGBColor(215, 215, 215))
-                    .light_line_style(RGBColor(245, 245, 245))
-                    .max_light_lines(4)
-                    .draw()?;
-                for (index, curve) in self.curves.iter().enumerate() {
-                    let color = PALETTE[index % PALETTE.len()];
-                    let data: Vec<(f64, f64)> = curve
-                        .points
-                        .iter()
-                        .copied()
-                        .filter(|p| self.drawable(p))
-                        .collect();
-                    match (curve.kind, dashes(curve.kind, index)) {
-                        (Kind::Printed, _) => {
-                            chart.draw_series(
-                                data.iter().map(|&p| Circle::new(p, 6, color.filled())),
-                            )?;
-                        }
-                        (_, None) => {
-                            // Segment by segment: plotters joins a thick polyline with
-                            // miters, which spike far out of the plot at sharp zigzags
-                            // of noisy data.
-                            chart.draw_series(data.windows(2).map(|pair| {
-                                PathElement::new(pair.to_vec(), color.stroke_width(LINE_WIDTH))
-                            }))?;
-                        }
-                        (_, Some((dash, gap))) => {
-                            chart.draw_series(DashedLineSeries::new(
-                                data,
-                                dash,
-                                gap,
-                                color.stroke_width(LINE_WIDTH),
-                            ))?;
-                        }
-                    }
+        // A log axis is drawn as a linear axis of log10 (plotters' own log axis drops the
+        // labels of some decades over wide ranges): over two decades or more only the
+        // decades are labelled, over less every tick, as its value.
+        let to_axis = |log: bool, v: f64| if log { v.log10() } else { v };
+        let (span_x, span_y) = (x1.log10() - x0.log10(), y1.log10() - y0.log10());
+        let log_label = |v: f64, span: f64| {
+            if span >= 2.0 {
+                if (v - v.round()).abs() < 1e-6 {
+                    tick_label(10f64.powi(v.round() as i32))
+                } else {
+                    String::new()
                 }
-            }};
-        }
-        match (self.log_x, self.log_y) {
-            (false, false) => finish!(builder.build_cartesian_2d(x0..x1, y0..y1)?),
-            (true, false) => finish!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1)?),
-            (false, true) => finish!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale())?),
-            (true, true) => {
-                finish!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?)
+            } else {
+                let value = 10f64.powf(v);
+                let digits = 10f64.powi(2 - value.log10().floor() as i32);
+                tick_label((value * digits).round() / digits)
+            }
+        };
+        let x_label = |v: &f64| {
+            if self.log_x {
+                log_label(*v, span_x)
+            } else {
+                tick_label(*v)
+            }
+        };
+        let y_label = |v: &f64| {
+            if self.log_y {
+                log_label(*v, span_y)
+            } else {
+                tick_label(*v)
+            }
+        };
+        let mut chart = builder.build_cartesian_2d(
+            to_axis(self.log_x, x0)..to_axis(self.log_x, x1),
+            to_axis(self.log_y, y0)..to_axis(self.log_y, y1),
+        )?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x.as_str())
+            .y_desc(self.y.as_str())
+            .axis_desc_style((FONT, AXIS_LABEL_SIZE))
+            .label_style((FONT, TICK_SIZE))
+            .x_label_formatter(&x_label)
+            .y_label_formatter(&y_label)
+            .x_labels(if self.log_x { 12 } else { 8 })
+            .y_labels(if self.log_y { 12 } else { 8 })
+            .bold_line_style(RGBColor(215, 215, 215))
+            .light_line_style(RGBColor(245, 245, 245))
+            .max_light_lines(4)
+            .draw()?;
+        for (index, curve) in self.curves.iter().enumerate() {
+            let color = PALETTE[index % PALETTE.len()];
+            let data: Vec<(f64, f64)> = curve
+                .points
+                .iter()
+                .copied()
+                .filter(|p| self.drawable(p))
+                .map(|(x, y)| (to_axis(self.log_x, x), to_axis(self.log_y, y)))
+                .collect();
+            match (curve.kind, dashes(curve.kind, index)) {
+                (Kind::Printed, _) => {
+                    chart.draw_series(data.iter().map(|&p| Circle::new(p, 6, color.filled())))?;
+                }
+                (_, None) => {
+                    // Segment by segment: plotters joins a thick polyline with miters,
+                    // which spike far out of the plot at sharp zigzags of noisy data.
+                    chart.draw_series(data.windows(2).map(|pair| {
+                        PathElement::new(pair.to_vec(), color.stroke_width(LINE_WIDTH))
+                    }))?;
+                }
+                (_, Some((dash, gap))) => {
+                    chart.draw_series(DashedLineSeries::new(
+                        data,
+                        dash,
+                        gap,
+                        color.stroke_width(LINE_WIDTH),
+                    ))?;
+                }
             }
         }
         if legend {
