@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 12] = [
+const CSVS: [(&str, &str); 16] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -51,13 +51,24 @@ const CSVS: [(&str, &str); 12] = [
         "damping_ratio,eps_naive_eq10,eps_improved_corrected,eps_eq12_as_printed,\
          omega0_tc_improved",
     ),
+    (
+        "kinetic-haff",
+        "t_over_t0,time,temperature_emd,temperature_emd_error,temperature_dsmc,haff,\
+         haff_maxwellian",
+    ),
+    ("kinetic-a2", "eps,a2_dsmc,a2_dsmc_error,a2_van_noije_ernst"),
+    (
+        "kinetic-viscoelastic",
+        "time,temperature_emd,temperature_dsmc",
+    ),
+    ("kinetic-viscoelastic-exponent", "time,local_exponent"),
 ];
 
 /// The IDs (every CSV stem that is not an extra `ID-name.csv`).
 fn ids() -> Vec<&'static str> {
     CSVS.iter()
         .map(|c| c.0)
-        .filter(|id| *id != "mp2011-table1-errors")
+        .filter(|id| !["mp2011-table1-errors", "kinetic-viscoelastic-exponent"].contains(id))
         .collect()
 }
 

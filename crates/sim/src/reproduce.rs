@@ -16,6 +16,7 @@
 //! Pöschel 2008, delayed recovery). Further papers add their module and their entries to
 //! [`entries`].
 
+pub mod kinetic;
 pub mod mp2011;
 pub mod sp2008;
 
@@ -52,6 +53,7 @@ impl std::fmt::Debug for Entry {
 pub fn entries() -> Vec<Entry> {
     let mut all = mp2011::entries();
     all.extend(sp2008::entries());
+    all.extend(kinetic::entries());
     all
 }
 
