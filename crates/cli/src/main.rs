@@ -64,6 +64,11 @@ pub struct ReproduceArgs {
     /// One line per ID: paper, figure or table, typical time, what it shows.
     #[arg(long, conflicts_with = "id")]
     pub list: bool,
+    /// Also write a Markdown gallery of the items run (their figures, results and
+    /// differences from the papers) to this file, its links relative to it
+    /// (`haff reproduce all --out docs/reproduction --gallery docs/reproduction.md`).
+    #[arg(long)]
+    pub gallery: Option<std::path::PathBuf>,
 }
 
 #[derive(Debug, Subcommand)]

@@ -44,6 +44,7 @@ pub fn reproduce(args: &ReproduceArgs) -> CliResult {
     let ctx = Context::new(&args.out, args.quick);
     let mut bar = Steps::new(chosen.len(), "items");
     let start = Instant::now();
+    let mut results = Vec::new();
     for entry in &chosen {
         bar.message(entry.id);
         let began = Instant::now();
@@ -56,8 +57,18 @@ pub fn reproduce(args: &ReproduceArgs) -> CliResult {
         );
         bar.println(&line);
         bar.step();
+        results.push((*entry, outcome));
     }
     bar.finish();
+    if let Some(page) = &args.gallery {
+        let command = format!(
+            "haff reproduce {id} --out {}{}",
+            args.out.display(),
+            if args.quick { " --quick" } else { "" }
+        );
+        let command = format!("{command} --gallery {}", page.display());
+        sim::reproduce::gallery::write(page, &args.out, &results, &command)?;
+    }
     eprintln!(
         "haff reproduce: {} item(s) in {:.1} s; output in {}",
         chosen.len(),

@@ -77,7 +77,29 @@ fn all_quick_writes_every_file() {
     let dir = std::env::temp_dir().join(format!("haff-reproduce-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let out = dir.to_str().expect("UTF-8 path");
-    let stdout = stdout_of(&["reproduce", "all", "--quick", "--out", out]);
+    let gallery = dir.join("gallery.md");
+    let page = gallery.to_str().expect("UTF-8 path");
+    let stdout = stdout_of(&[
+        "reproduce",
+        "all",
+        "--quick",
+        "--out",
+        out,
+        "--gallery",
+        page,
+    ]);
+    // The gallery shows every item's figure, links relative to the page.
+    let shown = std::fs::read_to_string(&gallery).expect("gallery");
+    for id in ids() {
+        assert!(
+            shown.contains(&format!("## {id}: ")),
+            "{id} not in the gallery"
+        );
+        assert!(
+            shown.contains(&format!("]({id}.png)")),
+            "{id}.png not shown"
+        );
+    }
     // One summary line per ID.
     for id in ids() {
         assert_eq!(

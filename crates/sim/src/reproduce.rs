@@ -16,6 +16,7 @@
 //! Pöschel 2008, delayed recovery). Further papers add their module and their entries to
 //! [`entries`].
 
+pub mod gallery;
 pub mod kinetic;
 pub mod mp2011;
 pub mod sp2008;
