@@ -4,11 +4,12 @@ use crate::error::Result;
 use crate::observer::Sample;
 use crate::validate::{LawSpec, Plan};
 use gas::system::ball_volume;
-use gas::theory::{collision_frequency, haff_temperature, haff_time};
+use gas::theory::{collision_frequency, haff_temperature, haff_time, van_noije_ernst_a2};
 
 /// `temperature.png`: T(t) and, for a monodisperse gas with a constant eps < 1, Haff's law
-/// T0 / (1 + t/tau)^2 with the Enskog collision frequency at T0 (Haff 1983; Brilliantov &
-/// Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; see [`gas::theory`]).
+/// T0 / (1 + t/tau)^2 with the Enskog collision frequency at T0 and (2D, 3D) the cooling
+/// rate of the homogeneous cooling state, (1 + 3 a2/16) times the Maxwellian one (Haff 1983;
+/// Brilliantov & Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; see [`gas::theory`]).
 pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> Result<()> {
     let points: Vec<(f64, f64)> = samples.iter().map(|s| (s.time, s.temperature)).collect();
     let s = &plan.description.system;
@@ -22,10 +23,18 @@ pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> R
                 2 => enskog::<2>(phi, diameter, mass, t0),
                 _ => enskog::<3>(phi, diameter, mass, t0),
             };
+            // The cooling rate of the HCS carries (1 + 3 a2/16), a2 of van Noije & Ernst
+            // (2D, 3D; Brilliantov & Pöschel 2004, Ch. 7).
             let tau = match s.dimension {
                 1 => haff_time::<1>(*eps, omega0),
-                2 => haff_time::<2>(*eps, omega0),
-                _ => haff_time::<3>(*eps, omega0),
+                2 => {
+                    haff_time::<2>(*eps, omega0)
+                        / (1.0 + 3.0 * van_noije_ernst_a2::<2>(*eps) / 16.0)
+                }
+                _ => {
+                    haff_time::<3>(*eps, omega0)
+                        / (1.0 + 3.0 * van_noije_ernst_a2::<3>(*eps) / 16.0)
+                }
             };
             Some((t0, tau))
         }
@@ -34,7 +43,11 @@ pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> R
     match tau {
         Some((t0, tau)) => {
             let haff = move |t: f64| haff_temperature(t0, tau, t);
-            crate::plot::temperature(path, &points, Some(("Haff's law (Enskog rate)", &haff)))
+            crate::plot::temperature(
+                path,
+                &points,
+                Some(("Haff's law (Enskog rate, HCS a2)", &haff)),
+            )
         }
         None => crate::plot::temperature(path, &points, None),
     }
