@@ -10,7 +10,7 @@ pub mod markov;
 pub mod noise;
 pub mod table;
 
-pub use histogram::{eps2_histogram, eps2_summary, Eps2Bin};
+pub use histogram::{eps2_histogram, eps2_quantiles, eps2_summary, Eps2Bin};
 pub use noise::{covariance, NoiseProcess};
 pub use table::Table;
 

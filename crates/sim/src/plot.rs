@@ -17,6 +17,9 @@ use std::path::Path;
 pub enum Kind {
     /// Computed or measured data: a solid line.
     Line,
+    /// Noisy raw data under a smoother curve (e.g. per-collision values under their running
+    /// mean): a thin solid line.
+    Noisy,
     /// A theory or reference curve: a dashed line.
     Theory,
     /// Values printed in a paper (or sparse measurements): markers, no line.
@@ -74,7 +77,7 @@ fn dashes(kind: Kind, index: usize) -> Option<(u32, u32)> {
         (Kind::Theory, round) => Some((14 - 4 * (round as u32 % 3), 8)),
         (Kind::Line, 0) => None,
         (Kind::Line, round) => Some([(3, 5), (20, 6), (8, 4)][(round - 1) % 3]),
-        (Kind::Printed, _) => None,
+        (Kind::Printed, _) | (Kind::Noisy, _) => None,
     }
 }
 
@@ -157,6 +160,11 @@ impl Figure {
     /// Adds a data curve (solid line).
     pub fn line(self, name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         self.curve(Kind::Line, name, points)
+    }
+
+    /// Adds noisy raw data (a thin line).
+    pub fn noisy(self, name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        self.curve(Kind::Noisy, name, points)
     }
 
     /// Adds a theory curve (dashed line).
@@ -323,12 +331,14 @@ impl Figure {
                 (Kind::Printed, _) => {
                     chart.draw_series(data.iter().map(|&p| Circle::new(p, 6, color.filled())))?;
                 }
-                (_, None) => {
+                (kind, None) => {
                     // Segment by segment: plotters joins a thick polyline with miters,
                     // which spike far out of the plot at sharp zigzags of noisy data.
-                    chart.draw_series(data.windows(2).map(|pair| {
-                        PathElement::new(pair.to_vec(), color.stroke_width(LINE_WIDTH))
-                    }))?;
+                    let width = if kind == Kind::Noisy { 1 } else { LINE_WIDTH };
+                    chart
+                        .draw_series(data.windows(2).map(|pair| {
+                            PathElement::new(pair.to_vec(), color.stroke_width(width))
+                        }))?;
                 }
                 (_, Some((dash, gap))) => {
                     chart.draw_series(DashedLineSeries::new(
@@ -365,10 +375,11 @@ impl Figure {
                 (Kind::Printed, _) => {
                     panel.draw(&Circle::new((22, mid), 6, color.filled()))?;
                 }
-                (_, None) => {
+                (kind, None) => {
+                    let width = if kind == Kind::Noisy { 1 } else { LINE_WIDTH };
                     panel.draw(&PathElement::new(
                         vec![(5, mid), (40, mid)],
-                        color.stroke_width(LINE_WIDTH),
+                        color.stroke_width(width),
                     ))?;
                 }
                 (_, Some((dash, gap))) => {
@@ -383,7 +394,7 @@ impl Figure {
                     }
                 }
             }
-            for line in wrap(&curve.name, 26) {
+            for line in wrap(&curve.name, 30) {
                 panel.draw(&Text::new(line, (50, y), font.clone()))?;
                 y += line_height;
             }
@@ -474,7 +485,7 @@ mod tests {
     #[test]
     fn legend_entries_wrap_at_spaces() {
         assert_eq!(
-            wrap("equilibrium (equipartition with the modes)", 26),
+            wrap("equilibrium (equipartition with the modes)", 30),
             vec!["equilibrium (equipartition", "with the modes)"]
         );
     }

@@ -17,6 +17,7 @@
 //! [`entries`].
 
 pub mod gallery;
+pub mod giese;
 pub mod kinetic;
 pub mod mp2011;
 pub mod sp2008;
@@ -55,6 +56,7 @@ pub fn entries() -> Vec<Entry> {
     let mut all = mp2011::entries();
     all.extend(sp2008::entries());
     all.extend(kinetic::entries());
+    all.extend(giese::entries());
     all
 }
 

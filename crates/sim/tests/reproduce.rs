@@ -107,3 +107,105 @@ fn sp2008_asymptotes_and_dashpot() {
     // The rubber example: eps = 0.80097 at beta v^(1/5) = 0.2 (docs/errata.md).
     assert!((value(&o, "rubber_eps") - 0.80097).abs() < 1e-5);
 }
+
+#[test]
+fn giese_fig1_two_rods_equipartition() {
+    let (o, md) = run("giese-fig1");
+    // Quick: M = 8, kappa = 1000. rods/tests/chain.rs (equipartition_m8, c_h = 0.25, 20000
+    // collisions): E_tr 0.0583 +- 0.0008 vs 1/17, eta 0.1406 +- 0.0005 vs 0.1413, energy
+    // drift < 1e-8 (check_equipartition).
+    assert_eq!(value(&o, "modes"), 8.0);
+    assert!((value(&o, "equipartition_per_collision") - 1.0 / 17.0).abs() < 1e-15);
+    assert!((value(&o, "equipartition_time") - 1.0 / 33.0).abs() < 1e-15);
+    assert!((value(&o, "eta_equilibrium") - 0.1413).abs() < 1e-4);
+    let (e, se) = (value(&o, "mean_e_tr"), value(&o, "mean_e_tr_se"));
+    assert!((e - 0.0583).abs() < 4.0 * se && se < 0.006, "{e} +- {se}");
+    assert!((value(&o, "time_mean_e_tr") - 1.0 / 33.0).abs() < 0.004);
+    assert!((value(&o, "mean_eta") - 0.1406).abs() < 0.01);
+    // flat spectrum around 1/(2M) = 0.0625 (docs/giese.md: within 0.0059..0.0074 at M = 75)
+    let (lo, hi) = (value(&o, "spectrum_min"), value(&o, "spectrum_max"));
+    assert!(lo > 0.055 && hi < 0.07, "{lo} {hi}");
+    assert!((value(&o, "rod1_mean_w") + value(&o, "rod2_mean_w") - 0.125).abs() < 1e-12);
+    assert!(value(&o, "energy_drift") < 1e-8);
+    printed_in(&md, e);
+    printed_in(&md, value(&o, "time_mean_e_tr"));
+}
+
+#[test]
+fn giese_fig2_spectral_entropy_relaxes() {
+    let (o, md) = run("giese-fig2");
+    // Quick: M = 4, 8, 16. eta_eq (rods::chain::eta_equilibrium, pinned by
+    // chain::eta_equilibrium_values) within 10 %; relaxation within 20 % of eta_eq in a few
+    // collisions, well before Giese's ~20 (docs/giese.md: 7..28 for M = 10..100).
+    assert!(value(&o, "worst_relative_eta_deviation") < 0.1);
+    for k in 1..=3 {
+        let within = value(&o, &format!("within_20_{k}"));
+        assert!((1.0..=20.0).contains(&within), "M #{k}: {within}");
+        let relax = value(&o, &format!("relaxation_{k}"));
+        assert!(relax <= within, "{relax} {within}");
+        printed_in(&md, value(&o, &format!("mean_eta_{k}")));
+    }
+}
+
+#[test]
+fn giese_fig3_eps2_distributions() {
+    let (o, md) = run("giese-fig3");
+    // docs/giese.md (8000 realizations, seed 3): <eps^2> = 0.6674 +- 0.0022 (a),
+    // 1.0633 +- 0.0069 (b), 1.1454 +- 0.0110 (c); P(eps^2 > 1) 0.063, 0.462, 0.441; the
+    // quick sample (1000, same seed) lies within 4 of its standard errors.
+    for (case, mean, above) in [
+        ("a", 0.6674, 0.063),
+        ("b", 1.0633, 0.462),
+        ("c", 1.1454, 0.441),
+    ] {
+        let m = value(&o, &format!("mean_eps2_{case}"));
+        let se = value(&o, &format!("se_eps2_{case}"));
+        assert!((m - mean).abs() < 4.0 * se, "{case}: {m} +- {se}");
+        let p = value(&o, &format!("above_one_{case}"));
+        assert!(
+            (p - above).abs() < 4.0 * (above * (1.0 - above) / 1000.0).sqrt(),
+            "{case}: {p}"
+        );
+        printed_in(&md, m);
+    }
+    // cold baths: eps = 0.66338 at gamma = 0.6173 (cli rods::rods_collide_samples_and_histogram),
+    // eps^2 = 0.071 at gamma = 0.2173 (docs/giese.md)
+    assert!((value(&o, "cold_eps2_a") - 0.66338f64.powi(2)).abs() < 2e-4);
+    assert!((value(&o, "cold_eps2_c") - 0.071).abs() < 5e-4);
+    // rod MD with thermal modes (rods/tests/eq3_vs_md.rs) within 3 combined standard errors
+    assert!(value(&o, "md_sigmas_a") < 3.0 && value(&o, "md_sigmas_b") < 3.0);
+}
+
+#[test]
+fn giese_deterministic_closed_forms() {
+    let (o, md) = run("giese-deterministic");
+    // rods/tests/stochastic.rs (closed_form_general_below_one_half, near_equal_rods) and
+    // docs/giese.md: eps - generalized form, eps - paper's form.
+    for (name, pinned, tol) in [
+        ("general_g0_1_k30", 3.45e-3, 0.005e-3),
+        ("general_g0_1_k100", 4.2e-4, 0.05e-4),
+        ("general_g0_3_k100", 3.7e-4, 0.05e-4),
+        ("general_g0_45_k100", 2.4e-4, 0.05e-4),
+        ("general_g0_1_k300", 5.8e-5, 0.05e-5),
+        ("general_g0_3_k300", 5.1e-5, 0.05e-5),
+        ("paper_g0_1_k100", -2.2e-2, 0.05e-2),
+        ("paper_g0_3_k100", -8.1e-3, 0.05e-3),
+        ("paper_g0_1_k30", -7.0e-2, 0.05e-2),
+        ("paper_g0_99_k100", 1.44e-3, 0.01e-3),
+    ] {
+        let v = value(&o, name);
+        assert!((v - pinned).abs() <= tol, "{name}: {v} vs {pinned}");
+        printed_in(&md, v);
+    }
+    // 1/2 < gamma < 2: both forms coincide, error <= 6e-5 (docs/giese.md)
+    let (g, p) = (
+        value(&o, "general_g0_6173_k100"),
+        value(&o, "paper_g0_6173_k100"),
+    );
+    assert!(g == p && g.abs() < 6e-5, "{g} {p}");
+    // eps = 0.66338 (cli rods_deterministic / rods_collide), equal rods elastic, symmetry
+    assert!((value(&o, "eps_g0_6173_k100") - 0.66338).abs() < 1e-4);
+    assert!((value(&o, "eps_equal_rods_k100") - 1.0).abs() < 1e-4);
+    assert!(value(&o, "symmetry_g0_3_k100") < 1e-12);
+    printed_in(&md, value(&o, "eps_g0_6173_k100"));
+}

@@ -57,9 +57,38 @@ pub fn eps2_summary(eps: &[f64]) -> (f64, f64) {
     (mean, above)
 }
 
+/// The quantiles of eps^2 at the probabilities `levels` (each in [0, 1]) from samples of
+/// eps: order statistics of eps^2 interpolated linearly (position p (n - 1) in the sorted
+/// sample), as printed beside Fig. 3 of Giese. Empty if there are no samples.
+pub fn eps2_quantiles(eps: &[f64], levels: &[f64]) -> Vec<f64> {
+    let mut sorted: Vec<f64> = eps.iter().map(|e| e * e).collect();
+    sorted.sort_by(f64::total_cmp);
+    if sorted.is_empty() {
+        return Vec::new();
+    }
+    let last = (sorted.len() - 1) as f64;
+    levels
+        .iter()
+        .map(|&p| {
+            let x = p.clamp(0.0, 1.0) * last;
+            let k = x.floor() as usize;
+            let next = sorted[(k + 1).min(sorted.len() - 1)];
+            sorted[k] + (x - k as f64) * (next - sorted[k])
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quantiles_by_hand() {
+        // eps^2 = 0, 1, 4, 9: the median halfway between 1 and 4, the ends exact
+        let q = eps2_quantiles(&[-3.0, 0.0, 2.0, 1.0], &[0.0, 0.5, 0.25, 1.0]);
+        assert_eq!(q, vec![0.0, 2.5, 0.75, 9.0]);
+        assert!(eps2_quantiles(&[], &[0.5]).is_empty());
+    }
 
     #[test]
     fn counts_by_hand() {
