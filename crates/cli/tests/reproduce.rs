@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 21] = [
+const CSVS: [(&str, &str); 22] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -76,6 +76,7 @@ const CSVS: [(&str, &str); 21] = [
         "giese-deterministic",
         "gamma,kappa,closed_form,closed_form_general,eps",
     ),
+    ("giese-ed-mc", "time,chain_md,ed_mc_glauber,ed_mc_tabulated"),
 ];
 
 /// The IDs (every CSV stem that is not an extra `ID-name.csv`).

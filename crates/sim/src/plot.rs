@@ -81,7 +81,7 @@ fn dashes(kind: Kind, index: usize) -> Option<(u32, u32)> {
     }
 }
 
-/// A tick label that reads at a glance: plain decimals from 1e-3 to 1e4 with at most
+/// A tick label that reads at a glance: plain decimals from 1e-3 to 1e5 with at most
 /// four significant digits and no trailing zeros, otherwise `1e-7`, `2.5e5`.
 pub fn tick_label(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
@@ -95,7 +95,7 @@ pub fn tick_label(v: f64) -> String {
         }
     };
     let a = v.abs();
-    if (1e-3..1e4).contains(&a) {
+    if (1e-3..1e5).contains(&a) {
         let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
         let s = trim(format!("{v:.decimals$}"));
         if s == "-0" {
@@ -276,13 +276,20 @@ impl Figure {
         let log_label = |v: f64, span: f64| {
             if span >= 2.0 {
                 if (v - v.round()).abs() < 1e-6 {
-                    tick_label(10f64.powi(v.round() as i32))
+                    // Decades: plain from 0.001 to 1000, else 1e-7, 1e4.
+                    let k = v.round() as i32;
+                    if (-3..=3).contains(&k) {
+                        tick_label(10f64.powi(k))
+                    } else {
+                        format!("1e{k}")
+                    }
                 } else {
                     String::new()
                 }
             } else {
+                // Two significant digits: 1.6, 2.5, 4, 6.3, 10 (ticks at 10^(k/5)).
                 let value = 10f64.powf(v);
-                let digits = 10f64.powi(2 - value.log10().floor() as i32);
+                let digits = 10f64.powi(1 - value.log10().floor() as i32);
                 tick_label((value * digits).round() / digits)
             }
         };
@@ -471,7 +478,9 @@ mod tests {
             (12.5, "12.5"),
             (250.0, "250"),
             (1000.0, "1000"),
-            (1e4, "1e4"),
+            (1e4, "10000"),
+            (1.5e4, "15000"),
+            (1e5, "1e5"),
             (3.0e6, "3e6"),
             (-0.2, "-0.2"),
             (0.0, "0"),

@@ -18,6 +18,7 @@
 
 pub mod gallery;
 pub mod giese;
+pub mod giese_ring;
 pub mod kinetic;
 pub mod mp2011;
 pub mod sp2008;
@@ -57,6 +58,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(sp2008::entries());
     all.extend(kinetic::entries());
     all.extend(giese::entries());
+    all.extend(giese_ring::entries());
     all
 }
 

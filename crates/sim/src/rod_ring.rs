@@ -338,6 +338,17 @@ impl RingRun {
         write_json_file(&dir.join("summary.json"), &summary)
     }
 
+    /// The curves summed over the finished repeats: the chain MD first, then ED + MC with
+    /// each compared law (named).
+    pub fn curves(&self) -> &[(String, Vec<EnergyRow>)] {
+        &self.curves
+    }
+
+    /// E_tr of equipartition with the modes, per unit of total energy.
+    pub fn equipartition_share(&self) -> f64 {
+        equipartition_share(self.ring.rods, self.ring.modes)
+    }
+
     /// Seconds of the chain MD over all repeats (resumed runs included).
     pub fn chain_seconds(&self) -> f64 {
         self.chain_seconds
