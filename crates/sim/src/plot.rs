@@ -269,12 +269,12 @@ impl Figure {
             .x_label_area_size(70)
             .y_label_area_size(105);
         // A log axis is drawn as a linear axis of log10 (plotters' own log axis drops the
-        // labels of some decades over wide ranges): over two decades or more only the
+        // labels of some decades over wide ranges): over three decades or more only the
         // decades are labelled, over less every tick, as its value.
         let to_axis = |log: bool, v: f64| if log { v.log10() } else { v };
         let (span_x, span_y) = (x1.log10() - x0.log10(), y1.log10() - y0.log10());
         let log_label = |v: f64, span: f64| {
-            if span >= 2.0 {
+            if span >= 3.0 {
                 if (v - v.round()).abs() < 1e-6 {
                     // Decades: plain from 0.001 to 1000, else 1e-7, 1e4.
                     let k = v.round() as i32;
