@@ -326,7 +326,19 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         log_x: true,
         log_y: true,
     };
-    plot::lines(&file("energy.png"), axes, &energy)?;
+    // Per-collision values thin, their running means and the equilibria on top.
+    let mut figure = plot::Figure::new(axes.title, axes.x, axes.y).log(axes.log_x, axes.log_y);
+    for (name, points) in &energy {
+        let kind = if name.starts_with("equilibrium") {
+            plot::Kind::Theory
+        } else if name.contains("mean of") {
+            plot::Kind::Line
+        } else {
+            plot::Kind::Noisy
+        };
+        figure = figure.curve(kind, name.as_str(), points.clone());
+    }
+    figure.write_png(&file("energy.png"))?;
     let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: spectral entropy");
     let axes = Axes {
         title: &title,
