@@ -92,6 +92,17 @@ fn f64_of(x: &series::power::Real) -> f64 {
 }
 
 /// Units of the last of ten printed significant digits between `printed` and `exact`.
+/// The cells `printed,computed,printed_minus_computed,units_of_last_digit` of a printed
+/// coefficient against the computed one (20 digits).
+fn printed_vs_computed(printed: f64, computed: &series::power::Real, units: f64) -> [String; 4] {
+    [
+        crate::output::number(printed),
+        decimal(computed, 20),
+        crate::output::number(printed - f64_of(computed)),
+        crate::output::number(units),
+    ]
+}
+
 fn last_digit_units(printed: f64, exact: f64) -> f64 {
     if printed == 0.0 {
         return if exact == 0.0 { 0.0 } else { f64::INFINITY };
@@ -398,14 +409,9 @@ fn table3(ctx: &Context) -> Result<Outcome> {
                     right.push(format!("{name}_{i}"));
                 }
             }
-            rows.push(vec![
-                i.to_string(),
-                name.to_string(),
-                crate::output::number(p),
-                decimal(x, 20),
-                crate::output::number(p - value),
-                crate::output::number(units),
-            ]);
+            let mut row = vec![i.to_string(), name.to_string()];
+            row.extend(printed_vs_computed(p, x, units));
+            rows.push(row);
         }
     }
     let mut files = vec![ctx.csv_cells(
@@ -479,13 +485,9 @@ fn table5(ctx: &Context) -> Result<Outcome> {
                 right.push(format!("h_{k}"));
             }
         }
-        rows.push(vec![
-            k.to_string(),
-            crate::output::number(p),
-            decimal(&chain.h[k], 20),
-            crate::output::number(p - value),
-            crate::output::number(units),
-        ]);
+        let mut row = vec![k.to_string()];
+        row.extend(printed_vs_computed(p, &chain.h[k], units));
+        rows.push(row);
     }
     let mut files = vec![ctx.csv_cells(
         id,
