@@ -56,7 +56,10 @@ const CSVS: [(&str, &str); 22] = [
         "t_over_t0,time,temperature_emd,temperature_emd_error,temperature_dsmc,haff,\
          haff_maxwellian",
     ),
-    ("kinetic-a2", "eps,a2_dsmc,a2_dsmc_error,a2_van_noije_ernst"),
+    (
+        "kinetic-a2",
+        "eps,a2_dsmc,a2_dsmc_error,a2_van_noije_ernst,a2_second_sonine,a3_second_sonine",
+    ),
     (
         "kinetic-viscoelastic",
         "time,temperature_emd,temperature_dsmc",

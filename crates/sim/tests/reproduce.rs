@@ -235,22 +235,29 @@ fn kinetic_haff_follows_haffs_law() {
     printed_in(&md, emd);
 }
 
-/// a2 at eps = 0.9 against the Sonine hierarchy (gas tests, `sonine_a2_precise`:
-/// -0.01579), within four batch errors; at eps = 0.3 below van Noije & Ernst's 0.1181 by
-/// more than four errors (the breakdown of the first Sonine approximation).
+/// a2 at eps = 0.9 against the Sonine hierarchy with all its terms (K = 6, -0.01579, the
+/// value `sonine_a2_precise` in the gas tests confirms with DSMC of 8e5 particles), within
+/// four batch errors. At eps = 0.3 the measured a2 lies between the first Sonine
+/// approximation (van Noije & Ernst, above by more than four errors) and the second
+/// (below by more than three errors; the quick run's error is 0.0026 and the gap 0.0095,
+/// the full run's 0.00044 and 0.016).
 #[test]
 fn kinetic_a2_against_the_sonine_hierarchy() {
     let (o, md) = run("kinetic-a2");
     let (a, error) = (value(&o, "a2_0.9"), value(&o, "a2_0.9_error"));
-    assert!((a + 0.01579).abs() < 4.0 * error, "{a} +- {error}");
+    let hierarchy = value(&o, "a2_hierarchy_0.9");
+    assert!((hierarchy + 0.01579).abs() < 1e-5, "{hierarchy}");
+    assert!((a - hierarchy).abs() < 4.0 * error, "{a} +- {error}");
     let (strong, strong_error) = (value(&o, "a2_0.3"), value(&o, "a2_0.3_error"));
-    let vne = gas::theory::van_noije_ernst_a2::<3>(0.3);
+    let first = gas::theory::van_noije_ernst_a2::<3>(0.3);
+    let second = value(&o, "a2_second_sonine_0.3");
     assert!(
-        strong < vne - 4.0 * strong_error,
-        "{strong} +- {strong_error} vs {vne}"
+        strong < first - 4.0 * strong_error && strong > second + 3.0 * strong_error,
+        "{second} < {strong} +- {strong_error} < {first}"
     );
-    printed_in(&md, a);
-    printed_in(&md, strong);
+    for x in [a, strong, hierarchy, second] {
+        printed_in(&md, x);
+    }
 }
 
 /// The local exponent of viscoelastic cooling (beta = 0.01, N = 5000) over the last

@@ -1,8 +1,6 @@
 //! Helpers shared by the gas tests.
 #![allow(dead_code)] // each test binary uses a subset
 
-pub mod sonine_hierarchy;
-
 use gas::observe::temperature;
 use gas::Engine;
 use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
