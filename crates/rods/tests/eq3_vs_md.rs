@@ -11,7 +11,7 @@ use rods::stochastic::sample_eps;
 const GAMMA: f64 = 0.6173;
 const KAPPA: f64 = 100.0;
 
-/// eps of the first impact of two rods with thermal modes (T = E0 / ratio, E0 = mu/2).
+/// eps of one impact of two rods with thermal modes (T = E0 / ratio, E0 = mu/2).
 fn md_eps(modes: usize, ratio: f64, seed: u64) -> f64 {
     let setup = TwoRodSetup {
         gamma: GAMMA,
@@ -20,22 +20,8 @@ fn md_eps(modes: usize, ratio: f64, seed: u64) -> f64 {
         gap: 20.0,
         c_h: 0.125,
     };
-    let mut chain = setup.chain().unwrap();
     let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
-    chain
-        .thermalize_modes(0.5 * setup.mu() / ratio, &mut rng)
-        .unwrap();
-    // One impact may open and close its contact several times; it ends when the other
-    // end's contact opens (the relative velocity is constant in free flight).
-    let first = chain.run_collisions(1)[0];
-    let mut last = first;
-    loop {
-        let next = chain.run_collisions(1)[0];
-        if next.contact != first.contact {
-            return -last.v_post / first.v_pre;
-        }
-        last = next;
-    }
+    setup.thermal_impact_eps(ratio, &mut rng).unwrap()
 }
 
 fn mean_and_error(x: &[f64]) -> (f64, f64) {

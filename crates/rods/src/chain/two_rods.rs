@@ -6,6 +6,7 @@
 
 use super::{Chain, ChainConfig, ChainStats};
 use crate::error::{positive, Error, Result};
+use rand::Rng;
 use std::time::Instant;
 
 /// Parameters of the two-rod experiment.
@@ -79,6 +80,42 @@ impl TwoRodSetup {
             velocities: vec![l2 / mtot, -l1 / mtot],
             c_h: self.c_h,
             global_step: true,
+        })
+    }
+
+    /// eps = −v'/v of one impact of the two rods when the modes of both start from the
+    /// Boltzmann distribution at T_bath = E0 / `energy_ratio` (E0 = μ V0²/2 = μ/2): the
+    /// Hamiltonian experiment that Giese's Eq. (3) with the noise of Eq. (5) models (his
+    /// Markov approximation is exact for one collision). One impact may open and close its
+    /// contact several times; it ends when the other end's contact opens (the relative
+    /// velocity is constant in free flight), at the latest after `MAX_EPISODES`.
+    pub fn thermal_impact_eps<R: Rng + ?Sized>(
+        &self,
+        energy_ratio: f64,
+        rng: &mut R,
+    ) -> Result<f64> {
+        const MAX_EPISODES: usize = 100_000;
+        positive("energy_ratio", energy_ratio)?;
+        let mut chain = self.chain()?;
+        chain.thermalize_modes(0.5 * self.mu() / energy_ratio, rng)?;
+        let mut next = |collisions: usize| {
+            chain
+                .run_collisions(1)
+                .into_iter()
+                .next()
+                .ok_or(Error::NoFurtherCollision { collisions })
+        };
+        let first = next(0)?;
+        let mut last = first;
+        for episode in 1..MAX_EPISODES {
+            let record = next(episode)?;
+            if record.contact != first.contact {
+                return Ok(-last.v_post / first.v_pre);
+            }
+            last = record;
+        }
+        Err(Error::NoFurtherCollision {
+            collisions: MAX_EPISODES,
         })
     }
 }
