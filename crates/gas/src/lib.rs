@@ -18,6 +18,7 @@ pub mod observe;
 pub(crate) mod rng;
 mod serde_util;
 pub mod sorter;
+pub mod structure;
 pub mod system;
 pub mod theory;
 

@@ -22,8 +22,10 @@
 //! omega by (1 - a2/16) and zeta by (1 + 3 a2/16) (van Noije & Ernst 1998, Granular Matter 1,
 //! 57), so the cooling per collision by about (1 + a2/4).
 
+pub mod hydrodynamics;
 pub mod sonine;
 
+pub use hydrodynamics::{dilute_elastic_viscosity, long_wavelength_structure_factor, HcsTransport};
 pub use sonine::{second_sonine, SonineHierarchy};
 use std::f64::consts::PI;
 

@@ -1,0 +1,26 @@
+//! Observables of space: what the homogeneous cooling state does when it breaks up. The
+//! Fourier modes of the momentum and number densities at the smallest wave vectors
+//! ([`modes`]), the static structure factor S(k) and the pair correlation g(r) ([`pair`]),
+//! and coarse-grained fields on a grid ([`fields`]). They read a [`crate::system::System`]
+//! only, so every spatial engine has them; none is computed unless asked for.
+
+pub mod fields;
+pub mod fourier;
+pub mod modes;
+pub mod pair;
+
+pub use fields::{coarse_grained_fields, Fields};
+pub use fourier::{half_space_shells, Shell};
+pub use modes::{hydrodynamic_modes, ModeShell};
+pub use pair::{pair_correlation, structure_factor, StructurePoint};
+
+/// x wrapped into [0, L).
+#[inline]
+pub(crate) fn wrap(x: f64, length: f64) -> f64 {
+    let y = x.rem_euclid(length);
+    if y >= length {
+        0.0
+    } else {
+        y
+    }
+}
