@@ -42,6 +42,7 @@ pub fn run(args: &RunArgs) -> CliResult {
     let hash = run_hash(simulation.description());
     let mut dir = OutputDir::open(&out, args.resume.as_deref(), "run", &hash, args.force)?;
     simulation.set_checkpoints(&out, every);
+    simulation.set_output_dir(&out);
     let outcome = simulation.run(&mut Bar::samples(), stop_after)?;
     simulation.write(&out)?;
     dir.set_state(if outcome.complete {

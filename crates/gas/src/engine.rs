@@ -89,6 +89,12 @@ pub trait Engine<const D: usize> {
         1.0
     }
 
+    /// Collisions of each particle modulo 2^32, in the order of [`Engine::system`], if the
+    /// engine counts them per particle (the event-driven engine does).
+    fn collision_counts(&self) -> Option<Vec<u32>> {
+        None
+    }
+
     /// Bath temperature of each particle, if the law is stochastic (Giese).
     fn bath_temperatures(&self) -> Option<&[f64]> {
         None

@@ -47,6 +47,64 @@ pub struct RunDescription {
     pub system: SystemSection,
     pub collision: CollisionSection,
     pub run: RunSection,
+    /// `[output]`: the observers of space (spatial engines only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub output: Option<OutputSection>,
+}
+
+/// `[output]`: what a run records of space, at the samples of its schedule. Checked by
+/// `crate::space::check_output`.
+///
+/// ```toml
+/// [output]
+/// modes = true                             # modes.csv: hydrodynamic modes at small k
+/// structure = true                         # structure.csv: S(k) and g(r)
+/// fields = { every = 10, grid = 64 }       # fields_NNNNNN.vti + fields.pvd
+/// snapshots = { every = 10, format = "vtk" }  # snapshot_NNNNNN.vtu + snapshots.pvd
+/// ```
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    #[serde(default)]
+    pub modes: bool,
+    /// Largest |n|² of the mode shells (default 3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mode_shells: Option<usize>,
+    #[serde(default)]
+    pub structure: bool,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fields: Option<FieldsOutput>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub snapshots: Option<SnapshotsOutput>,
+}
+
+/// `output.fields`: coarse-grained fields every `every` samples on a `grid`^D grid.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldsOutput {
+    pub every: usize,
+    pub grid: usize,
+}
+
+/// `output.snapshots`: the particles every `every` samples.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SnapshotsOutput {
+    pub every: usize,
+    #[serde(default = "vtk")]
+    pub format: SnapshotFormat,
+}
+
+/// `output.snapshots.format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SnapshotFormat {
+    /// VTK XML: one `.vtu` per snapshot and a `.pvd` time series (ParaView).
+    Vtk,
+}
+
+fn vtk() -> SnapshotFormat {
+    SnapshotFormat::Vtk
 }
 
 /// `[system]`: the particles and their initial state.

@@ -28,6 +28,9 @@ pub(crate) struct Records {
     pub every: Option<usize>,
     pub timeseries: TimeSeries,
     pub histograms: VelocityHistograms,
+    /// The observers of `[output]` (absent in check-points of runs without them).
+    #[serde(default)]
+    pub space: crate::space::SpaceRecords,
 }
 
 /// [`Records`], borrowed for writing.
@@ -37,6 +40,7 @@ pub(crate) struct RecordsRef<'a> {
     pub every: Option<usize>,
     pub timeseries: &'a TimeSeries,
     pub histograms: &'a VelocityHistograms,
+    pub space: &'a crate::space::SpaceRecords,
 }
 
 /// An engine the driver runs: the engine interface and a check-point writer. Engines are

@@ -33,7 +33,9 @@ pub mod reproduce;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;
+pub mod space;
 pub mod validate;
+pub mod vtk;
 
 pub use description::RunDescription;
 pub use error::{Error, Result};

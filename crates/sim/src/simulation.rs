@@ -13,6 +13,7 @@ use crate::observer::{
 };
 use crate::output::write_json_file;
 use crate::schedule::{sample_targets, schedule, Target};
+use crate::space::{SpaceObserver, SpaceRecords};
 use crate::validate::{validate, Plan, Stop};
 use gas::Counters;
 use std::path::{Path, PathBuf};
@@ -149,6 +150,8 @@ struct Run<const D: usize> {
     next: usize,
     timeseries: TimeSeries,
     histograms: VelocityHistograms,
+    /// The observers of `[output]`.
+    space: SpaceObserver,
 }
 
 impl Simulation {
@@ -168,6 +171,7 @@ impl Simulation {
             engines::start::<D>(&plan, law)?,
             timeseries,
             histograms,
+            SpaceObserver::new(&plan, SpaceRecords::default()),
         )));
         Ok(Simulation {
             plan,
@@ -224,6 +228,7 @@ impl Simulation {
             engines::restore::<D>(&plan, law, sections)?,
             records.timeseries,
             records.histograms,
+            SpaceObserver::new(&plan, records.space.clone()),
         )
         .map_err(|e| sections.error(e)));
         Ok(Simulation {
@@ -247,6 +252,12 @@ impl Simulation {
         };
         let (plan, every) = (&self.plan, self.checkpoint_every);
         each!(&mut self.run, r => r.write_checkpoint(plan, &file, every))
+    }
+
+    /// The directory that field and snapshot files (`[output]`) are written to during the
+    /// run; without one a run that asks for them stops with an error at the first.
+    pub fn set_output_dir(&mut self, dir: &Path) {
+        each!(&mut self.run, r => r.space.set_directory(dir))
     }
 
     /// Saves the state to the check-point of `dir` every `every` samples (None: never).
@@ -378,6 +389,7 @@ impl Simulation {
             if run.histogram_at.as_ref().is_some_and(|at| !at.is_empty()) {
                 r.histograms.write(&dir.join("velocity_histograms.csv"))?;
             }
+            r.space.write(dir)?;
         });
         crate::figures::temperature(&dir.join("temperature.png"), &self.plan, self.samples())?;
         let counters = self.counters();
@@ -409,6 +421,7 @@ impl<const D: usize> Run<D> {
         engine: Box<dyn Driven<D>>,
         timeseries: TimeSeries,
         histograms: VelocityHistograms,
+        space: SpaceObserver,
     ) -> Self {
         let run = &plan.description.run;
         let schedule = schedule(
@@ -421,6 +434,7 @@ impl<const D: usize> Run<D> {
             next: 0,
             timeseries,
             histograms,
+            space,
         }
     }
 
@@ -432,8 +446,9 @@ impl<const D: usize> Run<D> {
         engine: Box<dyn Driven<D>>,
         timeseries: TimeSeries,
         histograms: VelocityHistograms,
+        space: SpaceObserver,
     ) -> std::result::Result<Self, String> {
-        let mut run = Run::new(plan, engine, timeseries, histograms);
+        let mut run = Run::new(plan, engine, timeseries, histograms, space);
         let samples = &run.timeseries.samples;
         run.next = match samples.len() {
             0 => 0,
@@ -449,6 +464,7 @@ impl<const D: usize> Run<D> {
             }
         };
         run.check_samples(plan.stop)?;
+        run.space.check_records(run.timeseries.samples.len())?;
         let (time, counters) = (run.engine.time(), run.engine.counters());
         let (last_time, last_events) = samples.last().map_or((0.0, 0), |s| (s.time, s.events));
         let particles = plan.description.system.particles as f64;
@@ -531,6 +547,9 @@ impl<const D: usize> Run<D> {
                 }
                 self.timeseries.observe(&target, self.engine.as_mut());
                 self.histograms.observe(&target, self.engine.as_mut());
+                if let Some(sample) = target.sample {
+                    self.space.observe(sample, self.engine.as_mut())?;
+                }
                 self.next += 1;
                 if target.sample.is_some() {
                     let taken = self.timeseries.samples.len();
@@ -625,6 +644,7 @@ impl<const D: usize> Run<D> {
             every,
             timeseries: &self.timeseries,
             histograms: &self.histograms,
+            space: &self.space.records,
         };
         self.engine.write_checkpoint(file, records)
     }

@@ -141,6 +141,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         }
     };
     check_histograms(r, stop)?;
+    crate::space::check_output(description, &engine)?;
     check_time_step(r, stop)?;
     let mut description = description.clone();
     description.normalize();

@@ -129,6 +129,9 @@ impl<const D: usize> EventDrivenState<D> {
 }
 
 impl<const D: usize> Engine<D> for EventDriven<D> {
+    fn collision_counts(&self) -> Option<Vec<u32>> {
+        Some(self.particles.iter().map(|p| p.count).collect())
+    }
     fn run_until(&mut self, t: f64) {
         EventDriven::run_until(self, t)
     }

@@ -1,0 +1,380 @@
+//! The observers of space, switched on in the run file's `[output]` table: hydrodynamic
+//! modes (`modes.csv`), S(k) and g(r) (`structure.csv`), coarse-grained fields and particle
+//! snapshots for ParaView (VTK XML with `.pvd` time series). They read the engine's
+//! [`gas::system::System`] at the samples of the schedule, so every spatial engine has them;
+//! the homogeneous DSMC schemes have no positions and refuse them. Field and snapshot files
+//! are written during the run into the output directory ([`SpaceObserver::set_directory`]);
+//! the CSV files and the collections at the end.
+
+use crate::description::{OutputSection, RunDescription};
+use crate::error::{Error, Result};
+use crate::output::{number, write_csv_file};
+use crate::validate::{EngineSpec, Plan};
+use crate::vtk::{write_collection, write_fields, write_particles, ParticleData};
+use gas::structure::{
+    coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor,
+};
+use gas::theory::long_wavelength_structure_factor;
+use gas::Engine;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// Largest |n|² of the mode shells by default (|n|² = 1, 2, 3).
+pub const MODE_SHELLS: usize = 3;
+/// Largest grid per axis of `output.fields` in 1, 2, 3 dimensions.
+const MAX_FIELD_GRID: [usize; 3] = [1 << 20, 4096, 256];
+/// Largest FFT grid per axis of S(k) in 1, 2, 3 dimensions.
+const MAX_STRUCTURE_GRID: [usize; 3] = [1 << 20, 2048, 256];
+
+/// The header of `modes.csv` (a contract).
+pub const MODES_HEADER: [&str; 6] = [
+    "time",
+    "collisions_per_particle",
+    "k",
+    "transverse_energy",
+    "longitudinal_energy",
+    "density_power",
+];
+/// The header of `structure.csv`: `function` is `S` (x = k) or `g` (x = r).
+pub const STRUCTURE_HEADER: [&str; 5] =
+    ["time", "collisions_per_particle", "function", "x", "value"];
+
+/// Checks `[output]` against the engine (errors name the key and the allowed range).
+pub fn check_output(description: &RunDescription, engine: &EngineSpec) -> Result<()> {
+    let Some(o) = &description.output else {
+        return Ok(());
+    };
+    let spatial = !matches!(engine, EngineSpec::HomogeneousDsmc(_));
+    let asked = [
+        ("output.modes", o.modes),
+        ("output.structure", o.structure),
+        ("output.fields", o.fields.is_some()),
+        ("output.snapshots", o.snapshots.is_some()),
+    ];
+    for (key, on) in asked {
+        if on && !spatial {
+            return Err(Error::input(
+                key,
+                "needs positions: run.engine = \"event-driven\" or run.dsmc_scheme = \"spatial\"",
+            ));
+        }
+    }
+    if let Some(shells) = o.mode_shells {
+        if !o.modes {
+            return Err(Error::input(
+                "output.mode_shells",
+                "only with output.modes = true",
+            ));
+        }
+        if !(1..=100).contains(&shells) {
+            return Err(Error::out_of_range(
+                "output.mode_shells",
+                shells,
+                "1 ..= 100",
+            ));
+        }
+    }
+    let dimension = description.system.dimension as usize;
+    if let Some(f) = o.fields {
+        let max = MAX_FIELD_GRID[dimension.clamp(1, 3) - 1];
+        if !(3..=max).contains(&f.grid) {
+            return Err(Error::out_of_range(
+                "output.fields.grid",
+                f.grid,
+                &format!("3 ..= {max} cells per side in {dimension}D"),
+            ));
+        }
+        every("output.fields.every", f.every)?;
+    }
+    if let Some(s) = o.snapshots {
+        every("output.snapshots.every", s.every)?;
+    }
+    Ok(())
+}
+
+fn every(key: &str, k: usize) -> Result<()> {
+    if (1..=1_000_000).contains(&k) {
+        Ok(())
+    } else {
+        Err(Error::out_of_range(key, k, "1 ..= 1e6 samples"))
+    }
+}
+
+/// The modes of one sample: (|n|², k, transverse, longitudinal, density) per shell.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ModesSample {
+    pub time: f64,
+    pub collisions_per_particle: f64,
+    pub shells: Vec<(usize, f64, f64, f64, f64)>,
+}
+
+/// S(k) and g(r) of one sample as (x, value) pairs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StructureSample {
+    pub time: f64,
+    pub collisions_per_particle: f64,
+    pub structure_factor: Vec<(f64, f64)>,
+    pub pair_correlation: Vec<(f64, f64)>,
+}
+
+/// What the observers of space have recorded (kept in check-points).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpaceRecords {
+    #[serde(default)]
+    pub modes: Vec<ModesSample>,
+    #[serde(default)]
+    pub structure: Vec<StructureSample>,
+    /// (time, file name) of the field files written.
+    #[serde(default)]
+    pub fields: Vec<(f64, String)>,
+    /// (time, file name) of the snapshots written.
+    #[serde(default)]
+    pub snapshots: Vec<(f64, String)>,
+}
+
+/// The observers of `[output]` and their records.
+#[derive(Debug, Clone)]
+pub struct SpaceObserver {
+    output: OutputSection,
+    /// S(k → 0) of the homogeneous fluid at the run's packing fraction.
+    structure_factor0: f64,
+    /// The species' (diameter, mass), to label the particles of snapshots.
+    species: Vec<(f64, f64)>,
+    directory: Option<PathBuf>,
+    pub records: SpaceRecords,
+}
+
+impl SpaceObserver {
+    pub fn new(plan: &Plan, records: SpaceRecords) -> Self {
+        let d = &plan.description;
+        let phi = d.system.packing_fraction;
+        let structure_factor0 = match d.system.dimension {
+            1 => long_wavelength_structure_factor::<1>(phi),
+            2 => long_wavelength_structure_factor::<2>(phi),
+            _ => long_wavelength_structure_factor::<3>(phi),
+        };
+        let species = match &d.system.species {
+            Some(list) => list.iter().map(|s| (s.diameter, s.mass)).collect(),
+            None => vec![(
+                d.system.diameter.unwrap_or(1.0),
+                d.system.mass.unwrap_or(1.0),
+            )],
+        };
+        SpaceObserver {
+            output: d.output.clone().unwrap_or_default(),
+            structure_factor0,
+            species,
+            directory: None,
+            records,
+        }
+    }
+
+    /// Whether anything is asked for.
+    pub fn is_on(&self) -> bool {
+        let o = &self.output;
+        o.modes || o.structure || o.fields.is_some() || o.snapshots.is_some()
+    }
+
+    /// Whether fields or snapshots are written during the run (they need a directory).
+    pub fn writes_files(&self) -> bool {
+        self.output.fields.is_some() || self.output.snapshots.is_some()
+    }
+
+    /// The directory field and snapshot files go to.
+    pub fn set_directory(&mut self, dir: &Path) {
+        self.directory = Some(dir.to_path_buf());
+    }
+
+    /// Checks the records of a check-point against the samples taken.
+    pub fn check_records(&self, samples: usize) -> std::result::Result<(), String> {
+        let o = &self.output;
+        let due = |every: Option<usize>| every.map_or(0, |k| samples.div_ceil(k));
+        let counts = [
+            (
+                "modes",
+                self.records.modes.len(),
+                if o.modes { samples } else { 0 },
+            ),
+            (
+                "structure",
+                self.records.structure.len(),
+                if o.structure { samples } else { 0 },
+            ),
+            (
+                "fields",
+                self.records.fields.len(),
+                due(o.fields.map(|f| f.every)),
+            ),
+            (
+                "snapshots",
+                self.records.snapshots.len(),
+                due(o.snapshots.map(|s| s.every)),
+            ),
+        ];
+        for (name, have, want) in counts {
+            if have != want {
+                return Err(format!(
+                    "{have} {name} records where {samples} samples ask for {want}"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Observes sample number `sample` (0-based) of `engine`.
+    pub fn observe<const D: usize>(
+        &mut self,
+        sample: usize,
+        engine: &mut dyn Engine<D>,
+    ) -> Result<()> {
+        if !self.is_on() {
+            return Ok(());
+        }
+        let (time, cpp) = (engine.time(), engine.collisions_per_particle());
+        let o = self.output.clone();
+        if o.modes {
+            let shells = hydrodynamic_modes(
+                engine.system(),
+                o.mode_shells.unwrap_or(MODE_SHELLS),
+                self.structure_factor0,
+            )
+            .iter()
+            .map(|m| {
+                (
+                    m.norm2,
+                    m.k,
+                    m.transverse_energy,
+                    m.longitudinal_energy,
+                    m.density_power,
+                )
+            })
+            .collect();
+            self.records.modes.push(ModesSample {
+                time,
+                collisions_per_particle: cpp,
+                shells,
+            });
+        }
+        if o.structure {
+            let system = engine.system();
+            let diameter = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
+            let diameter = if diameter > 0.0 {
+                diameter
+            } else {
+                system.length / 100.0
+            };
+            let max = MAX_STRUCTURE_GRID[D - 1];
+            let grid = ((2.0 * system.length / diameter).ceil() as usize)
+                .next_power_of_two()
+                .clamp(8, max);
+            let r_max = (5.0 * diameter).min(0.5 * system.length);
+            let bins = ((r_max / (0.05 * diameter)).ceil() as usize).clamp(10, 2000);
+            let pairs =
+                |p: Vec<gas::structure::StructurePoint>| p.iter().map(|p| (p.x, p.value)).collect();
+            self.records.structure.push(StructureSample {
+                time,
+                collisions_per_particle: cpp,
+                structure_factor: pairs(structure_factor(system, grid)),
+                pair_correlation: pairs(pair_correlation(system, r_max, bins)),
+            });
+        }
+        if let Some(f) = o.fields {
+            if sample.is_multiple_of(f.every) {
+                let name = format!("fields_{sample:06}.vti");
+                let path = self.file(&name, "output.fields")?;
+                write_fields(&path, &coarse_grained_fields(engine.system(), f.grid))?;
+                self.records.fields.push((time, name));
+            }
+        }
+        if let Some(s) = o.snapshots {
+            if sample.is_multiple_of(s.every) {
+                let name = format!("snapshot_{sample:06}.vtu");
+                let path = self.file(&name, "output.snapshots")?;
+                let collisions = engine
+                    .collision_counts()
+                    .map(|c| c.into_iter().map(u64::from).collect::<Vec<u64>>());
+                let baths = engine.bath_temperatures().map(<[f64]>::to_vec);
+                let system = engine.system();
+                let species: Vec<u32> = system
+                    .radii
+                    .iter()
+                    .zip(&system.masses)
+                    .map(|(&r, &m)| self.species_of(2.0 * r, m))
+                    .collect();
+                let data = ParticleData {
+                    collisions: collisions.as_deref(),
+                    species: &species,
+                    bath_temperatures: baths.as_deref(),
+                };
+                write_particles(&path, system, &data)?;
+                self.records.snapshots.push((time, name));
+            }
+        }
+        Ok(())
+    }
+
+    /// The species whose (diameter, mass) is nearest.
+    fn species_of(&self, diameter: f64, mass: f64) -> u32 {
+        let distance = |&(d, m): &(f64, f64)| ((d - diameter) / d).abs() + ((m - mass) / m).abs();
+        (0..self.species.len())
+            .min_by(|&a, &b| distance(&self.species[a]).total_cmp(&distance(&self.species[b])))
+            .unwrap_or(0) as u32
+    }
+
+    fn file(&self, name: &str, key: &str) -> Result<PathBuf> {
+        match &self.directory {
+            Some(dir) => Ok(dir.join(name)),
+            None => Err(Error::input(
+                key,
+                "writes files during the run: give the run an output directory",
+            )),
+        }
+    }
+
+    /// Writes `modes.csv`, `structure.csv` and the `.pvd` collections into `dir`.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        let o = &self.output;
+        if o.modes {
+            let rows = self.records.modes.iter().flat_map(|s| {
+                s.shells.iter().map(move |&(_, k, t, l, d)| {
+                    [s.time, s.collisions_per_particle, k, t, l, d]
+                        .map(number)
+                        .to_vec()
+                })
+            });
+            write_csv_file(&dir.join("modes.csv"), &MODES_HEADER, rows)?;
+        }
+        if o.structure {
+            let rows = self.records.structure.iter().flat_map(|s| {
+                let head = [number(s.time), number(s.collisions_per_particle)];
+                let sk = s
+                    .structure_factor
+                    .iter()
+                    .map(move |&(k, v)| (head.clone(), "S", k, v));
+                let head = [number(s.time), number(s.collisions_per_particle)];
+                let gr = s
+                    .pair_correlation
+                    .iter()
+                    .map(move |&(r, v)| (head.clone(), "g", r, v));
+                sk.chain(gr).map(|(h, f, x, v)| {
+                    vec![
+                        h[0].clone(),
+                        h[1].clone(),
+                        f.to_string(),
+                        number(x),
+                        number(v),
+                    ]
+                })
+            });
+            write_csv_file(&dir.join("structure.csv"), &STRUCTURE_HEADER, rows)?;
+        }
+        if o.fields.is_some() {
+            write_collection(&dir.join("fields.pvd"), &self.records.fields)?;
+        }
+        if o.snapshots.is_some() {
+            write_collection(&dir.join("snapshots.pvd"), &self.records.snapshots)?;
+        }
+        Ok(())
+    }
+}
