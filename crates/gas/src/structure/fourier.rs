@@ -53,7 +53,7 @@ pub struct Amplitudes<const D: usize> {
 
 /// ρ_k and j_k at the wave vectors `vectors` (integer n, k = 2π n / L). The per-axis phases
 /// e^{−2πi x/L} are raised to the powers of n by multiplication (one sin_cos per particle
-/// and axis), in parallel over particles.
+/// and axis), in parallel over fixed chunks of particles summed in order (deterministic).
 pub fn fourier_amplitudes<const D: usize>(
     system: &System<D>,
     vectors: &[[i32; D]],
@@ -78,11 +78,15 @@ pub fn fourier_amplitudes<const D: usize>(
         momentum: vec![[Complex64::new(0.0, 0.0); D]; vectors.len()],
     };
     let angle = -2.0 * PI / system.length;
-    (0..system.len())
+    // Fixed chunks summed in order: the result does not depend on the thread count or
+    // scheduling (a resumed run writes the same bits).
+    const CHUNK: usize = 2048;
+    let partial: Vec<Amplitudes<D>> = (0..system.len().div_ceil(CHUNK))
         .into_par_iter()
-        .fold(
-            || (zero(), vec![[Complex64::new(1.0, 0.0); D]; m_max + 1]),
-            |(mut acc, mut powers), j| {
+        .map(|chunk| {
+            let mut acc = zero();
+            let mut powers = vec![[Complex64::new(1.0, 0.0); D]; m_max + 1];
+            for j in chunk * CHUNK..((chunk + 1) * CHUNK).min(system.len()) {
                 let r = &system.positions[j];
                 for a in 0..D {
                     let (s, c) = (angle * r[a]).sin_cos();
@@ -104,21 +108,21 @@ pub fn fourier_amplitudes<const D: usize>(
                         *j += phase * ca;
                     }
                 }
-                (acc, powers)
-            },
-        )
-        .map(|(acc, _)| acc)
-        .reduce(zero, |mut x, y| {
-            for (a, b) in x.density.iter_mut().zip(&y.density) {
-                *a += b;
             }
-            for (a, b) in x.momentum.iter_mut().zip(&y.momentum) {
-                for (p, q) in a.iter_mut().zip(b) {
-                    *p += q;
-                }
-            }
-            x
+            acc
         })
+        .collect();
+    partial.into_iter().fold(zero(), |mut x, y| {
+        for (a, b) in x.density.iter_mut().zip(&y.density) {
+            *a += b;
+        }
+        for (a, b) in x.momentum.iter_mut().zip(&y.momentum) {
+            for (p, q) in a.iter_mut().zip(b) {
+                *p += q;
+            }
+        }
+        x
+    })
 }
 
 #[cfg(test)]
