@@ -265,7 +265,7 @@ impl SpaceObserver {
                 system.length / 100.0
             };
             let max = MAX_STRUCTURE_GRID[D - 1];
-            let grid = ((2.0 * system.length / diameter).ceil() as usize)
+            let grid = ((system.length / diameter).ceil() as usize)
                 .next_power_of_two()
                 .clamp(8, max);
             let r_max = (5.0 * diameter).min(0.5 * system.length);

@@ -87,30 +87,42 @@ pub fn structure_factor<const D: usize>(system: &System<D>, grid: usize) -> Vec<
     fft_in_place::<D>(&mut rho, g);
     let n = system.len() as f64;
     let max_shell = g / 4;
-    let mut sums = vec![(0.0, 0.0, 0usize); max_shell + 1];
-    for (flat, value) in rho.iter().enumerate() {
-        let mut f = flat;
-        let mut norm2 = 0usize;
-        let (mut window, mut alias) = (1.0, 1.0);
-        for _ in 0..D {
-            let i = f % g;
-            f /= g;
+    // per axis and grid index: (m, sinc⁴(π m / G), 1 − (2/3) sin²(π m / G)), m the signed
+    // wave number; entries with |m| > G/4 on any axis lie outside every kept shell
+    let axis: Vec<(i64, f64, f64)> = (0..g)
+        .map(|i| {
             let m = if i > g / 2 {
                 i as i64 - g as i64
             } else {
                 i as i64
             };
-            norm2 += (m * m) as usize;
             let x = PI * m as f64 / g as f64;
             let sinc = if m == 0 { 1.0 } else { x.sin() / x };
-            window *= sinc.powi(4);
-            alias *= 1.0 - 2.0 / 3.0 * x.sin().powi(2);
+            (m, sinc.powi(4), 1.0 - 2.0 / 3.0 * x.sin().powi(2))
+        })
+        .collect();
+    let kept: Vec<usize> = (0..g)
+        .filter(|&i| axis[i].0.unsigned_abs() as usize <= max_shell)
+        .collect();
+    let mut sums = vec![(0.0, 0.0, 0usize); max_shell + 1];
+    for k in 0..kept.len().pow(D as u32) {
+        let (mut f, mut flat, mut stride) = (k, 0, 1);
+        let (mut norm2, mut window, mut alias) = (0usize, 1.0, 1.0);
+        for _ in 0..D {
+            let i = kept[f % kept.len()];
+            f /= kept.len();
+            flat += i * stride;
+            stride *= g;
+            let (m, w, a) = axis[i];
+            norm2 += (m * m) as usize;
+            window *= w;
+            alias *= a;
         }
         let shell = (norm2 as f64).sqrt().round() as usize;
         if norm2 == 0 || shell > max_shell {
             continue;
         }
-        let s = (value.norm_sqr() / n - (alias - window)) / window;
+        let s = (rho[flat].norm_sqr() / n - (alias - window)) / window;
         let entry = &mut sums[shell];
         entry.0 += s;
         entry.1 += (norm2 as f64).sqrt();
