@@ -5,8 +5,7 @@
 //! particles has n = 0 and u = T = 0; the vorticity uses its u = 0 (so choose cells that
 //! hold several particles: G = (N / 10)^(1/D) or fewer).
 
-use super::wrap;
-use crate::system::System;
+use crate::system::{wrap, System};
 
 /// The fields, flattened with x fastest (VTK ImageData order).
 #[derive(Debug, Clone, PartialEq)]

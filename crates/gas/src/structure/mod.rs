@@ -13,14 +13,3 @@ pub use fields::{coarse_grained_fields, Fields};
 pub use fourier::{half_space_shells, Shell};
 pub use modes::{hydrodynamic_modes, ModeShell};
 pub use pair::{pair_correlation, structure_factor, StructurePoint};
-
-/// x wrapped into [0, L).
-#[inline]
-pub(crate) fn wrap(x: f64, length: f64) -> f64 {
-    let y = x.rem_euclid(length);
-    if y >= length {
-        0.0
-    } else {
-        y
-    }
-}

@@ -11,8 +11,7 @@
 //! g(r) by counting pairs with cell lists (minimum image), normalized by the ideal-gas count
 //! N n V_D (r₂^D − r₁^D).
 
-use super::wrap;
-use crate::system::{ball_volume, System};
+use crate::system::{ball_volume, wrap, System};
 use rayon::prelude::*;
 use rustfft::num_complex::Complex64;
 use rustfft::FftPlanner;
