@@ -347,24 +347,18 @@ impl SpaceObserver {
         }
         if o.structure {
             let rows = self.records.structure.iter().flat_map(|s| {
-                let head = [number(s.time), number(s.collisions_per_particle)];
-                let sk = s
-                    .structure_factor
-                    .iter()
-                    .map(move |&(k, v)| (head.clone(), "S", k, v));
-                let head = [number(s.time), number(s.collisions_per_particle)];
-                let gr = s
-                    .pair_correlation
-                    .iter()
-                    .map(move |&(r, v)| (head.clone(), "g", r, v));
-                sk.chain(gr).map(|(h, f, x, v)| {
-                    vec![
-                        h[0].clone(),
-                        h[1].clone(),
-                        f.to_string(),
-                        number(x),
-                        number(v),
-                    ]
+                let functions = [("S", &s.structure_factor), ("g", &s.pair_correlation)];
+                functions.into_iter().flat_map(move |(name, points)| {
+                    points.iter().map(move |&(x, v)| {
+                        let time = [s.time, s.collisions_per_particle].map(number);
+                        vec![
+                            time[0].clone(),
+                            time[1].clone(),
+                            name.to_string(),
+                            number(x),
+                            number(v),
+                        ]
+                    })
                 })
             });
             write_csv_file(&dir.join("structure.csv"), &STRUCTURE_HEADER, rows)?;
