@@ -414,6 +414,19 @@ fn bad_dsmc_keys_are_rejected() {
         "run.collision_cell_width",
     );
     assert_run_rejected(&run("block_size = 100\n"), "run.block_size");
+    assert_run_rejected(&run("particle_weight = 0.5\n"), "run.particle_weight");
+    assert_run_rejected(
+        &run("engine = \"dsmc\"\nparticle_weight = 0.5\n"),
+        "run.particle_weight",
+    );
+    for weight in ["0.0", "-1.0", "1e7", "nan"] {
+        assert_run_rejected(
+            &run(&format!(
+                "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"\nparticle_weight = {weight}\n"
+            )),
+            "run.particle_weight",
+        );
+    }
     assert_run_rejected(
         &format!(
             "{}tc = 0.1\n[run]\nengine = \"dsmc\"\ncollisions_per_particle = 5\n",

@@ -284,6 +284,12 @@ pub struct RunSection {
     /// Spatial DSMC: width of the collision cells.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub collision_cell_width: Option<f64>,
+    /// Spatial DSMC: the physical particles each simulated particle stands for (SPARTA's
+    /// `fnum`; default 1). The box holds `system.particles` x weight spheres at
+    /// `system.packing_fraction`, so a weight below 1 puts more simulated particles into
+    /// each mean free path.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub particle_weight: Option<f64>,
 }
 
 fn three() -> u32 {

@@ -57,18 +57,24 @@ impl<const D: usize, E: Checkpoint<D> + Send> Driven<D> for E {
     }
 }
 
+/// Physical particles per simulated one (`run.particle_weight`, spatial DSMC; else 1).
+fn particle_weight(plan: &Plan) -> f64 {
+    plan.description.run.particle_weight.unwrap_or(1.0)
+}
+
 /// The initial particles of the `[system]` section.
 fn initial_system<const D: usize>(plan: &Plan) -> Result<System<D>> {
     let s = &plan.description.system;
     let diameter = s.diameter.unwrap_or(1.0);
     let mass = s.mass.unwrap_or(1.0);
     let phi = s.packing_fraction;
+    let weight = particle_weight(plan);
     match (&s.species, plan.engine) {
         // DSMC particles are points: no need to place them without overlaps.
         (None, EngineSpec::HomogeneousDsmc(_) | EngineSpec::SpatialDsmc(_)) => {
             gas::dsmc::point_gas::<D>(
                 s.particles,
-                gas::system::monodisperse_box_side::<D>(s.particles, diameter, phi),
+                monodisperse_side::<D>(s.particles, diameter, phi, weight),
                 diameter,
                 mass,
                 s.temperature,
@@ -80,9 +86,49 @@ fn initial_system<const D: usize>(plan: &Plan) -> Result<System<D>> {
         }
         (Some(entries), _) => {
             gas::init::polydisperse::<D>(s.particles, phi, &species(entries), s.temperature, s.seed)
+                .map(|system| widened(system, phi, weight))
         }
     }
     .map_err(|e| Error::input("system", e))
+}
+
+/// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical
+/// ones at packing fraction `phi` (exactly the initializer's side for weight 1).
+fn monodisperse_side<const D: usize>(n: usize, diameter: f64, phi: f64, weight: f64) -> f64 {
+    if weight == 1.0 {
+        gas::system::monodisperse_box_side::<D>(n, diameter, phi)
+    } else {
+        let volume = n as f64 * weight * gas::system::ball_volume::<D>(0.5 * diameter);
+        gas::system::box_side::<D>(volume, phi)
+    }
+}
+
+/// `system` (a mixture placed at `phi`) in the box of its spheres times `weight` at `phi`,
+/// positions scaled with the box: DSMC particles are points, so the placement only has to
+/// be uniform.
+fn widened<const D: usize>(mut system: System<D>, phi: f64, weight: f64) -> System<D> {
+    if weight == 1.0 {
+        return system;
+    }
+    let length = mixture_side::<D>(&system, phi, weight);
+    let scale = length / system.length;
+    for x in &mut system.positions {
+        for c in x.iter_mut() {
+            *c = gas::system::wrap(*c * scale, length);
+        }
+    }
+    system.length = length;
+    system
+}
+
+/// The box side of the mixture `system` standing for `weight` times its spheres at `phi`.
+fn mixture_side<const D: usize>(system: &System<D>, phi: f64, weight: f64) -> f64 {
+    let volume: f64 = system
+        .radii
+        .iter()
+        .map(|&r| gas::system::ball_volume::<D>(r))
+        .sum();
+    gas::system::box_side::<D>(volume * weight, phi)
 }
 
 /// A fresh engine at time 0.
@@ -301,22 +347,19 @@ fn no_energy_gained<const D: usize>(
 /// round-off of the initializer's sum over the particles for a mixture (n ulp).
 fn box_side<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
     let s = &plan.description.system;
+    let weight = particle_weight(plan);
     let (expected, tolerance) = match &s.species {
         None => {
-            let side = gas::system::monodisperse_box_side::<D>(
+            let side = monodisperse_side::<D>(
                 s.particles,
                 s.diameter.unwrap_or(1.0),
                 s.packing_fraction,
+                weight,
             );
             (side, 0.0)
         }
         Some(_) => {
-            let volume: f64 = system
-                .radii
-                .iter()
-                .map(|&r| gas::system::ball_volume::<D>(r))
-                .sum();
-            let side = gas::system::box_side::<D>(volume, s.packing_fraction);
+            let side = mixture_side::<D>(system, s.packing_fraction, weight);
             (side, 2.0 * f64::EPSILON * system.len() as f64 * side)
         }
     };

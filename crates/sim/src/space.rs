@@ -149,9 +149,12 @@ impl SpaceObserver {
     pub fn new(plan: &Plan, records: SpaceRecords) -> Self {
         let d = &plan.description;
         let phi = d.system.packing_fraction;
-        let structure_factor0 = match d.system.dimension {
-            1 => long_wavelength_structure_factor::<1>(phi),
-            2 => long_wavelength_structure_factor::<2>(phi),
+        // DSMC particles are points placed independently: their S(0) is that of an ideal
+        // gas, whatever the packing fraction that sets their collision rate.
+        let structure_factor0 = match (plan.engine, d.system.dimension) {
+            (EngineSpec::SpatialDsmc(_) | EngineSpec::HomogeneousDsmc(_), _) => 1.0,
+            (_, 1) => long_wavelength_structure_factor::<1>(phi),
+            (_, 2) => long_wavelength_structure_factor::<2>(phi),
             _ => long_wavelength_structure_factor::<3>(phi),
         };
         let species = match &d.system.species {

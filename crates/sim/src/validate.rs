@@ -106,6 +106,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
                 ("run.collisions_per_step", r.collisions_per_step.is_some()),
                 ("run.time_step", r.time_step.is_some()),
                 ("run.collision_cell_width", r.collision_cell_width.is_some()),
+                ("run.particle_weight", r.particle_weight.is_some()),
             ] {
                 if given {
                     return Err(Error::input(key, "only for run.engine = \"dsmc\""));
@@ -120,7 +121,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
                     "the TC model is for run.engine = \"event-driven\" (DSMC has no collapse)",
                 ));
             }
-            dsmc_spec(r)?
+            dsmc_spec(r, description.system.particles)?
         }
     };
     if !(2..=1_000_000).contains(&r.samples) {
@@ -357,7 +358,7 @@ fn stochastic_spec(description: &RunDescription) -> Result<LawSpec> {
 }
 
 /// The DSMC engine and options of the `[run]` section.
-fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
+fn dsmc_spec(r: &RunSection, particles: usize) -> Result<EngineSpec> {
     let step = match (r.collisions_per_step, r.time_step) {
         (None, None) => StepSize::Auto,
         (Some(c), None) => {
@@ -392,6 +393,7 @@ fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
     match scheme {
         DsmcScheme::Blocks => {
             exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            exclusive("run.particle_weight", r.particle_weight.is_some())?;
             let block_size = r.block_size.unwrap_or(gas::dsmc::DEFAULT_BLOCK_SIZE);
             if !(2..=u32::MAX as usize).contains(&block_size) {
                 return Err(Error::out_of_range(
@@ -408,6 +410,7 @@ fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
         DsmcScheme::Exact => {
             exclusive("run.block_size", r.block_size.is_some())?;
             exclusive("run.collision_cell_width", r.collision_cell_width.is_some())?;
+            exclusive("run.particle_weight", r.particle_weight.is_some())?;
             exclusive("run.collisions_per_step", r.collisions_per_step.is_some())?;
             exclusive("run.time_step", r.time_step.is_some())?;
             Ok(EngineSpec::HomogeneousDsmc(Scheme::Exact))
@@ -418,8 +421,30 @@ fn dsmc_spec(r: &RunSection) -> Result<EngineSpec> {
                 .collision_cell_width
                 .map(|w| positive("run.collision_cell_width", w))
                 .transpose()?;
+            if let Some(weight) = r.particle_weight {
+                particle_weight(weight, particles)?;
+            }
             Ok(EngineSpec::SpatialDsmc(SpatialOptions { cell_width, step }))
         }
+    }
+}
+
+/// The largest `run.particle_weight`: coarser DSMC than 1e6 physical particles per
+/// simulated one resolves nothing of a granular gas.
+const MAX_PARTICLE_WEIGHT: f64 = 1e6;
+
+/// `run.particle_weight` F: 0 < F <= 1e6, and the box holds at least two physical
+/// particles (N F >= 2).
+fn particle_weight(weight: f64, particles: usize) -> Result<f64> {
+    let smallest = 2.0 / particles as f64;
+    if weight.is_finite() && (smallest..=MAX_PARTICLE_WEIGHT).contains(&weight) {
+        Ok(weight)
+    } else {
+        Err(Error::out_of_range(
+            "run.particle_weight",
+            weight,
+            &format!("2 / system.particles = {smallest:e} <= weight <= 1e6"),
+        ))
     }
 }
 

@@ -100,3 +100,48 @@ fn the_rod_chain_runs_through_the_engine_interface() {
     let drift = (engine.chain().energy() - e0) / e0;
     assert!(drift.abs() < 1e-8, "{drift}");
 }
+
+/// `run.particle_weight` F of spatial DSMC: the box holds N F spheres at phi and the engine
+/// gives each simulated particle the physical collision rate, so T(t) follows Haff's law in
+/// time with the Enskog frequency of the physical gas whatever F (a wrong weight would
+/// change the rate by the factor F). Haff's time with the HCS factors: the cooling rate is
+/// (1 - eps^2)/d omega (1 + 3 a2/16) (van Noije & Ernst a2; gas::theory). Tolerance: the
+/// statistical 5 sqrt(2/(N d)) of each T plus 1 % for the spatial scheme's finite cells
+/// and steps (docs/dsmc.md: within 1 % of the homogeneous engine at 10+ particles per
+/// cell). A mixture takes the same weight.
+#[test]
+fn spatial_dsmc_takes_a_particle_weight() {
+    use gas::theory::{collision_frequency, haff_temperature, haff_time, van_noije_ernst_a2};
+    let phi = 0.05;
+    let omega =
+        collision_frequency::<3>(phi / gas::system::ball_volume::<3>(0.5), 1.0, 1.0, 1.0, phi);
+    let a2 = van_noije_ernst_a2::<3>(EPS);
+    let tau = haff_time::<3>(EPS, omega) / (1.0 + 3.0 * a2 / 16.0);
+    let n = 20_000;
+    for (weight, system) in [
+        ("0.1", ""),
+        ("4.0", ""),
+        (
+            "0.1",
+            "species = [{ diameter = 1.0, mass = 1.0, fraction = 1.0 }]\n",
+        ),
+    ] {
+        let text = format!(
+            "[system]\nparticles = {n}\npacking_fraction = {phi}\nseed = 4\n{system}\
+             [collision]\nlaw = \"constant\"\nrestitution = {EPS}\n\
+             [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\nparticle_weight = {weight}\n\
+             end_time = {}\nsamples = 3\nspacing = \"linear\"\n",
+            2.0 * tau
+        );
+        let mut run = Simulation::from_toml(&text, "test.toml".as_ref()).unwrap();
+        run.run(&mut (), None).unwrap();
+        let last = run.samples().last().unwrap().clone();
+        let expected = haff_temperature(1.0, tau, last.time);
+        let tolerance = 5.0 * (2.0 / (3 * n) as f64).sqrt() + 0.01;
+        assert!(
+            (last.temperature / expected - 1.0).abs() < tolerance,
+            "weight {weight} {system}: T = {} vs Haff {expected}",
+            last.temperature
+        );
+    }
+}

@@ -118,6 +118,30 @@ impl HcsTransport {
         }
     }
 
+    /// The transport that DSMC with the Enskog factor samples ([`crate::SpatialDsmc`]: the
+    /// Boltzmann collision operator with its rate multiplied by χ(φ), collision partners
+    /// taken in the same cell with no offset): the dilute (φ = 0) coefficients with every
+    /// collision rate times χ, and no collisional transfer. So ζ and ω are χ times, η and ν
+    /// 1/χ times their dilute values, and L_c is the dilute L_c over χ: in units of the mean
+    /// free path, which also shrinks by χ, the instability is that of the dilute gas.
+    pub fn enskog_factor_dsmc<const D: usize>(
+        density: f64,
+        diameter: f64,
+        mass: f64,
+        temperature: f64,
+        phi: f64,
+        eps: f64,
+    ) -> Self {
+        let chi = contact_value::<D>(phi);
+        let dilute = Self::new::<D>(density, diameter, mass, temperature, 0.0, eps);
+        HcsTransport {
+            shear_viscosity: dilute.shear_viscosity / chi,
+            kinematic_viscosity: dilute.kinematic_viscosity / chi,
+            cooling_rate: dilute.cooling_rate * chi,
+            collision_frequency: dilute.collision_frequency * chi,
+        }
+    }
+
     /// The growth rate s(k) = ζ/2 − ν k² of the scaled transverse velocity at wave number k.
     pub fn transverse_growth_rate(&self, k: f64) -> f64 {
         0.5 * self.cooling_rate - self.kinematic_viscosity * k * k
@@ -230,6 +254,31 @@ mod tests {
         assert!((ga - gb).abs() < 1e-12 * ga.abs().max(1e-3));
         assert!(a.transverse_growth_rate(a.critical_wave_number()).abs() < 1e-14);
         assert!((a.critical_length() - b.critical_length()).abs() < 1e-9 * a.critical_length());
+    }
+
+    /// DSMC's Enskog-factor Boltzmann gas is the dilute gas with lengths in mean free paths
+    /// (`theory::mean_free_path`, computed independently from the collision frequency):
+    /// the same L_c / λ and the same growth per collision at the same k λ.
+    #[test]
+    fn enskog_factor_dsmc_is_the_dilute_gas_in_mean_free_paths() {
+        use crate::theory::mean_free_path;
+        let (phi, eps) = (0.25, 0.8);
+        let n = phi / crate::system::ball_volume::<2>(0.5);
+        let dsmc = HcsTransport::enskog_factor_dsmc::<2>(n, 1.0, 1.0, 2.0, phi, eps);
+        let dilute = HcsTransport::new::<2>(n, 1.0, 1.0, 2.0, 0.0, eps);
+        let (lambda, lambda0) = (
+            mean_free_path::<2>(n, 1.0, phi),
+            mean_free_path::<2>(n, 1.0, 0.0),
+        );
+        let ratio = dsmc.critical_length() / lambda / (dilute.critical_length() / lambda0);
+        assert!((ratio - 1.0).abs() < 1e-12, "L_c / lambda ratio {ratio}");
+        for k_lambda in [0.01, 0.1, 0.3] {
+            let (a, b) = (
+                dsmc.transverse_growth_per_collision(k_lambda / lambda),
+                dilute.transverse_growth_per_collision(k_lambda / lambda0),
+            );
+            assert!((a - b).abs() < 1e-12 * b.abs().max(1e-3), "{a} vs {b}");
+        }
     }
 
     #[test]
