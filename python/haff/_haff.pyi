@@ -3,6 +3,7 @@
 The public API is in haff/__init__.py (haff.eps, haff.Simulation, ...), which wraps these.
 """
 
+from pathlib import Path
 from typing import Any, Callable, Optional
 
 import numpy as np
@@ -53,6 +54,18 @@ class _Simulation:
     ) -> bool: ...
     def timeseries(self) -> dict[str, np.ndarray]: ...
     def velocity_histograms(self) -> list[tuple[float, float, float, Float1D, Float1D]]: ...
+    def modes(self) -> dict[str, Float1D]:
+        """The columns of modes.csv: time, collisions_per_particle, k, transverse_energy,
+        longitudinal_energy, density_power (one row per sample and shell)."""
+    def structure(self) -> tuple[Float1D, Float1D, list[str], Float1D, Float1D]:
+        """The columns of structure.csv: (time, collisions_per_particle, function ("S" or
+        "g"), x, value), per sample S(k) rows then g(r) rows."""
+    def field_files(self) -> list[tuple[float, str]]:
+        """(time, file name in the output directory) of the fields_NNNNNN.vti written."""
+    def snapshot_files(self) -> list[tuple[float, str]]:
+        """(time, file name in the output directory) of the snapshot_NNNNNN.vtu written."""
+    def set_output_dir(self, dir: str, force: bool) -> None:
+        """Claims dir as haff run --out does; field and snapshot files go there."""
     def particles(
         self,
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], Float1D, Float1D]: ...
@@ -63,6 +76,9 @@ class _Simulation:
     def write(self, dir: str, force: bool) -> None: ...
     @property
     def time(self) -> float: ...
+    @property
+    def output_dir(self) -> Optional[Path]:
+        """The output directory, None until set."""
     @property
     def complete(self) -> bool: ...
     @property

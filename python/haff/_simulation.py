@@ -7,7 +7,7 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Any, Dict, List, Mapping, Optional, Union
+from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -16,6 +16,10 @@ from ._haff import ConfigError
 from ._progress import progress_callback
 
 Config = Union[Mapping[str, Any], str, "os.PathLike[str]"]
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: The observers of ``[output]`` that write files during the run, and what they write.
+_FILE_OUTPUTS = (("fields", "fields_NNNNNN.vti"), ("snapshots", "snapshot_NNNNNN.vtu"))
 
 
 def _toml_value(value: Any, key: str) -> str:
@@ -88,23 +92,74 @@ class Simulation:
         "run": {...}}``), a path to a TOML run file, or TOML text. Every key, default and
         check is that of ``haff run`` (see the README); a bad value raises
         :class:`haff.ConfigError` naming the key, e.g. ``system.packing_fraction``.
+    output_dir : str or path, optional
+        The output directory, as ``haff run --out DIR``: the field and snapshot files of
+        ``[output]`` are written there during the run (see :attr:`output_dir`), and
+        :meth:`write` writes there by default.
+    force : bool
+        Replace another run's outputs in `output_dir` (``haff run --force``).
 
     The same description and seed give the same numbers as ``haff run``, bit for bit.
     Runs go on with the GIL released; Ctrl-C interrupts them between pieces (about
     0.1 s), leaving the run where it stopped, ready to go on.
     """
 
-    def __init__(self, config: Config):
+    def __init__(self, config: Config, output_dir: Optional[PathLike] = None,
+                 force: bool = False):
         self._sim = _build(config)
+        if output_dir is not None:
+            self.set_output_dir(output_dir, force=force)
 
     @classmethod
-    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "Simulation":
+    def load(cls, path: PathLike, output_dir: Optional[PathLike] = None,
+             force: bool = False) -> "Simulation":
         """The run saved by :meth:`save` (a file, or a directory holding
         ``checkpoint.bin``, such as a ``haff run`` output directory), checked as
-        ``haff run --resume`` checks it; it continues bit for bit."""
+        ``haff run --resume`` checks it; it continues bit for bit. The output directory
+        is not part of a check-point: give `output_dir` again (a ``haff run`` directory
+        may be its own) for a run that writes fields or snapshots."""
         self = cls.__new__(cls)
         self._sim = _haff._Simulation.load(os.fspath(path))
+        if output_dir is not None:
+            self.set_output_dir(output_dir, force=force)
         return self
+
+    @property
+    def output_dir(self) -> Optional[Path]:
+        """The output directory (None until set): the field files
+        (``fields_NNNNNN.vti``) and snapshots (``snapshot_NNNNNN.vtu``) of ``[output]`` are
+        written there during the run, NNNNNN the sample number. A run asking for them
+        without one raises :class:`haff.ConfigError` naming ``output.fields`` or
+        ``output.snapshots`` before it starts. Setting it claims the directory as
+        ``haff run --out`` does (:meth:`set_output_dir`)."""
+        path = self._sim.output_dir
+        return None if path is None else Path(path)
+
+    @output_dir.setter
+    def output_dir(self, dir: PathLike) -> None:
+        self.set_output_dir(dir)
+
+    def set_output_dir(self, dir: PathLike, force: bool = False) -> None:
+        """Sets the output directory (:attr:`output_dir`), claiming it as
+        ``haff run --out DIR`` does: a new or empty directory, or one holding this run's
+        outputs, gets the manifest ``haff-run.json``; another run's outputs are replaced
+        only with `force`; a directory holding other files is refused."""
+        if dir is None or not isinstance(dir, (str, os.PathLike)):
+            raise ConfigError(
+                f"output_dir: a directory (str or path), not {type(dir).__name__}")
+        self._sim.set_output_dir(os.fspath(dir), bool(force))
+
+    def _check_output_dir(self) -> None:
+        """Refuses a run that writes files during the run without an output directory."""
+        if self._sim.output_dir is not None:
+            return
+        output = self.config.get("output") or {}
+        for key, files in _FILE_OUTPUTS:
+            if output.get(key) is not None:
+                raise ConfigError(
+                    f"output.{key}: writes {files} files during the run: give the simulation "
+                    "an output directory, haff.Simulation(config, output_dir=DIR) or "
+                    "sim.output_dir = DIR")
 
     def run(self, progress: Optional[bool] = None) -> "Simulation":
         """Runs to the end of the run (``run.end_time`` or ``run.collisions_per_particle``),
@@ -114,6 +169,7 @@ class Simulation:
         else a line on stderr) when True, or when None and the session is interactive.
         Returns the simulation itself.
         """
+        self._check_output_dir()
         self._sim.run(progress_callback(progress))
         return self
 
@@ -128,6 +184,7 @@ class Simulation:
         Stopping between samples and going on changes nothing for event-driven runs (bit
         for bit); a DSMC run stopped at a time shortens one step to end there.
         """
+        self._check_output_dir()
         return self._sim.advance(time, collisions_per_particle, progress_callback(progress))
 
     @property
@@ -157,6 +214,42 @@ class Simulation:
                         "c": c, "density": density,
                         "maxwellian": np.exp(-c * c) / math.sqrt(math.pi)})
         return out
+
+    def modes(self) -> Dict[str, np.ndarray]:
+        """The hydrodynamic modes recorded so far (``output.modes``): column name -> array,
+        the columns and rows of ``modes.csv`` (time, collisions_per_particle, k,
+        transverse_energy, longitudinal_energy, density_power; one row per sample and
+        shell of wave vectors |n|^2 = 1 .. ``output.mode_shells``, empty shells left out).
+        Energies are normalized by a homogeneous gas at the current temperature. Empty
+        arrays without ``output.modes``."""
+        return self._sim.modes()
+
+    def structure(self) -> Dict[str, np.ndarray]:
+        """S(k) and g(r) recorded so far (``output.structure``): column name -> array, the
+        columns and rows of ``structure.csv`` (time, collisions_per_particle, function, x,
+        value). ``function`` is a string array, ``"S"`` (x = k) or ``"g"`` (x = r); select
+        with ``s["function"] == "S"``. Per sample the S(k) rows come first, then g(r)."""
+        time, cpp, function, x, value = self._sim.structure()
+        return {"time": time, "collisions_per_particle": cpp,
+                "function": np.array(function, dtype="<U1"), "x": x, "value": value}
+
+    def _files(self, records: List[Tuple[float, str]]) -> List[Tuple[float, Path]]:
+        dir = self.output_dir
+        return [(time, Path(name) if dir is None else dir / name) for time, name in records]
+
+    def field_files(self) -> List[Tuple[float, Path]]:
+        """(time, path) of the field files written so far (``output.fields``), VTK image
+        data (``fields_NNNNNN.vti``, the cell data density, velocity, temperature and
+        vorticity on the grid) in :attr:`output_dir` (file names only while no output
+        directory is set, e.g. after :meth:`load`)."""
+        return self._files(self._sim.field_files())
+
+    def snapshot_files(self) -> List[Tuple[float, Path]]:
+        """(time, path) of the snapshots written so far (``output.snapshots``), VTK
+        unstructured grids (``snapshot_NNNNNN.vtu``: the particles as points with the point
+        data radius, mass, velocity, species, collisions (event-driven) and
+        bath_temperature (stochastic law)), as :meth:`field_files`."""
+        return self._files(self._sim.snapshot_files())
 
     @property
     def positions(self) -> np.ndarray:
@@ -224,11 +317,18 @@ class Simulation:
         `path`. :meth:`load` continues from it (as does ``haff run --resume DIR``)."""
         self._sim.save(os.fspath(path))
 
-    def write(self, dir: Union[str, "os.PathLike[str]"], force: bool = False) -> None:
-        """Writes the files ``haff run --out DIR`` writes into `dir`: ``haff-run.json``,
-        ``timeseries.csv``, ``velocity_histograms.csv`` (with ``run.histogram_at``),
-        ``temperature.png`` and ``summary.json``. A directory holding another run's outputs
-        is refused unless `force`."""
+    def write(self, dir: Optional[PathLike] = None, force: bool = False) -> None:
+        """Writes the files ``haff run --out DIR`` writes into `dir` (default: the
+        :attr:`output_dir`): ``haff-run.json``, ``timeseries.csv``,
+        ``velocity_histograms.csv`` (with ``run.histogram_at``), ``temperature.png``,
+        ``summary.json`` and, with ``[output]``, ``modes.csv``, ``structure.csv``,
+        ``fields.pvd`` and ``snapshots.pvd`` (the ParaView collections name the files
+        written during the run by file name, so they belong in the output directory). A
+        directory holding another run's outputs is refused unless `force`."""
+        if dir is None:
+            dir = self.output_dir
+            if dir is None:
+                raise ConfigError("dir: give a directory (no output_dir is set)")
         Path(dir).mkdir(parents=True, exist_ok=True)
         self._sim.write(os.fspath(dir), bool(force))
 

@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sim::observer::TIMESERIES_HEADER;
 use sim::outdir::{run_hash, OutputDir, RunState};
+use sim::space::{MODES_HEADER, STRUCTURE_HEADER};
 use sim::{Point, Progress, Simulation};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
@@ -236,6 +237,97 @@ impl PySimulation {
                 )
             })
             .collect()
+    }
+
+    /// The hydrodynamic modes recorded (`output.modes`): column name -> values, the
+    /// columns and rows of `modes.csv` (one row per sample and shell).
+    fn modes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let simulation = self.get();
+        let rows: Vec<[f64; 6]> = simulation
+            .space_records()
+            .modes
+            .iter()
+            .flat_map(|s| {
+                s.shells
+                    .iter()
+                    .map(move |&(_, k, t, l, d)| [s.time, s.collisions_per_particle, k, t, l, d])
+            })
+            .collect();
+        let out = PyDict::new(py);
+        for (i, name) in MODES_HEADER.into_iter().enumerate() {
+            let values: Vec<f64> = rows.iter().map(|row| row[i]).collect();
+            out.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        Ok(out)
+    }
+
+    /// S(k) and g(r) recorded (`output.structure`): the columns of `structure.csv`, rows in
+    /// its order (per sample, S then g); `function` as a list of "S" and "g".
+    #[allow(clippy::type_complexity)]
+    fn structure<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Vec<&'static str>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+    ) {
+        debug_assert_eq!(
+            STRUCTURE_HEADER,
+            ["time", "collisions_per_particle", "function", "x", "value"]
+        );
+        let simulation = self.get();
+        let (mut time, mut cpp, mut function, mut x, mut value) =
+            (vec![], vec![], vec![], vec![], vec![]);
+        for s in &simulation.space_records().structure {
+            for (name, points) in [("S", &s.structure_factor), ("g", &s.pair_correlation)] {
+                for &(at, v) in points {
+                    time.push(s.time);
+                    cpp.push(s.collisions_per_particle);
+                    function.push(name);
+                    x.push(at);
+                    value.push(v);
+                }
+            }
+        }
+        (
+            PyArray1::from_vec(py, time),
+            PyArray1::from_vec(py, cpp),
+            function,
+            PyArray1::from_vec(py, x),
+            PyArray1::from_vec(py, value),
+        )
+    }
+
+    /// (time, file name) of the field files written (`output.fields`).
+    fn field_files(&self) -> Vec<(f64, String)> {
+        self.get().space_records().fields.clone()
+    }
+
+    /// (time, file name) of the snapshot files written (`output.snapshots`).
+    fn snapshot_files(&self) -> Vec<(f64, String)> {
+        self.get().space_records().snapshots.clone()
+    }
+
+    /// The directory field and snapshot files are written to, if set.
+    #[getter]
+    fn output_dir(&self) -> Option<PathBuf> {
+        self.get().output_dir().map(PathBuf::from)
+    }
+
+    /// Claims `dir` for this run, as `haff run --out DIR` does (new, empty, or holding
+    /// this run's outputs; another run's only with `force`), and writes the field and
+    /// snapshot files of `[output]` there during the run.
+    fn set_output_dir(&mut self, dir: PathBuf, force: bool) -> PyResult<()> {
+        let hash = run_hash(self.get().description());
+        OutputDir::for_writing(&dir, "run", &hash, force).map_err(|e| match e {
+            sim::Error::Input { message, .. } => config_error("output_dir", message),
+            other => sim_error(other),
+        })?;
+        self.get_mut().set_output_dir(&dir);
+        Ok(())
     }
 
     /// (positions, velocities, radii, masses) now: copies, (N, D), (N, D), (N,), (N,).

@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 22] = [
+const CSVS: [(&str, &str); 25] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -66,6 +66,20 @@ const CSVS: [(&str, &str); 22] = [
     ),
     ("kinetic-viscoelastic-exponent", "time,local_exponent"),
     (
+        "kinetic-shear",
+        "dimension,packing_fraction,restitution,dsmc,particles,box_over_lc,seeds,\
+         fit_end_collisions,k_over_kc,growth_per_collision,growth_error,growth_theory",
+    ),
+    (
+        "kinetic-shear-haff",
+        "collisions_above,t_over_haff_above,error_above,collisions_below,t_over_haff_below,\
+         error_below",
+    ),
+    (
+        "kinetic-shear-modes",
+        "case,k_over_kc,collisions_per_particle,transverse_energy,transverse_energy_error",
+    ),
+    (
         "giese-fig1",
         "collision,e_tr,eps,eta,e_tr_running_mean,equipartition_per_collision",
     ),
@@ -90,6 +104,8 @@ fn ids() -> Vec<&'static str> {
             ![
                 "mp2011-table1-errors",
                 "kinetic-viscoelastic-exponent",
+                "kinetic-shear-haff",
+                "kinetic-shear-modes",
                 "giese-fig1-spectrum",
             ]
             .contains(id)

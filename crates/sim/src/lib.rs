@@ -4,7 +4,7 @@
 //! call):
 //!
 //! TOML (or, later, a Python dict) -> [`RunDescription`] -> [`validate`] -> [`Plan`] -> system + law +
-//! engine ([`engines`], [`law`]) -> [`observer`]s -> writers ([`output`], [`plot`]),
+//! engine ([`engines`], [`law`]) -> [`observer`]s -> writers ([`output`], [`plot`], [`maps`]),
 //! with [`checkpoint`]s to continue a run bit for bit.
 //!
 //! ```no_run
@@ -25,6 +25,7 @@ mod engines;
 pub mod error;
 mod figures;
 pub mod law;
+pub mod maps;
 pub mod observer;
 pub mod outdir;
 pub mod output;

@@ -239,6 +239,21 @@ fn read_manifest(path: &Path) -> Result<Contents> {
     })
 }
 
+/// Whether `name` is a file of the `[output]` observers (`crate::space`).
+fn is_space_output(name: &str) -> bool {
+    let numbered = |prefix: &str, extensions: &[&str]| {
+        name.strip_prefix(prefix).is_some_and(|rest| {
+            extensions.iter().any(|ext| {
+                rest.strip_suffix(ext)
+                    .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            })
+        })
+    };
+    ["modes.csv", "structure.csv", "fields.pvd", "snapshots.pvd"].contains(&name)
+        || numbered("fields_", &[".vti", ".png"])
+        || numbered("snapshot_", &[".vtu"])
+}
+
 /// Removes the outputs of a haff run (and its manifest) from `path`; other files stay.
 fn remove_outputs(path: &Path) -> std::io::Result<()> {
     for entry in std::fs::read_dir(path)? {
@@ -247,10 +262,41 @@ fn remove_outputs(path: &Path) -> std::io::Result<()> {
         let ours = OUTPUTS.contains(&name.as_str())
             || name == MANIFEST
             || name.ends_with(".partial")
-            || (name.starts_with("ed_mc_") && name.ends_with(".csv"));
+            || (name.starts_with("ed_mc_") && name.ends_with(".csv"))
+            || is_space_output(&name);
         if ours && entry.file_type()?.is_file() {
             std::fs::remove_file(entry.path())?;
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_space_output;
+
+    /// `--force` removes the observers' files of the previous run, and only those.
+    #[test]
+    fn space_outputs_are_recognized() {
+        for ours in [
+            "modes.csv",
+            "structure.csv",
+            "fields.pvd",
+            "snapshots.pvd",
+            "fields_000010.vti",
+            "fields_000010.png",
+            "snapshot_000000.vtu",
+        ] {
+            assert!(is_space_output(ours), "{ours}");
+        }
+        for theirs in [
+            "fields_.vti",
+            "fields_x1.vti",
+            "snapshot_000001.vti",
+            "notes.csv",
+            "snapshot_1.vtu.bak",
+        ] {
+            assert!(!is_space_output(theirs), "{theirs}");
+        }
+    }
 }

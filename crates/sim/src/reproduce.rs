@@ -21,6 +21,7 @@ pub mod giese;
 pub mod giese_ring;
 pub mod kinetic;
 pub mod mp2011;
+pub mod shear;
 pub mod sp2008;
 
 use crate::error::{Error, Result};
@@ -57,6 +58,7 @@ pub fn entries() -> Vec<Entry> {
     let mut all = mp2011::entries();
     all.extend(sp2008::entries());
     all.extend(kinetic::entries());
+    all.extend(shear::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());
     all

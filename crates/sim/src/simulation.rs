@@ -255,9 +255,21 @@ impl Simulation {
     }
 
     /// The directory that field and snapshot files (`[output]`) are written to during the
-    /// run; without one a run that asks for them stops with an error at the first.
+    /// run; without one a run that asks for them is refused before it goes on (an input
+    /// error naming `output.fields` or `output.snapshots`).
     pub fn set_output_dir(&mut self, dir: &Path) {
         each!(&mut self.run, r => r.space.set_directory(dir))
+    }
+
+    /// The directory set by [`Simulation::set_output_dir`], if any.
+    pub fn output_dir(&self) -> Option<&Path> {
+        each!(&self.run, r => r.space.directory())
+    }
+
+    /// What the observers of `[output]` have recorded so far (the rows of `modes.csv` and
+    /// `structure.csv`, the field and snapshot files written).
+    pub fn space_records(&self) -> &SpaceRecords {
+        each!(&self.run, r => &r.space.records)
     }
 
     /// Saves the state to the check-point of `dir` every `every` samples (None: never).
@@ -537,6 +549,9 @@ impl<const D: usize> Run<D> {
         point: Option<Point>,
     ) -> Result<()> {
         let particles = plan.description.system.particles as f64;
+        if self.next < self.schedule.len() {
+            self.space.check_directory()?;
+        }
         progress.start(plan.description.run.samples, self.timeseries.samples.len());
         let started = Instant::now();
         let result = (|| {

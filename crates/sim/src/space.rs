@@ -1,6 +1,7 @@
 //! The observers of space, switched on in the run file's `[output]` table: hydrodynamic
 //! modes (`modes.csv`), S(k) and g(r) (`structure.csv`), coarse-grained fields and particle
-//! snapshots for ParaView (VTK XML with `.pvd` time series). They read the engine's
+//! snapshots for ParaView (VTK XML with `.pvd` time series), and maps of the fields as PNG
+//! ([`crate::maps`]). They read the engine's
 //! [`gas::system::System`] at the samples of the schedule, so every spatial engine has them;
 //! the homogeneous DSMC schemes have no positions and refuse them. Field and snapshot files
 //! are written during the run into the output directory ([`SpaceObserver::set_directory`]);
@@ -8,11 +9,13 @@
 
 use crate::description::{OutputSection, RunDescription};
 use crate::error::{Error, Result};
+use crate::maps;
 use crate::output::{number, write_csv_file};
+use crate::plot::tick_label;
 use crate::validate::{EngineSpec, Plan};
 use crate::vtk::{write_collection, write_fields, write_particles, ParticleData};
 use gas::structure::{
-    coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor,
+    coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor, Fields,
 };
 use gas::theory::long_wavelength_structure_factor;
 use gas::Engine;
@@ -38,6 +41,9 @@ pub const MODES_HEADER: [&str; 6] = [
 /// The header of `structure.csv`: `function` is `S` (x = k) or `g` (x = r).
 pub const STRUCTURE_HEADER: [&str; 5] =
     ["time", "collisions_per_particle", "function", "x", "value"];
+
+/// The message of a run asking for fields or snapshots without an output directory.
+const NO_DIRECTORY: &str = "writes files during the run: give the run an output directory";
 
 /// Checks `[output]` against the engine (errors name the key and the allowed range).
 pub fn check_output(description: &RunDescription, engine: &EngineSpec) -> Result<()> {
@@ -98,6 +104,41 @@ fn every(key: &str, k: usize) -> Result<()> {
     } else {
         Err(Error::out_of_range(key, k, "1 ..= 1e6 samples"))
     }
+}
+
+/// `fields_NNNNNN.png`: the density and vorticity maps of a field sample ([`crate::maps`]),
+/// the whole box in 2D, the mid-plane layer of cells at z = L/2 in 3D, nothing in 1D; axes
+/// in units of the largest particle diameter.
+fn write_maps<const D: usize>(
+    path: &Path,
+    system: &gas::system::System<D>,
+    fields: &Fields<D>,
+    time: f64,
+    cpp: f64,
+) -> Result<()> {
+    let mean_density = system.len() as f64 / system.length.powi(D as i32);
+    let Some((density, vorticity)) = maps::plane(fields, mean_density) else {
+        return Ok(());
+    };
+    let diameter = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
+    let (side, unit) = if diameter > 0.0 {
+        (system.length / diameter, "sigma")
+    } else {
+        (system.length, "L unit")
+    };
+    let what = if D == 3 {
+        "mid-plane slice z = L/2"
+    } else {
+        "2D"
+    };
+    let title = format!(
+        "{what}, N = {}: t = {}, {} collisions per particle",
+        system.len(),
+        tick_label(time),
+        tick_label(cpp)
+    );
+    let maps = maps::density_and_vorticity(fields.grid, side, density, vorticity);
+    maps::write_png(path, &title, unit, &maps)
 }
 
 /// The modes of one sample: (|n|², k, transverse, longitudinal, density) per shell.
@@ -187,6 +228,25 @@ impl SpaceObserver {
     /// The directory field and snapshot files go to.
     pub fn set_directory(&mut self, dir: &Path) {
         self.directory = Some(dir.to_path_buf());
+    }
+
+    /// The directory field and snapshot files go to, if set.
+    pub fn directory(&self) -> Option<&Path> {
+        self.directory.as_deref()
+    }
+
+    /// Fails (naming the key) if fields or snapshots are asked for and no directory is set:
+    /// checked before a run goes on, so that it never stops half-way through a sample.
+    pub fn check_directory(&self) -> Result<()> {
+        let key = if self.output.fields.is_some() {
+            "output.fields"
+        } else {
+            "output.snapshots"
+        };
+        match &self.directory {
+            None if self.writes_files() => Err(Error::input(key, NO_DIRECTORY)),
+            _ => Ok(()),
+        }
     }
 
     /// Checks the records of a check-point against the samples taken.
@@ -286,7 +346,15 @@ impl SpaceObserver {
             if sample.is_multiple_of(f.every) {
                 let name = format!("fields_{sample:06}.vti");
                 let path = self.file(&name, "output.fields")?;
-                write_fields(&path, &coarse_grained_fields(engine.system(), f.grid))?;
+                let fields = coarse_grained_fields(engine.system(), f.grid);
+                write_fields(&path, &fields)?;
+                write_maps(
+                    &path.with_extension("png"),
+                    engine.system(),
+                    &fields,
+                    time,
+                    cpp,
+                )?;
                 self.records.fields.push((time, name));
             }
         }
@@ -328,10 +396,7 @@ impl SpaceObserver {
     fn file(&self, name: &str, key: &str) -> Result<PathBuf> {
         match &self.directory {
             Some(dir) => Ok(dir.join(name)),
-            None => Err(Error::input(
-                key,
-                "writes files during the run: give the run an output directory",
-            )),
+            None => Err(Error::input(key, NO_DIRECTORY)),
         }
     }
 

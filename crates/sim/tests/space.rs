@@ -91,6 +91,45 @@ fn output_files_and_vtk_read_back() {
         fields.data,
         vtkio::model::DataSet::ImageData { .. }
     ));
+    for sample in [0, 2, 4] {
+        let png = dir.join(format!("fields_{sample:06}.png"));
+        assert_eq!(png_size(&png), sim::maps::SIZE, "{}", png.display());
+    }
+    assert!(!dir.join("fields_000001.png").exists());
+}
+
+/// The pixel size of a PNG file, after decoding all of it.
+fn png_size(path: &Path) -> (u32, u32) {
+    let decoder = png::Decoder::new(std::fs::File::open(path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buffer = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buffer).unwrap();
+    (info.width, info.height)
+}
+
+/// Field maps: the mid-plane of a 3D run, none in 1D.
+#[test]
+fn field_maps_in_3d_and_not_in_1d() {
+    for (dimension, particles, png) in [(3, 2000, true), (1, 200, false)] {
+        let dir = scratch(&format!("maps{dimension}"));
+        let text = format!(
+            "[system]\ndimension = {dimension}\nparticles = {particles}\n\
+             packing_fraction = 0.1\nseed = 3\n\
+             [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+             [run]\ncollisions_per_particle = 2\nsamples = 2\nspacing = \"linear\"\n\
+             [output]\nfields = {{ every = 1, grid = 8 }}\n"
+        );
+        let mut run = Simulation::from_toml(&text, "t.toml".as_ref()).unwrap();
+        run.set_output_dir(&dir);
+        run.run(&mut (), None).unwrap();
+        run.write(&dir).unwrap();
+        assert!(dir.join("fields_000001.vti").exists());
+        let path = dir.join("fields_000001.png");
+        assert_eq!(path.exists(), png, "{dimension}D");
+        if png {
+            assert_eq!(png_size(&path), sim::maps::SIZE);
+        }
+    }
 }
 
 #[test]
@@ -111,6 +150,35 @@ fn homogeneous_dsmc_refuses_observers_of_space() {
             assert!(message.contains("3 ..= 256"), "{message}");
         }
         other => panic!("{:?}", other.err()),
+    }
+}
+
+/// Fields or snapshots without an output directory: the run is refused before it takes a
+/// sample (an input error naming the key), and goes on unchanged once a directory is set.
+#[test]
+fn files_without_a_directory_are_refused_before_the_run() {
+    let text = "[system]\ndimension = 2\nparticles = 200\npacking_fraction = 0.1\nseed = 2\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+                [run]\ncollisions_per_particle = 2\nsamples = 3\n\
+                [output]\nmodes = true\n";
+    for (output, key) in [
+        ("snapshots = { every = 1 }", "output.snapshots"),
+        ("fields = { every = 2, grid = 4 }", "output.fields"),
+    ] {
+        let text = format!("{text}{output}\n");
+        let mut run = Simulation::from_toml(&text, "t.toml".as_ref()).unwrap();
+        assert_eq!(run.output_dir(), None);
+        match run.run(&mut (), None) {
+            Err(Error::Input { key: k, .. }) => assert_eq!(k, key),
+            other => panic!("{other:?}"),
+        }
+        assert!(run.samples().is_empty() && run.space_records().modes.is_empty());
+        let dir = scratch(key);
+        run.set_output_dir(&dir);
+        assert_eq!(run.output_dir(), Some(dir.as_path()));
+        assert!(run.run(&mut (), None).unwrap().complete);
+        assert_eq!(run.samples().len(), 3);
+        assert_eq!(run.space_records().modes.len(), 3);
     }
 }
 
@@ -206,15 +274,16 @@ fn shear_mode_below_and_above_the_critical_length() {
     );
 }
 
-/// A run stopped and resumed from its check-point writes the same modes, structure and
-/// snapshot files, bit for bit, as one that ran through (both check-pointing every sample,
+/// A run stopped and resumed from its check-point writes the same modes, structure,
+/// field (VTK and PNG maps) and snapshot files, bit for bit, as one that ran through (both check-pointing every sample,
 /// which synchronizes the event-driven engine at the same places).
 #[test]
 fn resumed_runs_write_the_same_files() {
     let text = "[system]\ndimension = 2\nparticles = 3000\npacking_fraction = 0.2\nseed = 5\n\
                 [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
                 [run]\ncollisions_per_particle = 20\nsamples = 6\nspacing = \"linear\"\n\
-                [output]\nmodes = true\nstructure = true\nsnapshots = { every = 2 }\n";
+                [output]\nmodes = true\nstructure = true\nsnapshots = { every = 2 }\n\
+                fields = { every = 2, grid = 16 }\n";
     let (whole, parts) = (scratch("whole"), scratch("parts"));
     let mut run = Simulation::from_toml(text, "t.toml".as_ref()).unwrap();
     run.set_checkpoints(&whole, Some(1));
@@ -234,6 +303,9 @@ fn resumed_runs_write_the_same_files() {
         "structure.csv",
         "snapshot_000004.vtu",
         "snapshots.pvd",
+        "fields_000004.vti",
+        "fields_000004.png",
+        "fields.pvd",
     ] {
         let (a, b) = (whole.join(file), parts.join(file));
         assert!(
