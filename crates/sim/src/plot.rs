@@ -32,6 +32,8 @@ pub struct Curve {
     pub name: String,
     pub points: Vec<(f64, f64)>,
     pub kind: Kind,
+    /// Standard errors of the y values (drawn as vertical bars), if measured.
+    pub errors: Option<Vec<f64>>,
 }
 
 /// A figure: title, axis labels (with symbols and units), scales, curves.
@@ -153,6 +155,19 @@ impl Figure {
             name: name.into(),
             points,
             kind,
+            errors: None,
+        });
+        self
+    }
+
+    /// Adds measurements with their standard errors: markers with vertical error bars
+    /// (points (x, y, error)).
+    pub fn measured(mut self, name: impl Into<String>, points: Vec<(f64, f64, f64)>) -> Self {
+        self.curves.push(Curve {
+            name: name.into(),
+            points: points.iter().map(|p| (p.0, p.1)).collect(),
+            kind: Kind::Printed,
+            errors: Some(points.iter().map(|p| p.2).collect()),
         });
         self
     }
@@ -337,6 +352,17 @@ impl Figure {
             match (curve.kind, dashes(curve.kind, index)) {
                 (Kind::Printed, _) => {
                     chart.draw_series(data.iter().map(|&p| Circle::new(p, 6, color.filled())))?;
+                    if let Some(errors) = &curve.errors {
+                        let bars = curve.points.iter().zip(errors).filter_map(|(&(x, y), &e)| {
+                            let ends = [(x, y - e), (x, y + e)];
+                            (e.is_finite() && ends.iter().all(|p| self.drawable(p))).then(|| {
+                                let ends = ends
+                                    .map(|(x, y)| (to_axis(self.log_x, x), to_axis(self.log_y, y)));
+                                PathElement::new(ends.to_vec(), color.stroke_width(2))
+                            })
+                        });
+                        chart.draw_series(bars)?;
+                    }
                 }
                 (kind, None) => {
                     // Segment by segment: plotters joins a thick polyline with miters,

@@ -108,6 +108,15 @@ impl Case {
         }
     }
 
+    /// The mean free path (`gas::theory::mean_free_path`, with the Enskog factor).
+    fn mean_free_path(&self) -> f64 {
+        let n = self.density();
+        match self.dimension {
+            2 => gas::theory::mean_free_path::<2>(n, 1.0, self.phi),
+            _ => gas::theory::mean_free_path::<3>(n, 1.0, self.phi),
+        }
+    }
+
     fn side(&self) -> f64 {
         self.boxes * self.theory().critical_length()
     }
@@ -511,13 +520,13 @@ fn shear(ctx: &Context) -> Result<Outcome> {
     let id = "kinetic-shear";
     let mut rows = Vec::new();
     let mut fig = Figure::new(
-        "Shear mode of the HCS: growth per collision / (zeta/omega) vs (k/k_c)^2",
+        "Shear mode of the HCS: growth per collision / (zeta/omega) vs (k/k_c)^2 (± jackknife errors)",
         "(k / k_c)^2",
         "lambda / (zeta / omega)",
     );
     let mut summary_table = String::from(
-        "| case | method | a (theory 1) | b = nu_eff / nu (theory 1) | L_c measured / theory |\n\
-         |---|---|---|---|---|\n",
+        "| case | method | k_c lambda | a (theory 1) | b = nu_eff / nu (theory 1) | L_c measured / theory |\n\
+         |---|---|---|---|---|---|\n",
     );
     let mut table = String::from(
         "| case | method | N | L / L_c | seeds | fit to c | k / k_c | lambda measured | theory | difference |\n\
@@ -569,7 +578,7 @@ fn shear(ctx: &Context) -> Result<Outcome> {
             ]);
             let cells = if s.measured.is_some() {
                 let difference = measured / s.theory - 1.0;
-                points.push((s.k_over_kc.powi(2), measured / scale));
+                points.push((s.k_over_kc.powi(2), measured / scale, error / scale));
                 measured_shells += 1;
                 if difference.abs() < 0.15 {
                     within += 1;
@@ -598,9 +607,10 @@ fn shear(ctx: &Context) -> Result<Outcome> {
         if let Some(line) = straight_line(&shells, scale) {
             let _ = writeln!(
                 summary_table,
-                "| {} | {} | {:.3} ± {:.3} | {:.3} ± {:.3} | {:.3} |",
+                "| {} | {} | {:.2} | {:.3} ± {:.3} | {:.3} ± {:.3} | {:.3} |",
                 case.label,
                 case.method_name(),
+                kc * case.mean_free_path(),
                 line.intercept,
                 line.intercept_error,
                 line.slope,
@@ -608,7 +618,7 @@ fn shear(ctx: &Context) -> Result<Outcome> {
                 (line.slope / line.intercept).sqrt(),
             );
         }
-        fig = fig.printed(
+        fig = fig.measured(
             format!(
                 "{}, {} ({} seeds)",
                 case.label,
