@@ -189,6 +189,18 @@ pub(crate) fn local_slope(vstar: f64, criterion: Criterion) -> Result<f64> {
     Ok((up / down).ln() / (f * f).ln())
 }
 
+/// The mean of `x` and its standard error (sample standard deviation / sqrt(n); NaN for
+/// one value).
+pub(crate) fn mean_and_error(x: &[f64]) -> (f64, f64) {
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    if x.len() < 2 {
+        return (mean, f64::NAN);
+    }
+    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
 /// `n` points from `a` to `b` inclusive.
 pub(crate) fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)

@@ -4,7 +4,7 @@
 //! t^(-5/3) cooling of viscoelastic spheres (Brilliantov & Pöschel, *Kinetic Theory of
 //! Granular Gases*, Oxford 2004, Chs. 7, 8). Units: sigma = m = T0 = 1, 3D.
 
-use super::{sig, Context, Entry, Outcome};
+use super::{mean_and_error, sig, Context, Entry, Outcome};
 use crate::error::Result;
 use crate::plot::Figure;
 use gas::dsmc::{point_gas, Scheme};
@@ -76,17 +76,6 @@ fn temperatures(engine: &mut dyn Engine<3>, times: &[f64]) -> Vec<f64> {
             temperature(engine.system())
         })
         .collect()
-}
-
-/// Mean and standard error of the mean.
-fn mean_and_error(x: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    if x.len() < 2 {
-        return (mean, f64::NAN);
-    }
-    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
 }
 
 /// Haff's law T(t) = 1 / (1 + t/t0)^2, 1/t0 = zeta0/2, with the cooling rate of the HCS

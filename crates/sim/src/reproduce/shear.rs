@@ -24,7 +24,7 @@
 //! 30 %: the onset of the nonlinear regime, in which the vortices feed density
 //! fluctuations). Shells that grow less than e^1.5 by then are reported as not resolved.
 
-use super::{sig, Context, Entry, Outcome};
+use super::{mean_and_error, sig, Context, Entry, Outcome};
 use crate::error::Result;
 use crate::plot::Figure;
 use gas::dsmc::{point_gas, SpatialOptions};
@@ -274,16 +274,6 @@ fn fit_growth(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     }
     let lambda = 0.5 * (lo + hi);
     Some((lambda, at(lambda).2))
-}
-
-fn mean_and_error(x: &[f64]) -> (f64, f64) {
-    let n = x.len() as f64;
-    let mean = x.iter().sum::<f64>() / n;
-    if x.len() < 2 {
-        return (mean, f64::NAN);
-    }
-    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    (mean, (var / n).sqrt())
 }
 
 /// A shell's measured growth against theory.
