@@ -742,7 +742,7 @@ fn shear(ctx: &Context) -> Result<Outcome> {
 
     let md = format!(
         "# {id}: the shear instability of the homogeneous cooling state\n\n\
-         **Theory.** Navier–Stokes hydrodynamics with the Enskog shear viscosity of inelastic \
+         **Paper.** Navier–Stokes hydrodynamics with the Enskog shear viscosity of inelastic \
          hard disks/spheres in the first Sonine approximation (Garzó & Dufty 1999 in D \
          dimensions; `gas::theory::HcsTransport`): the scaled transverse velocity grows at \
          s(k) = zeta/2 - nu k^2, so the normalized energy of a transverse mode grows per \
