@@ -97,6 +97,7 @@ pub struct SoftSphereState<const D: usize> {
     pub material: ViscoelasticMaterial,
     pub options: SoftSphereOptions,
     pub time_step: f64,
+    pub time: f64,
     pub steps: u64,
     pub counters: Counters,
     /// Pairs in contact after the last step (i < j, sorted).
@@ -112,6 +113,7 @@ pub struct SoftSphere<const D: usize> {
     material: ViscoelasticMaterial,
     options: SoftSphereOptions,
     time_step: f64,
+    time: f64,
     steps: u64,
     tally: Counters,
     contacts: Vec<(u32, u32)>,
@@ -179,6 +181,7 @@ impl<const D: usize> SoftSphere<D> {
             material,
             options,
             time_step,
+            time: 0.0,
             steps: 0,
             tally: Counters::default(),
             contacts: Vec::new(),
@@ -207,6 +210,13 @@ impl<const D: usize> SoftSphere<D> {
         state.material.validate()?;
         state.system.check(true)?;
         require_positive("time_step", state.time_step)?;
+        if !(state.time.is_finite() && state.time >= 0.0) {
+            return Err(Error::out_of_range(
+                "time",
+                state.time,
+                "a finite time >= 0",
+            ));
+        }
         if state
             .contacts
             .iter()
@@ -229,6 +239,7 @@ impl<const D: usize> SoftSphere<D> {
             material: state.material,
             options: state.options,
             time_step: state.time_step,
+            time: state.time,
             steps: state.steps,
             tally: state.counters,
             contacts: state.contacts,
@@ -240,6 +251,14 @@ impl<const D: usize> SoftSphere<D> {
     /// The time step.
     pub fn time_step(&self) -> f64 {
         self.time_step
+    }
+
+    /// Takes `n` full time steps.
+    pub fn run_steps(&mut self, n: u64) {
+        for _ in 0..n {
+            self.step(self.time_step);
+            self.time += self.time_step;
+        }
     }
 
     /// Steps taken.
@@ -295,9 +314,9 @@ impl<const D: usize> SoftSphere<D> {
                 .sum::<f64>();
             let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
             let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
-            for k in 0..D {
-                self.forces[i][k] -= force * normal[k];
-                self.forces[j][k] += force * normal[k];
+            for (k, n) in normal.iter().enumerate() {
+                self.forces[i][k] -= force * n;
+                self.forces[j][k] += force * n;
             }
             if force > 0.0 {
                 power += dissipative * xi_dot;
@@ -337,9 +356,8 @@ impl<const D: usize> SoftSphere<D> {
         (power, virial, begun)
     }
 
-    /// One velocity-Verlet step (see the [module](self) documentation).
-    fn step(&mut self) {
-        let dt = self.time_step;
+    /// One velocity-Verlet step of length `dt` (see the [module](self) documentation).
+    fn step(&mut self, dt: f64) {
         let (power_before, virial_before) = self.contact_rates();
         let length = self.system.length;
         let s = &mut self.system;
@@ -397,10 +415,18 @@ impl<const D: usize> SoftSphere<D> {
     }
 
     /// Steps while the time is below `end`, the collisions below `collisions` and below
-    /// `pause`.
+    /// `pause`; the last step before `end` is shortened to end there, so that samples fall
+    /// on their times (pieces of a run compose bit for bit: the steps depend only on the
+    /// targets).
     fn run_to(&mut self, end: f64, collisions: u64, pause: u64) {
-        while self.time() < end && self.tally.collisions < collisions.min(pause) {
-            self.step();
+        while self.time < end && self.tally.collisions < collisions.min(pause) {
+            if self.time + self.time_step < end {
+                self.step(self.time_step);
+                self.time += self.time_step;
+            } else {
+                self.step(end - self.time);
+                self.time = end;
+            }
         }
     }
 }
@@ -445,7 +471,7 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
     }
 
     fn time(&self) -> f64 {
-        self.steps as f64 * self.time_step
+        self.time
     }
 
     fn counters(&self) -> Counters {
@@ -483,6 +509,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             material: self.material,
             options: self.options,
             time_step: self.time_step,
+            time: self.time,
             steps: self.steps,
             counters: self.tally,
             contacts: self.contacts.clone(),
