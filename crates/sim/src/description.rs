@@ -18,12 +18,16 @@
 //! law = "constant"         # constant | dashpot | viscoelastic | stochastic
 //! restitution = 0.9        # constant: 0 <= eps <= 1
 //! # dashpot: damping_ratio = R, criterion = "improved" | "naive"
-//! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K"
+//! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K";
+//! #   or the material: young = Y, poisson = nu, dissipative_constant = A (the units of
+//! #   the system; beta = (3/2) A (rho / m_eff)^(2/5), rho = 2 Y sqrt(R_eff) / (3 (1 - nu^2)))
 //! # stochastic: modes = M, distribution = "glauber" | "tabulated", table = PATH,
 //! #             bath_temperature = 0.0
 //! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
 //! [run]
-//! engine = "event-driven"  # event-driven | dsmc
+//! engine = "event-driven"  # event-driven | dsmc | soft-sphere
+//! # soft-sphere: the material keys of law = "viscoelastic"; steps_per_contact = 50 or
+//! #   time_step = DT
 //! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 4096 (blocks),
 //! #       collisions_per_step = 1 (blocks; spatial: 0.2) or time_step = DT,
 //! #       collision_cell_width = W (spatial)
@@ -195,6 +199,16 @@ pub struct CollisionSection {
     pub beta: Option<f64>,
     #[serde(default)]
     pub form: Option<FormName>,
+    /// Viscoelastic material: Young modulus (instead of beta, with `poisson` and
+    /// `dissipative_constant`), in the units of the system.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub young: Option<f64>,
+    /// Viscoelastic material: Poisson ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
+    /// Viscoelastic material: the dissipative constant A of Eq. (2) of MP2011 (a time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dissipative_constant: Option<f64>,
     /// Contact duration of the TC model (0 or absent: off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tc: Option<f64>,
@@ -219,6 +233,7 @@ pub struct CollisionSection {
 pub enum EngineKind {
     EventDriven,
     Dsmc,
+    SoftSphere,
 }
 
 /// `run.dsmc_scheme`.
@@ -290,6 +305,9 @@ pub struct RunSection {
     /// each mean free path.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub particle_weight: Option<f64>,
+    /// Soft-sphere MD: time steps per Hertz contact duration (or `time_step`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps_per_contact: Option<f64>,
 }
 
 fn three() -> u32 {

@@ -8,8 +8,8 @@ use crate::error::{Error, Result};
 use crate::observer::{TimeSeries, VelocityHistograms};
 use crate::validate::{EngineSpec, LawSpec, Plan};
 use gas::{
-    BathState, Checkpoint, Engine, EventDriven, EventDrivenState, HomogeneousDsmc, SpatialDsmc,
-    System,
+    BathState, Checkpoint, Engine, EventDriven, EventDrivenState, HomogeneousDsmc, SoftSphere,
+    SoftSphereState, SpatialDsmc, System,
 };
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
@@ -81,7 +81,7 @@ fn initial_system<const D: usize>(plan: &Plan) -> Result<System<D>> {
                 s.seed,
             )
         }
-        (None, EngineSpec::EventDriven) => {
+        (None, EngineSpec::EventDriven | EngineSpec::SoftSphere(..)) => {
             gas::init::monodisperse::<D>(s.particles, phi, diameter, mass, s.temperature, s.seed)
         }
         (Some(entries), _) => {
@@ -168,6 +168,9 @@ pub(crate) fn start<const D: usize>(
         EngineSpec::SpatialDsmc(options) => Box::new(
             SpatialDsmc::new(system, s.packing_fraction, law, s.seed, options).map_err(fail)?,
         ),
+        EngineSpec::SoftSphere(options, material) => {
+            Box::new(SoftSphere::new(system, material, options).map_err(fail)?)
+        }
     })
 }
 
@@ -182,6 +185,7 @@ pub(crate) fn restore<const D: usize>(
         EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(plan, law, sections),
         EngineSpec::HomogeneousDsmc(_) => restore_as::<D, HomogeneousDsmc<D>>(plan, law, sections),
         EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(plan, law, sections),
+        EngineSpec::SoftSphere(..) => restore_as::<D, SoftSphere<D>>(plan, law, sections),
     }
 }
 
@@ -224,6 +228,23 @@ impl<const D: usize> Planned<D> for EventDriven<D> {
             &state.system,
             state.baths.as_ref().map(|b| b.temperatures.as_slice()),
         )
+    }
+}
+
+impl<const D: usize> Planned<D> for SoftSphere<D> {
+    fn check_state(plan: &Plan, state: &SoftSphereState<D>) -> std::result::Result<(), String> {
+        particles(plan, &state.system)?;
+        box_side(plan, &state.system)?;
+        match plan.engine {
+            EngineSpec::SoftSphere(options, material)
+                if state.options == options && state.material == material => {}
+            _ => {
+                return Err(
+                    "the material or the soft-sphere options differ from the run file's".into(),
+                )
+            }
+        }
+        no_energy_gained(plan, &state.system, None)
     }
 }
 

@@ -10,6 +10,8 @@ use crate::description::{
 };
 use crate::error::{positive, Error, Result};
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
+use gas::soft::contact::ViscoelasticMaterial;
+use gas::SoftSphereOptions;
 use restitution::{Criterion, FormName};
 use std::path::PathBuf;
 
@@ -70,6 +72,7 @@ pub enum EngineSpec {
     EventDriven,
     HomogeneousDsmc(Scheme),
     SpatialDsmc(SpatialOptions),
+    SoftSphere(SoftSphereOptions, ViscoelasticMaterial),
 }
 
 /// A checked run: the description (normalized) and its typed reading.
@@ -98,7 +101,14 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         }
     }
     let r = &description.run;
+    if r.steps_per_contact.is_some() && r.engine != EngineKind::SoftSphere {
+        return Err(Error::input(
+            "run.steps_per_contact",
+            "only for run.engine = \"soft-sphere\"",
+        ));
+    }
     let engine = match r.engine {
+        EngineKind::SoftSphere => soft_sphere_spec(description)?,
         EngineKind::EventDriven => {
             for (key, given) in [
                 ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
@@ -143,7 +153,9 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     };
     check_histograms(r, stop)?;
     crate::space::check_output(description, &engine)?;
-    check_time_step(r, stop)?;
+    if r.engine == EngineKind::Dsmc {
+        check_time_step(r, stop)?;
+    }
     let mut description = description.clone();
     description.normalize();
     Ok(Plan {
@@ -257,6 +269,17 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
         ),
         ("collision.beta", c.beta.is_some(), LawKind::Viscoelastic),
         ("collision.form", c.form.is_some(), LawKind::Viscoelastic),
+        ("collision.young", c.young.is_some(), LawKind::Viscoelastic),
+        (
+            "collision.poisson",
+            c.poisson.is_some(),
+            LawKind::Viscoelastic,
+        ),
+        (
+            "collision.dissipative_constant",
+            c.dissipative_constant.is_some(),
+            LawKind::Viscoelastic,
+        ),
         (
             "collision.distribution",
             c.distribution.is_some(),
@@ -303,11 +326,123 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
             criterion: c.criterion.unwrap_or(Criterion::Improved),
         },
         LawKind::Viscoelastic => LawSpec::Viscoelastic {
-            beta: need("collision.beta", c.beta)?,
+            beta: viscoelastic_beta(description)?,
             form: c.form.unwrap_or(FormName::Fast(Criterion::Improved)),
         },
         LawKind::Stochastic => stochastic_spec(description)?,
     })
+}
+
+/// The material of `[collision]` (`young`, `poisson`, `dissipative_constant`), if any of
+/// its keys is given: then all three, in range.
+pub(crate) fn material(description: &RunDescription) -> Result<Option<ViscoelasticMaterial>> {
+    let c = &description.collision;
+    let keys = [
+        ("collision.young", c.young),
+        ("collision.poisson", c.poisson),
+        ("collision.dissipative_constant", c.dissipative_constant),
+    ];
+    if keys.iter().all(|k| k.1.is_none()) {
+        return Ok(None);
+    }
+    if let Some((key, _)) = keys.iter().find(|k| k.1.is_none()) {
+        return Err(Error::input(
+            *key,
+            "missing: a material needs young, poisson and dissipative_constant",
+        ));
+    }
+    let (young, poisson, a) = (keys[0].1.unwrap(), keys[1].1.unwrap(), keys[2].1.unwrap());
+    ViscoelasticMaterial::new(young, poisson, a)
+        .map(Some)
+        .map_err(|e| {
+            let key = ["young", "poisson", "dissipative_constant"]
+                .into_iter()
+                .find(|k| e.to_string().starts_with(k))
+                .unwrap_or("young");
+            Error::input(format!("collision.{key}"), e)
+        })
+}
+
+/// beta of the viscoelastic law: `collision.beta`, or from the material and the spheres
+/// of one kind, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
+fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
+    let c = &description.collision;
+    match (c.beta, material(description)?) {
+        (Some(beta), None) => Ok(beta),
+        (None, Some(m)) => {
+            let s = &description.system;
+            if s.species.is_some() {
+                return Err(Error::input(
+                    "collision.young",
+                    "a material with system.species needs a beta per pair of species, which \
+                     the viscoelastic law does not have yet; give one diameter and mass",
+                ));
+            }
+            let (r, mass) = (0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+            Ok(m.beta(r, r, mass, mass))
+        }
+        (Some(_), Some(_)) => Err(Error::input(
+            "collision.beta",
+            "give beta or the material (young, poisson, dissipative_constant), not both",
+        )),
+        (None, None) => Err(Error::input(
+            "collision.beta",
+            "missing: give beta, or young, poisson and dissipative_constant",
+        )),
+    }
+}
+
+/// Soft-sphere MD: the viscoelastic material, no DSMC keys, no TC model.
+fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
+    let (c, r) = (&description.collision, &description.run);
+    for (key, given) in [
+        ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
+        ("run.block_size", r.block_size.is_some()),
+        ("run.collisions_per_step", r.collisions_per_step.is_some()),
+        ("run.collision_cell_width", r.collision_cell_width.is_some()),
+        ("run.particle_weight", r.particle_weight.is_some()),
+    ] {
+        if given {
+            return Err(Error::input(key, "only for run.engine = \"dsmc\""));
+        }
+    }
+    if c.tc.is_some_and(|tc| tc > 0.0) {
+        return Err(Error::input(
+            "collision.tc",
+            "the TC model is for run.engine = \"event-driven\" (soft spheres have no collapse)",
+        ));
+    }
+    let material = match (c.law, material(description)?) {
+        (LawKind::Viscoelastic, Some(m)) => m,
+        _ => {
+            return Err(Error::input(
+                "collision.law",
+                "run.engine = \"soft-sphere\" integrates the viscoelastic force: law = \
+                 \"viscoelastic\" with young, poisson and dissipative_constant",
+            ))
+        }
+    };
+    let mut options = SoftSphereOptions::default();
+    if let Some(s) = r.steps_per_contact {
+        if !(s.is_finite() && (4.0..=1e6).contains(&s)) {
+            return Err(Error::out_of_range(
+                "run.steps_per_contact",
+                s,
+                "4 <= steps_per_contact <= 1e6",
+            ));
+        }
+        if r.time_step.is_some() {
+            return Err(Error::input(
+                "run.time_step",
+                "give at most one of run.steps_per_contact and run.time_step",
+            ));
+        }
+        options.steps_per_contact = s;
+    }
+    if let Some(dt) = r.time_step {
+        options.time_step = Some(positive("run.time_step", dt)?);
+    }
+    Ok(EngineSpec::SoftSphere(options, material))
 }
 
 /// Giese's stochastic law: event-driven only, `modes`, `distribution` and, tabulated,

@@ -1,0 +1,525 @@
+//! Force-based soft-sphere molecular dynamics (DEM) of viscoelastic spheres: the normal
+//! force of Eq. (2) of Müller & Pöschel 2011 ([`contact`]) between every pair of
+//! overlapping spheres, integrated in time steps, with Verlet neighbour lists
+//! ([`neighbors`]) in a periodic box, 1D to 3D. The engine that the event-driven engine
+//! with the exact coefficient of restitution replaces: the same gas run both ways shows
+//! where the binary-collision idealization holds (dilute gases) and where it fails
+//! (multi-particle contacts, contacts as long as the free flight).
+//!
+//! The integrator is velocity Verlet (kick–drift–kick), symplectic for the elastic Hertz
+//! force. The dissipative force depends on the velocity, which velocity Verlet knows only
+//! half a step late; the force at t + dt is evaluated with the predicted velocity
+//! v(t + dt/2) + (dt/2) F(t)/m, correct to O(dt²), so that the scheme stays second order
+//! (test `two_particle_eps_converges_at_second_order`).
+//!
+//! The time step is a fraction 1/`steps_per_contact` of the Hertz contact duration
+//! ([`contact::hertz_duration`]) at a high relative speed of the initial gas (ten thermal
+//! speeds sqrt(T/m) of the lightest species), for the stiffest pair of species: faster
+//! collisions are shorter, so a cooling gas is resolved ever better.
+//!
+//! Counters: a collision is a contact begun (a pair whose overlap turned positive); the
+//! energy lost is the work of the dissipative forces, ∫ F_dis ξ̇ dt (trapezoidal per step);
+//! the virial is ∫ Σ F_n d dt over the pairs in contact, so that its rate is the
+//! collisional virial of [`crate::observe::pressure`].
+
+pub mod contact;
+pub mod neighbors;
+
+use crate::engine::{Checkpoint, Counters, Engine};
+use crate::error::{require_positive, Error, Result};
+use crate::system::{minimum_image, wrap, System, Vector};
+use contact::{hertz_duration, normal_force, ViscoelasticMaterial};
+use neighbors::NeighborList;
+use restitution::Restitution;
+use serde::{Deserialize, Serialize};
+
+/// Time steps per Hertz contact duration when none is given.
+pub const DEFAULT_STEPS_PER_CONTACT: f64 = 50.0;
+
+/// Skin of the neighbour lists, in units of the largest diameter, when none is given.
+pub const DEFAULT_SKIN: f64 = 0.3;
+
+/// Options of [`SoftSphere`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SoftSphereOptions {
+    /// A fixed time step; None: the Hertz duration over `steps_per_contact`.
+    pub time_step: Option<f64>,
+    /// Time steps per contact duration (>= 4).
+    pub steps_per_contact: f64,
+    /// Neighbour-list skin in largest diameters (> 0).
+    pub skin: f64,
+}
+
+impl Default for SoftSphereOptions {
+    fn default() -> Self {
+        SoftSphereOptions {
+            time_step: None,
+            steps_per_contact: DEFAULT_STEPS_PER_CONTACT,
+            skin: DEFAULT_SKIN,
+        }
+    }
+}
+
+/// What the contacts did, beyond the counters.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactStatistics {
+    /// The largest overlap seen, over the contact distance R_i + R_j.
+    pub max_relative_overlap: f64,
+    /// Particle-steps in contact with at least one other particle.
+    pub contact_steps: u64,
+    /// Particle-steps in contact with two or more others at once (multi-particle
+    /// contacts, which the binary-collision picture of eMD and DSMC leaves out).
+    pub multi_contact_steps: u64,
+}
+
+impl ContactStatistics {
+    /// The fraction of the time in contact that a particle spends in multi-particle
+    /// contacts (0 if never in contact).
+    pub fn multi_contact_fraction(&self) -> f64 {
+        if self.contact_steps == 0 {
+            0.0
+        } else {
+            self.multi_contact_steps as f64 / self.contact_steps as f64
+        }
+    }
+}
+
+/// The saved state of a [`SoftSphere`] engine.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SoftSphereState<const D: usize> {
+    pub system: System<D>,
+    /// Forces at the current positions (they depend on the predicted velocities of the
+    /// step that computed them, so they are saved rather than recomputed).
+    #[serde(with = "crate::serde_util::vectors")]
+    pub forces: Vec<Vector<D>>,
+    pub material: ViscoelasticMaterial,
+    pub options: SoftSphereOptions,
+    pub time_step: f64,
+    pub time: f64,
+    pub steps: u64,
+    pub counters: Counters,
+    /// Pairs in contact after the last step (i < j, sorted).
+    pub contacts: Vec<(u32, u32)>,
+    pub collision_counts: Vec<u32>,
+    pub statistics: ContactStatistics,
+}
+
+/// Soft-sphere MD of viscoelastic spheres (see the [module](self) documentation).
+pub struct SoftSphere<const D: usize> {
+    system: System<D>,
+    forces: Vec<Vector<D>>,
+    material: ViscoelasticMaterial,
+    options: SoftSphereOptions,
+    time_step: f64,
+    time: f64,
+    steps: u64,
+    tally: Counters,
+    contacts: Vec<(u32, u32)>,
+    collision_counts: Vec<u32>,
+    statistics: ContactStatistics,
+    neighbors: NeighborList<D>,
+    /// Scratch: contacts of each particle in the current step.
+    touching: Vec<u8>,
+    /// Scratch: the contacts of the current step.
+    current: Vec<(u32, u32)>,
+}
+
+impl<const D: usize> SoftSphere<D> {
+    /// An engine at time 0 from `system` (positions wrapped into the box; overlapping
+    /// spheres are allowed and repel) with the material of every sphere and the options.
+    /// Fails, naming the parameter, for bad input.
+    pub fn new(
+        system: System<D>,
+        material: ViscoelasticMaterial,
+        options: SoftSphereOptions,
+    ) -> Result<Self> {
+        material.validate()?;
+        system.check(false)?;
+        let mut system = system;
+        for x in &mut system.positions {
+            for c in x.iter_mut() {
+                *c = wrap(*c, system.length);
+            }
+        }
+        let time_step = match options.time_step {
+            Some(dt) => require_positive("time_step", dt)?,
+            None => {
+                if !(options.steps_per_contact.is_finite() && options.steps_per_contact >= 4.0) {
+                    return Err(Error::out_of_range(
+                        "steps_per_contact",
+                        options.steps_per_contact,
+                        "a finite number >= 4",
+                    ));
+                }
+                shortest_contact(&system, &material) / options.steps_per_contact
+            }
+        };
+        if !(options.skin.is_finite() && options.skin > 0.0) {
+            return Err(Error::out_of_range(
+                "skin",
+                options.skin,
+                "a finite number > 0",
+            ));
+        }
+        let largest = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
+        let skin = options.skin * largest;
+        if system.length < 2.0 * (largest + skin) {
+            return Err(Error::out_of_range(
+                "length",
+                system.length,
+                format!(
+                    "at least twice the largest diameter plus the skin, {}",
+                    2.0 * (largest + skin)
+                ),
+            ));
+        }
+        let n = system.len();
+        let mut engine = SoftSphere {
+            forces: vec![[0.0; D]; n],
+            material,
+            options,
+            time_step,
+            time: 0.0,
+            steps: 0,
+            tally: Counters::default(),
+            contacts: Vec::new(),
+            collision_counts: vec![0; n],
+            statistics: ContactStatistics::default(),
+            neighbors: NeighborList::new(skin),
+            touching: vec![0; n],
+            current: Vec::new(),
+            system,
+        };
+        // Forces of the initial state (velocities known exactly at t = 0); overlaps present
+        // at t = 0 are contacts begun.
+        let (_, _, begun) = engine.compute_forces(None);
+        engine.tally.collisions += begun;
+        Ok(engine)
+    }
+
+    /// Continues the run of `state` bit for bit.
+    pub fn restore(state: SoftSphereState<D>) -> Result<Self> {
+        let n = state.system.len();
+        if state.forces.len() != n || state.collision_counts.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "system, forces and collision counts".into(),
+            });
+        }
+        state.material.validate()?;
+        state.system.check(true)?;
+        require_positive("time_step", state.time_step)?;
+        if !(state.time.is_finite() && state.time >= 0.0) {
+            return Err(Error::out_of_range(
+                "time",
+                state.time,
+                "a finite time >= 0",
+            ));
+        }
+        if state
+            .contacts
+            .iter()
+            .any(|&(i, j)| i >= j || j as usize >= n)
+            || state.contacts.windows(2).any(|w| w[0] >= w[1])
+        {
+            return Err(Error::out_of_range(
+                "contacts",
+                "(list)",
+                "sorted pairs i < j of particle indices",
+            ));
+        }
+        let largest = 2.0 * state.system.radii.iter().copied().fold(0.0, f64::max);
+        Ok(SoftSphere {
+            touching: vec![0; n],
+            current: Vec::new(),
+            neighbors: NeighborList::new(state.options.skin * largest),
+            system: state.system,
+            forces: state.forces,
+            material: state.material,
+            options: state.options,
+            time_step: state.time_step,
+            time: state.time,
+            steps: state.steps,
+            tally: state.counters,
+            contacts: state.contacts,
+            collision_counts: state.collision_counts,
+            statistics: state.statistics,
+        })
+    }
+
+    /// The time step.
+    pub fn time_step(&self) -> f64 {
+        self.time_step
+    }
+
+    /// Takes `n` full time steps.
+    pub fn run_steps(&mut self, n: u64) {
+        for _ in 0..n {
+            self.step(self.time_step);
+            self.time += self.time_step;
+        }
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Overlaps, contacts and multi-particle contacts so far.
+    pub fn statistics(&self) -> ContactStatistics {
+        self.statistics
+    }
+
+    /// Pairs in contact now.
+    pub fn contacts(&self) -> &[(u32, u32)] {
+        &self.contacts
+    }
+
+    /// The material.
+    pub fn material(&self) -> ViscoelasticMaterial {
+        self.material
+    }
+
+    /// Forces at the current positions with the velocities `predicted` (the current ones
+    /// if None); replaces the contact list. Returns the dissipated power Σ F_dis ξ̇, the
+    /// virial rate Σ F_n d and the number of contacts begun.
+    fn compute_forces(&mut self, predicted: Option<&[Vector<D>]>) -> (f64, f64, u64) {
+        if self.neighbors.stale(&self.system) {
+            self.neighbors.build(&self.system);
+        }
+        for f in &mut self.forces {
+            *f = [0.0; D];
+        }
+        self.touching.iter_mut().for_each(|t| *t = 0);
+        self.current.clear();
+        let velocities = predicted.unwrap_or(&self.system.velocities);
+        let (s, a) = (&self.system, self.material.dissipative_constant);
+        let (mut power, mut virial) = (0.0, 0.0);
+        for &(i, j) in &self.neighbors.pairs {
+            let (i, j) = (i as usize, j as usize);
+            let r: Vector<D> = std::array::from_fn(|k| {
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+            });
+            let d2: f64 = r.iter().map(|x| x * x).sum();
+            let contact = s.radii[i] + s.radii[j];
+            if d2 >= contact * contact {
+                continue;
+            }
+            let d = d2.sqrt();
+            let xi = contact - d;
+            let normal: Vector<D> = std::array::from_fn(|k| r[k] / d);
+            let xi_dot = -(0..D)
+                .map(|k| (velocities[j][k] - velocities[i][k]) * normal[k])
+                .sum::<f64>();
+            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
+            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
+            for (k, n) in normal.iter().enumerate() {
+                self.forces[i][k] -= force * n;
+                self.forces[j][k] += force * n;
+            }
+            if force > 0.0 {
+                power += dissipative * xi_dot;
+            }
+            virial += force * d;
+            let relative = xi / contact;
+            if relative > self.statistics.max_relative_overlap {
+                self.statistics.max_relative_overlap = relative;
+            }
+            self.touching[i] = self.touching[i].saturating_add(1);
+            self.touching[j] = self.touching[j].saturating_add(1);
+            self.current.push((i as u32, j as u32));
+        }
+        for &t in &self.touching {
+            if t >= 1 {
+                self.statistics.contact_steps += 1;
+            }
+            if t >= 2 {
+                self.statistics.multi_contact_steps += 1;
+            }
+        }
+        // Contacts begun: in `current` but not in the previous list (both sorted).
+        let mut begun = 0;
+        let mut old = self.contacts.iter().peekable();
+        for &pair in &self.current {
+            while old.peek().is_some_and(|&&p| p < pair) {
+                old.next();
+            }
+            if old.peek() != Some(&&pair) {
+                begun += 1;
+                let (i, j) = (pair.0 as usize, pair.1 as usize);
+                self.collision_counts[i] = self.collision_counts[i].wrapping_add(1);
+                self.collision_counts[j] = self.collision_counts[j].wrapping_add(1);
+            }
+        }
+        std::mem::swap(&mut self.contacts, &mut self.current);
+        (power, virial, begun)
+    }
+
+    /// One velocity-Verlet step of length `dt` (see the [module](self) documentation).
+    fn step(&mut self, dt: f64) {
+        let (power_before, virial_before) = self.contact_rates();
+        let length = self.system.length;
+        let s = &mut self.system;
+        for i in 0..s.len() {
+            let kick = 0.5 * dt / s.masses[i];
+            for k in 0..D {
+                s.velocities[i][k] += kick * self.forces[i][k];
+                s.positions[i][k] = wrap(s.positions[i][k] + dt * s.velocities[i][k], length);
+            }
+        }
+        let predicted: Vec<Vector<D>> = (0..s.len())
+            .map(|i| {
+                let kick = 0.5 * dt / s.masses[i];
+                std::array::from_fn(|k| s.velocities[i][k] + kick * self.forces[i][k])
+            })
+            .collect();
+        let (power, virial, begun) = self.compute_forces(Some(&predicted));
+        let s = &mut self.system;
+        for i in 0..s.len() {
+            let kick = 0.5 * dt / s.masses[i];
+            for k in 0..D {
+                s.velocities[i][k] += kick * self.forces[i][k];
+            }
+        }
+        self.steps += 1;
+        self.tally.collisions += begun;
+        self.tally.events += 1;
+        self.tally.energy_lost += 0.5 * dt * (power_before + power);
+        self.tally.virial += 0.5 * dt * (virial_before + virial);
+    }
+
+    /// The dissipated power and virial rate of the current contacts with the current
+    /// velocities (the trapezoid's left end).
+    fn contact_rates(&self) -> (f64, f64) {
+        let (s, a) = (&self.system, self.material.dissipative_constant);
+        let (mut power, mut virial) = (0.0, 0.0);
+        for &(i, j) in &self.contacts {
+            let (i, j) = (i as usize, j as usize);
+            let r: Vector<D> = std::array::from_fn(|k| {
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+            });
+            let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let xi = s.radii[i] + s.radii[j] - d;
+            let xi_dot = -(0..D)
+                .map(|k| (s.velocities[j][k] - s.velocities[i][k]) * r[k] / d)
+                .sum::<f64>();
+            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
+            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
+            if force > 0.0 {
+                power += dissipative * xi_dot;
+            }
+            virial += force * d;
+        }
+        (power, virial)
+    }
+
+    /// Steps while the time is below `end`, the collisions below `collisions` and below
+    /// `pause`; the last step before `end` is shortened to end there, so that samples fall
+    /// on their times (pieces of a run compose bit for bit: the steps depend only on the
+    /// targets).
+    fn run_to(&mut self, end: f64, collisions: u64, pause: u64) {
+        while self.time < end && self.tally.collisions < collisions.min(pause) {
+            if self.time + self.time_step < end {
+                self.step(self.time_step);
+                self.time += self.time_step;
+            } else {
+                self.step(end - self.time);
+                self.time = end;
+            }
+        }
+    }
+}
+
+/// The shortest Hertz contact duration among the pairs of species of `system`, at ten
+/// thermal speeds sqrt(T/m) of the lightest species (T of the system).
+fn shortest_contact<const D: usize>(system: &System<D>, material: &ViscoelasticMaterial) -> f64 {
+    let mut kinds: Vec<(f64, f64)> = system
+        .radii
+        .iter()
+        .zip(&system.masses)
+        .map(|(&r, &m)| (r, m))
+        .collect();
+    kinds.sort_by(|a, b| a.partial_cmp(b).expect("finite radii and masses"));
+    kinds.dedup();
+    let temperature = crate::observe::temperature(system).max(f64::MIN_POSITIVE);
+    let lightest = kinds.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
+    let speed = 10.0 * (temperature / lightest).sqrt();
+    let mut shortest = f64::INFINITY;
+    for (a, &(r1, m1)) in kinds.iter().enumerate() {
+        for &(r2, m2) in &kinds[a..] {
+            let rho = material.elastic_constant(r1, r2);
+            let duration = hertz_duration(rho, m1 * m2 / (m1 + m2), speed);
+            shortest = shortest.min(duration);
+        }
+    }
+    shortest
+}
+
+impl<const D: usize> Engine<D> for SoftSphere<D> {
+    fn run_until(&mut self, t: f64) {
+        self.run_to(t, u64::MAX, u64::MAX);
+    }
+
+    fn run_collisions(&mut self, collisions: u64) {
+        let target = self.tally.collisions.saturating_add(collisions);
+        self.run_to(f64::INFINITY, target, u64::MAX);
+    }
+
+    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        self.run_to(end, collisions, pause);
+    }
+
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn counters(&self) -> Counters {
+        self.tally
+    }
+
+    fn particles(&self) -> usize {
+        self.system.len()
+    }
+
+    fn system(&mut self) -> &System<D> {
+        &self.system
+    }
+
+    fn collision_counts(&self) -> Option<Vec<u32>> {
+        Some(self.collision_counts.clone())
+    }
+
+    fn memory_bytes(&self) -> usize {
+        let n = self.system.len();
+        n * (std::mem::size_of::<Vector<D>>() * 3 + 16 + 5)
+            + self.contacts.capacity() * 8
+            + self.current.capacity() * 8
+            + self.neighbors.memory_bytes()
+    }
+}
+
+impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
+    type State = SoftSphereState<D>;
+
+    fn save(&mut self) -> SoftSphereState<D> {
+        SoftSphereState {
+            system: self.system.clone(),
+            forces: self.forces.clone(),
+            material: self.material,
+            options: self.options,
+            time_step: self.time_step,
+            time: self.time,
+            steps: self.steps,
+            counters: self.tally,
+            contacts: self.contacts.clone(),
+            collision_counts: self.collision_counts.clone(),
+            statistics: self.statistics,
+        }
+    }
+
+    /// The law is not used: the force law is the state's material.
+    fn restore(state: SoftSphereState<D>, _law: Box<dyn Restitution>) -> Result<Self> {
+        SoftSphere::restore(state)
+    }
+}
