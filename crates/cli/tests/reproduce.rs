@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 25] = [
+const CSVS: [(&str, &str); 26] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -74,6 +74,11 @@ const CSVS: [(&str, &str); 25] = [
         "kinetic-shear-haff",
         "collisions_above,t_over_haff_above,error_above,collisions_below,t_over_haff_below,\
          error_below",
+    ),
+    (
+        "kinetic-soft-sphere",
+        "packing_fraction,time,temperature_soft_sphere,temperature_emd_exact,\
+         temperature_emd_fast,temperature_dsmc",
     ),
     (
         "kinetic-shear-modes",

@@ -22,6 +22,7 @@ pub mod giese_ring;
 pub mod kinetic;
 pub mod mp2011;
 pub mod shear;
+pub mod soft;
 pub mod sp2008;
 
 use crate::error::{Error, Result};
@@ -59,6 +60,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(sp2008::entries());
     all.extend(kinetic::entries());
     all.extend(shear::entries());
+    all.extend(soft::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());
     all
