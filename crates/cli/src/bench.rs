@@ -6,12 +6,14 @@ mod cor;
 mod dsmc;
 mod emd;
 mod rods;
+mod soft;
 
 pub use checkpoint::checkpoint;
 pub use cor::{cor, log_spaced};
 pub use dsmc::dsmc;
 pub use emd::emd;
 pub use rods::rods;
+pub use soft::soft_sphere;
 
 /// `haff bench emd --calendar`: which sorters to time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

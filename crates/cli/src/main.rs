@@ -270,6 +270,26 @@ enum BenchCommand {
     Rods(BenchRodsArgs),
     /// Size and save/load time of the check-point of an event-driven run.
     Checkpoint(BenchCheckpointArgs),
+    /// Nanoseconds per particle per time step of soft-sphere MD (one core).
+    SoftSphere(BenchSoftArgs),
+}
+
+/// Arguments of `haff bench soft-sphere`.
+#[derive(Debug, Args)]
+pub struct BenchSoftArgs {
+    /// A run file (3D, one kind of sphere, law = "viscoelastic" with young, poisson and
+    /// dissipative_constant); its engine is taken as soft-sphere. Default: N = 1e4,
+    /// phi = 0.05, Y = 1e5, nu = 0.3, A = 0.01 in units sigma = m = T = 1.
+    pub run: Option<std::path::PathBuf>,
+    /// Time steps timed per repeat (after as many of warm-up), 1 <= S <= 1e9.
+    #[arg(long, default_value = "200", allow_hyphen_values = true)]
+    pub steps: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
 }
 
 /// Arguments of `haff bench checkpoint`.
@@ -518,6 +538,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Dsmc(args)) => bench::dsmc(&args),
         Command::Bench(BenchCommand::Rods(args)) => bench::rods(&args),
         Command::Bench(BenchCommand::Checkpoint(args)) => bench::checkpoint(&args),
+        Command::Bench(BenchCommand::SoftSphere(args)) => bench::soft_sphere(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),

@@ -261,6 +261,11 @@ impl<const D: usize> SoftSphere<D> {
         }
     }
 
+    /// Neighbour-list builds so far (in this process: a restored engine counts from 0).
+    pub fn neighbor_builds(&self) -> u64 {
+        self.neighbors.builds
+    }
+
     /// Steps taken.
     pub fn steps(&self) -> u64 {
         self.steps
