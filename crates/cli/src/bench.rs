@@ -5,6 +5,7 @@ mod checkpoint;
 mod cor;
 mod dsmc;
 mod emd;
+mod observers;
 mod rods;
 mod soft;
 
@@ -12,6 +13,7 @@ pub use checkpoint::checkpoint;
 pub use cor::{cor, log_spaced};
 pub use dsmc::dsmc;
 pub use emd::emd;
+pub use observers::observers;
 pub use rods::rods;
 pub use soft::soft_sphere;
 

@@ -272,6 +272,9 @@ enum BenchCommand {
     Checkpoint(BenchCheckpointArgs),
     /// Nanoseconds per particle per time step of soft-sphere MD (one core).
     SoftSphere(BenchSoftArgs),
+    /// Cost of the observers of space (modes, S(k), g(r), fields) against one collision per
+    /// particle of event-driven MD.
+    Observers(BenchObserversArgs),
 }
 
 /// Arguments of `haff bench soft-sphere`.
@@ -287,6 +290,34 @@ pub struct BenchSoftArgs {
     /// Timed repetitions; the median is reported.
     #[arg(long, default_value = "3", allow_hyphen_values = true)]
     pub repeats: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
+    pub format: ReportFormat,
+}
+
+/// Arguments of `haff bench observers`.
+#[derive(Debug, Args)]
+pub struct BenchObserversArgs {
+    /// Number of particles, 2 <= N <= 1e8.
+    #[arg(long, default_value = "100000", allow_hyphen_values = true)]
+    pub particles: String,
+    /// Packing fraction, 0 < phi <= 0.45.
+    #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
+    pub packing_fraction: String,
+    /// Dimension, 2 or 3.
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
+    pub dimension: String,
+    /// Timed repetitions; the median is reported.
+    #[arg(long, default_value = "5", allow_hyphen_values = true)]
+    pub repeats: String,
+    /// Largest |n|^2 of the mode shells (as `output.mode_shells`), 1 ..= 100 (default: a
+    /// run's default, 3).
+    #[arg(long, allow_hyphen_values = true)]
+    pub mode_shells: Option<String>,
+    /// Cells per side of the coarse-grained fields (as `output.fields.grid`), 3 ..= 4096
+    /// (default: (N/10)^(1/D), about 10 particles per cell).
+    #[arg(long, allow_hyphen_values = true)]
+    pub field_grid: Option<String>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,
@@ -539,6 +570,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Rods(args)) => bench::rods(&args),
         Command::Bench(BenchCommand::Checkpoint(args)) => bench::checkpoint(&args),
         Command::Bench(BenchCommand::SoftSphere(args)) => bench::soft_sphere(&args),
+        Command::Bench(BenchCommand::Observers(args)) => bench::observers(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),
