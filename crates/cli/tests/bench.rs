@@ -152,3 +152,42 @@ fn bench_dsmc_runs_the_spatial_scheme() {
         "--particles-per-cell",
     );
 }
+
+/// `haff bench soft-sphere`: the default gas and a run file; the time step is the Hertz
+/// duration over 50 (gas::soft); a run file that is not a 3D viscoelastic material exits 2.
+#[test]
+fn bench_soft_sphere_reports_ns_per_particle_step() {
+    let json = json_of(&[
+        "bench",
+        "soft-sphere",
+        "--steps",
+        "5",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(number(&json["particles"]), 10000.0);
+    assert!(number(&json["ns_per_particle_step"]) > 0.0);
+    assert!(number(&json["time_step"]) > 0.0);
+    let dir = std::env::temp_dir().join(format!("haff-bench-soft-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("constant.toml");
+    std::fs::write(
+        &file,
+        "[system]\nparticles = 100\npacking_fraction = 0.05\n[collision]\nlaw = \"constant\"\n\
+         restitution = 0.9\n[run]\nend_time = 1.0\n",
+    )
+    .unwrap();
+    assert_rejected(
+        &[
+            "bench",
+            "soft-sphere",
+            file.to_str().unwrap(),
+            "--steps",
+            "5",
+        ],
+        "RUN_FILE",
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
