@@ -18,3 +18,23 @@ pub use fourier::{half_space_shells, Shell};
 pub use modes::{hydrodynamic_modes, ModeShell};
 pub use pair::{pair_correlation, StructurePoint};
 pub use structure_factor::structure_factor;
+
+/// Uniformly random points (zero velocities and radii) for the tests of the observers.
+#[cfg(test)]
+pub(crate) mod test_points {
+    use crate::system::System;
+    use rand::{Rng, SeedableRng};
+
+    pub(crate) fn random_system<const D: usize>(n: usize, length: f64, seed: u64) -> System<D> {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
+        System {
+            length,
+            positions: (0..n)
+                .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
+                .collect(),
+            velocities: vec![[0.0; D]; n],
+            radii: vec![0.0; n],
+            masses: vec![1.0; n],
+        }
+    }
+}

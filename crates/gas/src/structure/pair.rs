@@ -446,21 +446,9 @@ impl Candidates {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::{Rng, SeedableRng};
     use std::f64::consts::PI;
 
-    fn random_system<const D: usize>(n: usize, length: f64, seed: u64) -> System<D> {
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
-        System {
-            length,
-            positions: (0..n)
-                .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
-                .collect(),
-            velocities: vec![[0.0; D]; n],
-            radii: vec![0.0; n],
-            masses: vec![1.0; n],
-        }
-    }
+    use crate::structure::test_points::random_system;
 
     /// Uniform random points: g(r) = 1. Each bin is a Poisson count of pairs with s.d.
     /// 1/sqrt(ideal/2) (pairs counted twice). Five standard deviations.

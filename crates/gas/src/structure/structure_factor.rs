@@ -368,20 +368,8 @@ impl<const D: usize> Deposits<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand::{Rng, SeedableRng};
 
-    fn random_system<const D: usize>(n: usize, length: f64, seed: u64) -> System<D> {
-        let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
-        System {
-            length,
-            positions: (0..n)
-                .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
-                .collect(),
-            velocities: vec![[0.0; D]; n],
-            radii: vec![0.0; n],
-            masses: vec![1.0; n],
-        }
-    }
+    use crate::structure::test_points::random_system;
 
     /// The full transform: the CIC grid built whole in particle order, a complex FFT on every
     /// line of every axis (strided gathers), and every kept wave vector summed over both
