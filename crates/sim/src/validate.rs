@@ -110,17 +110,12 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let engine = match r.engine {
         EngineKind::SoftSphere => soft_sphere_spec(description)?,
         EngineKind::EventDriven => {
-            for (key, given) in [
-                ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
-                ("run.block_size", r.block_size.is_some()),
-                ("run.collisions_per_step", r.collisions_per_step.is_some()),
-                ("run.time_step", r.time_step.is_some()),
-                ("run.collision_cell_width", r.collision_cell_width.is_some()),
-                ("run.particle_weight", r.particle_weight.is_some()),
-            ] {
-                if given {
-                    return Err(Error::input(key, "only for run.engine = \"dsmc\""));
-                }
+            refuse_dsmc_keys(r)?;
+            if r.time_step.is_some() {
+                return Err(Error::input(
+                    "run.time_step",
+                    "only for run.engine = \"dsmc\"",
+                ));
             }
             EngineSpec::EventDriven
         }
@@ -392,13 +387,14 @@ fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
     }
 }
 
-/// Soft-sphere MD: the viscoelastic material, no DSMC keys, no TC model.
-fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
-    let (c, r) = (&description.collision, &description.run);
+/// The keys of `[run]` that only DSMC reads, `time_step` among them if `time_step_too`
+/// (soft-sphere MD takes a time step too).
+fn refuse_dsmc_keys(r: &RunSection, time_step_too: bool) -> Result<()> {
     for (key, given) in [
         ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
         ("run.block_size", r.block_size.is_some()),
         ("run.collisions_per_step", r.collisions_per_step.is_some()),
+        ("run.time_step", time_step_too && r.time_step.is_some()),
         ("run.collision_cell_width", r.collision_cell_width.is_some()),
         ("run.particle_weight", r.particle_weight.is_some()),
     ] {
@@ -406,6 +402,13 @@ fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
             return Err(Error::input(key, "only for run.engine = \"dsmc\""));
         }
     }
+    Ok(())
+}
+
+/// Soft-sphere MD: the viscoelastic material, no DSMC keys, no TC model.
+fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
+    let (c, r) = (&description.collision, &description.run);
+    refuse_dsmc_keys(r, false)?;
     if c.tc.is_some_and(|tc| tc > 0.0) {
         return Err(Error::input(
             "collision.tc",
