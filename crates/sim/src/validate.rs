@@ -110,13 +110,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let engine = match r.engine {
         EngineKind::SoftSphere => soft_sphere_spec(description)?,
         EngineKind::EventDriven => {
-            refuse_dsmc_keys(r)?;
-            if r.time_step.is_some() {
-                return Err(Error::input(
-                    "run.time_step",
-                    "only for run.engine = \"dsmc\"",
-                ));
-            }
+            refuse_dsmc_keys(r, true)?;
             EngineSpec::EventDriven
         }
         EngineKind::Dsmc => {
