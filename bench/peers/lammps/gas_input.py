@@ -21,6 +21,13 @@ RUN.toml (keys of issue 17; other tables and keys are ignored):
     poisson = 0.23
     dissipative_constant = 1e-9   # s
 
+Units: any coherent set, the run file's (SI in gas_small.toml, sigma = m = T0 = 1 in
+gas_three_ways.toml). The input says `units si`, in which LAMMPS's force and energy
+conversion factors are 1, so reduced numbers pass through unchanged; only LAMMPS's own
+`compute temp` divides by k_B = 1.38e-23 (printed in the log, not used). The default time
+step and the number formats (%.17g) are scale-free. The messages name SI units (m, s, J):
+read them as the run file's units.
+
 The gas: N equal spheres in a periodic cube of side L = (N pi d^3 / (6 phi))^(1/3), random
 non-overlapping positions (random sequential addition, seeded), Maxwellian velocities with
 zero total momentum rescaled to exactly T = m sum v^2 / (3 N), no rotation. The contact is

@@ -105,6 +105,12 @@ pub trait Engine<const D: usize> {
         None
     }
 
+    /// What the contacts of a force-based engine did (soft-sphere MD); None for engines
+    /// of instantaneous collisions.
+    fn contact_report(&self) -> Option<crate::soft::ContactReport> {
+        None
+    }
+
     /// Bytes held by the engine's per-particle and per-cell data.
     fn memory_bytes(&self) -> usize;
 }

@@ -18,7 +18,11 @@
 //! collisions are shorter, so a cooling gas is resolved ever better.
 //!
 //! Counters: a collision is a contact begun (a pair whose overlap turned positive); the
-//! energy lost is the work of the dissipative forces, ∫ F_dis ξ̇ dt (trapezoidal per step);
+//! energy lost is the work of the dissipative forces, ∫ F_dis ξ̇ dt (trapezoidal per step).
+//! While the force is clamped to zero (F_dis = −ρ ξ^{3/2}) that work is the elastic energy
+//! the separating pair gives up, so that kinetic energy + elastic energy of the overlaps
+//! ([`SoftSphere::elastic_energy`]) + energy lost is conserved, and after a contact the energy
+//! lost is its kinetic-energy loss, (1 − ε²) m_eff v² / 2 as in the event-driven engine;
 //! the virial is ∫ Σ F_n d dt over the pairs in contact, so that its rate is the
 //! collisional virial of [`crate::observe::pressure`].
 
@@ -83,6 +87,27 @@ impl ContactStatistics {
             self.multi_contact_steps as f64 / self.contact_steps as f64
         }
     }
+}
+
+/// A soft-sphere run's contacts for reports (`summary.json`, Python): the time step, the
+/// [`ContactStatistics`] so far, and the pairs in contact now with the elastic energy they
+/// hold, which the kinetic temperature does not count.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ContactReport {
+    pub time_step: f64,
+    /// Time steps taken.
+    pub steps: u64,
+    /// Pairs overlapping now.
+    pub contacts_now: usize,
+    /// Elastic energy of the overlaps now, Σ (2/5) ρ ξ^{5/2} (the potential of the Hertz
+    /// force ρ ξ^{3/2}).
+    pub elastic_energy: f64,
+    /// See [`ContactStatistics`].
+    pub max_relative_overlap: f64,
+    pub contact_steps: u64,
+    pub multi_contact_steps: u64,
+    /// [`ContactStatistics::multi_contact_fraction`].
+    pub multi_contact_fraction: f64,
 }
 
 /// The saved state of a [`SoftSphere`] engine.
@@ -286,6 +311,22 @@ impl<const D: usize> SoftSphere<D> {
         self.material
     }
 
+    /// Elastic energy held in the overlaps now, Σ (2/5) ρ ξ^{5/2} over the pairs in contact.
+    pub fn elastic_energy(&self) -> f64 {
+        let s = &self.system;
+        self.contacts
+            .iter()
+            .map(|&(i, j)| {
+                let (i, j) = (i as usize, j as usize);
+                let d2: f64 = (0..D)
+                    .map(|k| minimum_image(s.positions[j][k] - s.positions[i][k], s.length).powi(2))
+                    .sum();
+                let xi = (s.radii[i] + s.radii[j] - d2.sqrt()).max(0.0);
+                0.4 * self.material.elastic_constant(s.radii[i], s.radii[j]) * xi.powf(2.5)
+            })
+            .sum()
+    }
+
     /// Forces at the current positions with the velocities `predicted` (the current ones
     /// if None); replaces the contact list. Returns the dissipated power Σ F_dis ξ̇, the
     /// virial rate Σ F_n d and the number of contacts begun.
@@ -323,9 +364,7 @@ impl<const D: usize> SoftSphere<D> {
                 self.forces[i][k] -= force * n;
                 self.forces[j][k] += force * n;
             }
-            if force > 0.0 {
-                power += dissipative * xi_dot;
-            }
+            power += dissipative * xi_dot;
             virial += force * d;
             let relative = xi / contact;
             if relative > self.statistics.max_relative_overlap {
@@ -411,9 +450,7 @@ impl<const D: usize> SoftSphere<D> {
                 .sum::<f64>();
             let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
             let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
-            if force > 0.0 {
-                power += dissipative * xi_dot;
-            }
+            power += dissipative * xi_dot;
             virial += force * d;
         }
         (power, virial)
@@ -493,6 +530,20 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
 
     fn collision_counts(&self) -> Option<Vec<u32>> {
         Some(self.collision_counts.clone())
+    }
+
+    fn contact_report(&self) -> Option<ContactReport> {
+        let s = self.statistics;
+        Some(ContactReport {
+            time_step: self.time_step,
+            steps: self.steps,
+            contacts_now: self.contacts.len(),
+            elastic_energy: self.elastic_energy(),
+            max_relative_overlap: s.max_relative_overlap,
+            contact_steps: s.contact_steps,
+            multi_contact_steps: s.multi_contact_steps,
+            multi_contact_fraction: s.multi_contact_fraction(),
+        })
     }
 
     fn memory_bytes(&self) -> usize {
