@@ -297,6 +297,16 @@ class Simulation:
     def energy_lost(self) -> float:
         return self._sim.counters()[2]
 
+    def contact_statistics(self) -> Optional[Dict[str, float]]:
+        """The contacts of a soft-sphere run so far (``run.engine = "soft-sphere"``), the
+        ``contacts`` of summary.json: ``time_step``, ``steps``, ``contacts_now`` (pairs
+        overlapping now), ``elastic_energy`` (held in those overlaps, sum of (2/5) rho
+        xi^(5/2); the kinetic temperature leaves it out), ``max_relative_overlap`` (largest
+        overlap over the contact distance), ``contact_steps`` and ``multi_contact_steps``
+        (particle-steps touching one or more / two or more others) and
+        ``multi_contact_fraction`` (their ratio). None for the other engines."""
+        return self._sim.contact_statistics()
+
     @property
     def complete(self) -> bool:
         """Whether every sample of the run has been taken."""

@@ -35,6 +35,12 @@ CONFIGS = {
         "collision": {"law": "constant", "restitution": 0.7},
         "run": {"engine": "dsmc", "collisions_per_particle": 30.0, "samples": 6},
     },
+    "soft-sphere": {
+        "system": {"particles": 300, "packing_fraction": 0.05, "seed": 2},
+        "collision": {"law": "viscoelastic", "young": 1e5, "poisson": 0.3,
+                      "dissipative_constant": 0.01},
+        "run": {"engine": "soft-sphere", "end_time": 3.0, "samples": 4},
+    },
 }
 
 
@@ -69,6 +75,9 @@ def test_a_run_equals_the_command_bit_for_bit(tmp_path, cli, name):
     summary = json.loads((tmp_path / "cli" / "summary.json").read_text())
     assert sim.collisions == summary["collisions"] and sim.events == summary["events"]
     assert sim.config == summary["parameters"]
+    # Soft-sphere runs report their contacts; the others have none.
+    assert sim.contact_statistics() == summary.get("contacts")
+    assert (sim.contact_statistics() is None) == (name != "soft-sphere")
     # The same run from the file and from TOML text.
     for source in (file, str(file), file.read_text()):
         other = haff.Simulation(source).run(progress=False)

@@ -330,6 +330,12 @@ impl Simulation {
         each!(&self.run, r => r.engine.counters())
     }
 
+    /// The contacts of a soft-sphere run so far (time step, multi-particle contacts,
+    /// largest overlap, elastic energy now); None for the other engines.
+    pub fn contact_report(&self) -> Option<gas::soft::ContactReport> {
+        each!(&self.run, r => r.engine.contact_report())
+    }
+
     /// Whether every target of the schedule has been reached.
     pub fn is_complete(&self) -> bool {
         each!(&self.run, r => r.next == r.schedule.len())
@@ -406,7 +412,7 @@ impl Simulation {
         crate::figures::temperature(&dir.join("temperature.png"), &self.plan, self.samples())?;
         let counters = self.counters();
         let wall = self.wall_seconds;
-        let summary = serde_json::json!({
+        let mut summary = serde_json::json!({
             "parameters": self.plan.description,
             "collisions": counters.collisions,
             "events": counters.events,
@@ -417,6 +423,9 @@ impl Simulation {
             "final": self.samples().last(),
             "complete": self.is_complete(),
         });
+        if let Some(contacts) = self.contact_report() {
+            summary["contacts"] = serde_json::json!(contacts);
+        }
         write_json_file(&dir.join("summary.json"), &summary)
     }
 

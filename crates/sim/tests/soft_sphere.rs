@@ -112,3 +112,47 @@ fn soft_sphere_md_cools_like_emd_with_the_exact_law() {
         "soft-sphere T = {md}, eMD {emd}"
     );
 }
+
+/// summary.json of a soft-sphere run reports its contacts; an eMD run's has none. The time
+/// step is recomputed here from the Hertz duration t_c = 3.2181 (m_eff / rho)^(2/5) v^(-1/5)
+/// at ten thermal speeds (v = 10 sqrt(T/m) = 10) over the default 50 steps per contact.
+#[test]
+fn summary_reports_the_contacts_of_soft_sphere_runs() {
+    let dir = std::env::temp_dir().join(format!("haff-soft-summary-{}", std::process::id()));
+    let summary = |engine: &str| {
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut run = Simulation::from_toml(&gas(engine, 300, 4.0), "t.toml".as_ref()).unwrap();
+        run.run(&mut (), None).unwrap();
+        run.write(&dir).unwrap();
+        let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    assert!(summary("event-driven").get("contacts").is_none());
+    let s = summary("soft-sphere");
+    let _ = std::fs::remove_dir_all(&dir);
+    let c = &s["contacts"];
+    let rho = 2.0 * 1e5 * 0.25f64.sqrt() / (3.0 * (1.0 - 0.09));
+    let time_step = 3.218_065_459_719_043_5 * (0.5 / rho).powf(0.4) * 10f64.powf(-0.2) / 50.0;
+    let number = |key: &str| c[key].as_f64().unwrap_or_else(|| panic!("{key}: {c}"));
+    assert!((number("time_step") / time_step - 1.0).abs() < 1e-12, "{c}");
+    // 4 time units in steps of dt, the step before each of the 5 sample times shortened
+    // to end on it.
+    let whole = (4.0 / time_step).ceil();
+    assert!((whole..=whole + 4.0).contains(&number("steps")), "{c}");
+    let (touching, multi) = (number("contact_steps"), number("multi_contact_steps"));
+    assert!(touching > 0.0 && multi <= touching, "{c}");
+    assert_eq!(number("multi_contact_fraction"), multi / touching);
+    // The largest overlap stays below that of a head-on elastic contact at 10 thermal
+    // relative speeds, xi_max = (5 m_eff v^2 / (4 rho))^(2/5), v = 10 sqrt(2).
+    let xi_max = (5.0 * 0.5 * 200.0 / (4.0 * rho)).powf(0.4);
+    assert!(
+        (0.0..xi_max).contains(&number("max_relative_overlap")),
+        "{c}"
+    );
+    assert!(number("elastic_energy") >= 0.0);
+    assert_eq!(
+        number("contacts_now") == 0.0,
+        number("elastic_energy") == 0.0
+    );
+}
