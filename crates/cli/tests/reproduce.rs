@@ -78,7 +78,8 @@ const CSVS: [(&str, &str); 26] = [
     (
         "kinetic-soft-sphere",
         "packing_fraction,time,temperature_soft_sphere,temperature_emd_exact,\
-         temperature_emd_fast,temperature_dsmc",
+         temperature_emd_fast,temperature_dsmc,soft_over_emd,soft_over_emd_error,\
+         contact_time_fraction,delay_model",
     ),
     (
         "kinetic-shear-modes",
