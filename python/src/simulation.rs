@@ -382,6 +382,7 @@ impl PySimulation {
         d.set_item("contact_steps", c.contact_steps)?;
         d.set_item("multi_contact_steps", c.multi_contact_steps)?;
         d.set_item("multi_contact_fraction", c.multi_contact_fraction)?;
+        d.set_item("eps_error", c.eps_error)?;
         Ok(Some(d))
     }
 

@@ -58,6 +58,18 @@ pub fn run(args: &RunArgs) -> CliResult {
         counters.events as f64 / wall,
         out.display()
     );
+    if let Some(c) = simulation.contact_report() {
+        eprintln!(
+            "haff run: soft-sphere time step {:.3e} ({} steps), eps of isolated contacts within \
+             {:.1e} of the exact law, largest overlap {:.2} % of the contact distance, \
+             {:.1} % of the time in contact spent in multi-particle contacts",
+            c.time_step,
+            c.steps,
+            c.eps_error,
+            100.0 * c.max_relative_overlap,
+            100.0 * c.multi_contact_fraction
+        );
+    }
     Ok(())
 }
 

@@ -26,13 +26,14 @@
 //! the virial is ∫ Σ F_n d dt over the pairs in contact, so that its rate is the
 //! collisional virial of [`crate::observe::pressure`].
 
+pub mod accuracy;
 pub mod contact;
 pub mod neighbors;
 
 use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{require_positive, Error, Result};
 use crate::system::{minimum_image, wrap, System, Vector};
-use contact::{hertz_duration, normal_force, ViscoelasticMaterial};
+use contact::{contact_duration, normal_force, ViscoelasticMaterial};
 use neighbors::NeighborList;
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
@@ -108,6 +109,15 @@ pub struct ContactReport {
     pub multi_contact_steps: u64,
     /// [`ContactStatistics::multi_contact_fraction`].
     pub multi_contact_fraction: f64,
+    /// How well the time step resolves isolated contacts: the largest |eps(MD) − eps(exact
+    /// law)| of head-on contacts at 0.1, 1 and 10 initial thermal speeds
+    /// ([`accuracy::eps_error`]).
+    pub eps_error: f64,
+}
+
+/// NaN: a quantity a check-point did not record.
+fn unknown() -> f64 {
+    f64::NAN
 }
 
 /// The saved state of a [`SoftSphere`] engine.
@@ -129,6 +139,9 @@ pub struct SoftSphereState<const D: usize> {
     pub contacts: Vec<(u32, u32)>,
     pub collision_counts: Vec<u32>,
     pub statistics: ContactStatistics,
+    /// See [`accuracy::eps_error`] (absent in check-points written before it existed).
+    #[serde(default = "unknown")]
+    pub eps_error: f64,
 }
 
 /// Soft-sphere MD of viscoelastic spheres (see the [module](self) documentation).
@@ -144,6 +157,8 @@ pub struct SoftSphere<const D: usize> {
     contacts: Vec<(u32, u32)>,
     collision_counts: Vec<u32>,
     statistics: ContactStatistics,
+    /// See [`accuracy::eps_error`] (NaN for the engines the probe builds).
+    eps_error: f64,
     neighbors: NeighborList<D>,
     /// Scratch: contacts of each particle in the current step.
     touching: Vec<u8>,
@@ -155,7 +170,20 @@ impl<const D: usize> SoftSphere<D> {
     /// An engine at time 0 from `system` (positions wrapped into the box; overlapping
     /// spheres are allowed and repel) with the material of every sphere and the options.
     /// Fails, naming the parameter, for bad input.
+    /// The engine reports how well its time step resolves isolated contacts
+    /// ([`accuracy::eps_error`]).
     pub fn new(
+        system: System<D>,
+        material: ViscoelasticMaterial,
+        options: SoftSphereOptions,
+    ) -> Result<Self> {
+        let mut engine = Self::build(system, material, options)?;
+        engine.eps_error = accuracy::eps_error(&engine.system, material, engine.time_step)?;
+        Ok(engine)
+    }
+
+    /// [`SoftSphere::new`] without the accuracy probe (which builds engines of its own).
+    pub(crate) fn build(
         system: System<D>,
         material: ViscoelasticMaterial,
         options: SoftSphereOptions,
@@ -178,7 +206,7 @@ impl<const D: usize> SoftSphere<D> {
                         "a finite number >= 4",
                     ));
                 }
-                shortest_contact(&system, &material) / options.steps_per_contact
+                shortest_contact(&system, &material)? / options.steps_per_contact
             }
         };
         if !(options.skin.is_finite() && options.skin > 0.0) {
@@ -212,6 +240,7 @@ impl<const D: usize> SoftSphere<D> {
             contacts: Vec::new(),
             collision_counts: vec![0; n],
             statistics: ContactStatistics::default(),
+            eps_error: f64::NAN,
             neighbors: NeighborList::new(skin),
             touching: vec![0; n],
             current: Vec::new(),
@@ -270,6 +299,7 @@ impl<const D: usize> SoftSphere<D> {
             contacts: state.contacts,
             collision_counts: state.collision_counts,
             statistics: state.statistics,
+            eps_error: state.eps_error,
         })
     }
 
@@ -473,9 +503,8 @@ impl<const D: usize> SoftSphere<D> {
     }
 }
 
-/// The shortest Hertz contact duration among the pairs of species of `system`, at ten
-/// thermal speeds sqrt(T/m) of the lightest species (T of the system).
-fn shortest_contact<const D: usize>(system: &System<D>, material: &ViscoelasticMaterial) -> f64 {
+/// The distinct (radius, mass) of the particles of `system`, sorted.
+fn species<const D: usize>(system: &System<D>) -> Vec<(f64, f64)> {
     let mut kinds: Vec<(f64, f64)> = system
         .radii
         .iter()
@@ -484,18 +513,39 @@ fn shortest_contact<const D: usize>(system: &System<D>, material: &ViscoelasticM
         .collect();
     kinds.sort_by(|a, b| a.partial_cmp(b).expect("finite radii and masses"));
     kinds.dedup();
+    kinds
+}
+
+/// The thermal speed sqrt(T/m) of the lightest species (T of the system).
+fn reference_speed<const D: usize>(system: &System<D>, kinds: &[(f64, f64)]) -> f64 {
     let temperature = crate::observe::temperature(system).max(f64::MIN_POSITIVE);
     let lightest = kinds.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
-    let speed = 10.0 * (temperature / lightest).sqrt();
+    (temperature / lightest).sqrt()
+}
+
+/// The shortest contact duration ([`contact_duration`], damping included) among the pairs
+/// of species of `system`, at ten thermal speeds sqrt(T/m) of the lightest species: faster
+/// contacts are shorter, Hertz's as v^{−1/5} and damped ones more so.
+fn shortest_contact<const D: usize>(
+    system: &System<D>,
+    material: &ViscoelasticMaterial,
+) -> Result<f64> {
+    let kinds = species(system);
+    let speed = 10.0 * reference_speed(system, &kinds);
     let mut shortest = f64::INFINITY;
     for (a, &(r1, m1)) in kinds.iter().enumerate() {
         for &(r2, m2) in &kinds[a..] {
             let rho = material.elastic_constant(r1, r2);
-            let duration = hertz_duration(rho, m1 * m2 / (m1 + m2), speed);
+            let duration = contact_duration(
+                rho,
+                material.dissipative_constant,
+                m1 * m2 / (m1 + m2),
+                speed,
+            )?;
             shortest = shortest.min(duration);
         }
     }
-    shortest
+    Ok(shortest)
 }
 
 impl<const D: usize> Engine<D> for SoftSphere<D> {
@@ -543,6 +593,7 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
             contact_steps: s.contact_steps,
             multi_contact_steps: s.multi_contact_steps,
             multi_contact_fraction: s.multi_contact_fraction(),
+            eps_error: self.eps_error,
         })
     }
 
@@ -571,6 +622,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             contacts: self.contacts.clone(),
             collision_counts: self.collision_counts.clone(),
             statistics: self.statistics,
+            eps_error: self.eps_error,
         }
     }
 

@@ -9,6 +9,7 @@
 
 use gas::soft::contact::{hertz_duration, ViscoelasticMaterial};
 use gas::{Checkpoint, Engine, SoftSphere, SoftSphereOptions, System};
+
 use restitution::exact::{solve, Criterion};
 
 const YOUNG: f64 = 1e4;
@@ -215,4 +216,30 @@ fn kinetic_elastic_and_lost_energy_add_up() {
     let (coarse, fine) = (imbalance(400.0), imbalance(800.0));
     println!("imbalance/loss {coarse:e} at 400, {fine:e} at 800 steps per contact");
     assert!(coarse < 1e-3 && fine < coarse / 2.4, "{coarse:e} {fine:e}");
+}
+
+/// A small gas at T = m = 1.
+fn small_gas() -> System<3> {
+    gas::init::monodisperse::<3>(64, 0.05, 1.0, 1.0, 1.0, 1).unwrap()
+}
+
+/// The default time step (50 steps per contact duration, damping included) resolves
+/// contacts at every damping: the engine's own report of |eps(MD) - eps(exact)| over
+/// head-on contacts at 0.1, 1 and 10 thermal speeds stays below 1e-3 for v* from 0.01 to
+/// 30 at the fastest speed (eps from 1 to 1e-5): 1e-3 is twice the largest error of the
+/// single-phase contacts of `print_convergence` at 50 steps per contact. A time step from the undamped Hertz
+/// duration gets eps wrong by 0.4 at v* = 10 (table of `print_convergence`: 50 steps).
+#[test]
+fn default_time_step_resolves_damped_contacts() {
+    for vstar in [0.01, 0.3, 1.0, 3.0, 10.0, 30.0] {
+        // v* = beta^(1/2) v^(1/10) at the fastest probed speed v = 10.
+        let material = material_for(vstar / 10f64.powf(0.1));
+        let engine = SoftSphere::new(small_gas(), material, SoftSphereOptions::default()).unwrap();
+        let report = engine.contact_report().unwrap();
+        println!(
+            "v* = {vstar}: dt = {:e}, eps error {:e}",
+            report.time_step, report.eps_error
+        );
+        assert!(report.eps_error < 1e-3, "v* = {vstar}: {report:?}");
+    }
 }

@@ -114,8 +114,9 @@ fn soft_sphere_md_cools_like_emd_with_the_exact_law() {
 }
 
 /// summary.json of a soft-sphere run reports its contacts; an eMD run's has none. The time
-/// step is recomputed here from the Hertz duration t_c = 3.2181 (m_eff / rho)^(2/5) v^(-1/5)
-/// at ten thermal speeds (v = 10 sqrt(T/m) = 10) over the default 50 steps per contact.
+/// step is recomputed here from the contact duration t_c = tau_c(v*) (m_eff / rho)^(2/5)
+/// v^(-1/5) at ten thermal speeds (v = 10 sqrt(T/m) = 10; v* = beta^(1/2) v^(1/10), tau_c
+/// the scaled duration of Eq. (9) of MP2011) over the default 50 steps per contact.
 #[test]
 fn summary_reports_the_contacts_of_soft_sphere_runs() {
     let dir = std::env::temp_dir().join(format!("haff-soft-summary-{}", std::process::id()));
@@ -133,7 +134,12 @@ fn summary_reports_the_contacts_of_soft_sphere_runs() {
     let _ = std::fs::remove_dir_all(&dir);
     let c = &s["contacts"];
     let rho = 2.0 * 1e5 * 0.25f64.sqrt() / (3.0 * (1.0 - 0.09));
-    let time_step = 3.218_065_459_719_043_5 * (0.5 / rho).powf(0.4) * 10f64.powf(-0.2) / 50.0;
+    let beta = 1.5 * 0.01 * (rho / 0.5f64).powf(0.4);
+    let vstar = beta.sqrt() * 10f64.powf(0.1);
+    let tau = restitution::exact::solve(vstar, restitution::exact::Criterion::Improved)
+        .unwrap()
+        .duration;
+    let time_step = tau * (0.5 / rho).powf(0.4) * 10f64.powf(-0.2) / 50.0;
     let number = |key: &str| c[key].as_f64().unwrap_or_else(|| panic!("{key}: {c}"));
     assert!((number("time_step") / time_step - 1.0).abs() < 1e-12, "{c}");
     // 4 time units in steps of dt, the step before each of the 5 sample times shortened
@@ -151,6 +157,8 @@ fn summary_reports_the_contacts_of_soft_sphere_runs() {
         "{c}"
     );
     assert!(number("elastic_energy") >= 0.0);
+    // The engine's probe of isolated contacts (gas tests: below 1e-3 at 50 steps).
+    assert!((0.0..1e-3).contains(&number("eps_error")), "{c}");
     assert_eq!(
         number("contacts_now") == 0.0,
         number("elastic_energy") == 0.0

@@ -99,6 +99,18 @@ pub fn hertz_duration(rho: f64, effective_mass: f64, v: f64) -> f64 {
     HERTZ_DURATION_COEFFICIENT * (effective_mass / rho).powf(0.4) * v.powf(-0.2)
 }
 
+/// Duration of a viscoelastic contact of Eq. (2) of MP2011 (until the force vanishes) at
+/// impact speed v: τ_c(v*) (m_eff / ρ)^{2/5} v^{−1/5}, with τ_c the scaled duration of
+/// Eq. (9) of MP2011 ([`restitution::exact::solve`], improved criterion) at
+/// v* = β^{1/2} v^{1/10}, β = (3/2) A (ρ / m_eff)^{2/5}. Without damping τ_c is the Hertz
+/// coefficient ([`hertz_duration`]); damping shortens the contact.
+pub fn contact_duration(rho: f64, a: f64, effective_mass: f64, v: f64) -> Result<f64> {
+    let beta = 1.5 * a * (rho / effective_mass).powf(0.4);
+    let vstar = beta.sqrt() * v.powf(0.1);
+    let scaled = restitution::exact::solve(vstar, restitution::exact::Criterion::Improved)?;
+    Ok(scaled.duration * (effective_mass / rho).powf(0.4) * v.powf(-0.2))
+}
+
 /// c of [`hertz_duration`], 2 (5/4)^{2/5} (2/5) √π Γ(2/5) / Γ(9/10) (Γ from Python's
 /// math.gamma); the test recomputes I by quadrature.
 pub const HERTZ_DURATION_COEFFICIENT: f64 = 3.218_065_459_719_043_5;
@@ -124,6 +136,21 @@ mod tests {
             (coefficient / HERTZ_DURATION_COEFFICIENT - 1.0).abs() < 1e-8,
             "{coefficient}"
         );
+    }
+
+    /// Undamped, the contact lasts the Hertz duration; damping shortens it.
+    #[test]
+    fn damped_contacts_are_shorter_than_hertz() {
+        let (rho, m, v) = (3.0, 0.5, 2.0);
+        let hertz = hertz_duration(rho, m, v);
+        assert!((contact_duration(rho, 0.0, m, v).unwrap() / hertz - 1.0).abs() < 1e-10);
+        let mut previous = hertz;
+        for a in [0.01, 0.1, 1.0, 10.0] {
+            let damped = contact_duration(rho, a, m, v).unwrap();
+            println!("A = {a}: t_c / t_Hertz = {}", damped / hertz);
+            assert!(damped < previous, "A = {a}");
+            previous = damped;
+        }
     }
 
     #[test]
