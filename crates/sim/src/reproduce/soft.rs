@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::plot::Figure;
 use gas::dsmc::{point_gas, Scheme};
 use gas::observe::temperature;
-use gas::soft::contact::{hertz_duration, ViscoelasticMaterial};
+use gas::soft::contact::{contact_duration, ViscoelasticMaterial};
 use gas::theory::collision_frequency;
 use gas::{Engine, EventDriven, HomogeneousDsmc, SoftSphere, SoftSphereOptions};
 use restitution::{Restitution, ScaledForm, Viscoelastic};
@@ -125,7 +125,8 @@ struct Density {
     phi: f64,
     times: Vec<f64>,
     runs: Vec<SeedRun>,
-    /// Contact duration at the initial thermal speed over the initial free time 1/omega.
+    /// Contact duration at the initial relative thermal speed over the initial free time
+    /// 1/omega.
     duration_over_free_time: f64,
 }
 
@@ -212,8 +213,9 @@ fn density(phi: f64, n: usize, collisions: f64, seeds: &[u64]) -> Result<Density
     let density = phi / gas::system::ball_volume::<3>(0.5);
     let omega = collision_frequency::<3>(density, 1.0, 1.0, 1.0, phi);
     let rho = material.elastic_constant(0.5, 0.5);
-    // The relative thermal speed sqrt(2 T / m_eff) = 2 (T = m = 1).
-    let duration = hertz_duration(rho, 0.5, 2.0);
+    // At the relative thermal speed sqrt(2 T / m_eff) = 2 (T = m = 1), damping included.
+    let duration =
+        contact_duration(rho, DISSIPATIVE_CONSTANT, 0.5, 2.0).map_err(engine_error)?;
     Ok(Density {
         phi,
         times,
