@@ -171,7 +171,7 @@ fn kinetic(engine: &mut SoftSphere<3>) -> f64 {
     v.iter().flatten().map(|c| 0.5 * c * c).sum()
 }
 
-/// Energy bookkeeping of one strongly dissipative contact (v* = 2: the force is clamped to
+/// Energy bookkeeping of one strongly dissipative contact (v* = sqrt(2), eps = 0.2: the force is clamped to
 /// zero well before the overlap ends): kinetic + elastic energy + energy lost stays the
 /// initial kinetic energy at every step of the contact, and after it the energy lost is
 /// the kinetic-energy loss (1 - eps^2) m_eff v^2 / 2 the event-driven engine books. The
@@ -207,7 +207,7 @@ fn kinetic_elastic_and_lost_energy_add_up() {
         let lost = initial - kinetic(&mut engine);
         assert!(
             lost > 0.5 * initial,
-            "v* = 2 loses most of the energy: {lost}"
+            "v* = sqrt(2) loses most of the energy: {lost}"
         );
         let booked = engine.counters().energy_lost;
         assert!((booked / lost - 1.0).abs() <= worst / lost + 1e-12);

@@ -214,8 +214,7 @@ fn density(phi: f64, n: usize, collisions: f64, seeds: &[u64]) -> Result<Density
     let omega = collision_frequency::<3>(density, 1.0, 1.0, 1.0, phi);
     let rho = material.elastic_constant(0.5, 0.5);
     // At the relative thermal speed sqrt(2 T / m_eff) = 2 (T = m = 1), damping included.
-    let duration =
-        contact_duration(rho, DISSIPATIVE_CONSTANT, 0.5, 2.0).map_err(engine_error)?;
+    let duration = contact_duration(rho, DISSIPATIVE_CONSTANT, 0.5, 2.0).map_err(engine_error)?;
     Ok(Density {
         phi,
         times,
