@@ -171,8 +171,8 @@ fn kinetic(engine: &mut SoftSphere<3>) -> f64 {
     v.iter().flatten().map(|c| 0.5 * c * c).sum()
 }
 
-/// Energy bookkeeping of one strongly dissipative contact (v* = sqrt(2), eps = 0.2: the force is clamped to
-/// zero well before the overlap ends): kinetic + elastic energy + energy lost stays the
+/// Energy bookkeeping of one strongly dissipative contact (v* = sqrt(2), eps ~ 0.2: the
+/// force is clamped to zero well before the overlap ends): kinetic + elastic energy + energy lost stays the
 /// initial kinetic energy at every step of the contact, and after it the energy lost is
 /// the kinetic-energy loss (1 - eps^2) m_eff v^2 / 2 the event-driven engine books. The
 /// trapezoidal work and velocity Verlet are second order in dt; the contact's start and
