@@ -20,7 +20,9 @@
 //! # dashpot: damping_ratio = R, criterion = "improved" | "naive"
 //! # viscoelastic: beta = 0.1, form = "exact" | "fast" | "pade:M/N" | "series:K";
 //! #   or the material: young = Y, poisson = nu, dissipative_constant = A (the units of
-//! #   the system; beta = (3/2) A (rho / m_eff)^(2/5), rho = 2 Y sqrt(R_eff) / (3 (1 - nu^2)))
+//! #   the system; beta = (3/2) A (rho / m_eff)^(2/5), rho = 2 Y sqrt(R_eff) / (3 (1 - nu^2)));
+//! #   or material = "ice" (a built-in one; SI, masses from its density) with
+//! #   dissipative_constant
 //! # stochastic: modes = M, distribution = "glauber" | "tabulated", table = PATH,
 //! #             bath_temperature = 0.0
 //! tc = 0.0                 # TC model: elastic if either partner collided < tc ago (0: off)
@@ -199,6 +201,11 @@ pub struct CollisionSection {
     pub beta: Option<f64>,
     #[serde(default)]
     pub form: Option<FormName>,
+    /// Viscoelastic material: a built-in one by name (`steel`, `soda-lime-glass`,
+    /// `aluminium`, `ice`: Young modulus, Poisson ratio and density in SI; the masses follow
+    /// from the density), with `dissipative_constant` in s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<String>,
     /// Viscoelastic material: Young modulus (instead of beta, with `poisson` and
     /// `dissipative_constant`), in the units of the system.
     #[serde(default, skip_serializing_if = "Option::is_none")]

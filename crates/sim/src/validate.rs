@@ -5,6 +5,8 @@
 //! law itself when [`crate::law::build`] builds it, which [`crate::Simulation::new`] does
 //! before anything runs. Errors name the key and the allowed range.
 
+mod material;
+
 use crate::description::{
     species, Distribution, DsmcScheme, EngineKind, LawKind, RunDescription, RunSection, Spacing,
 };
@@ -12,6 +14,7 @@ use crate::error::{positive, Error, Result};
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
 use gas::soft::contact::ViscoelasticMaterial;
 use gas::SoftSphereOptions;
+use material::{material, viscoelastic_beta};
 use restitution::{Criterion, FormName};
 use std::path::PathBuf;
 
@@ -88,6 +91,8 @@ pub struct Plan {
 
 /// Checks every key of `description` and returns the plan of the run.
 pub fn validate(description: &RunDescription) -> Result<Plan> {
+    let resolved = material::resolve_named_material(description)?;
+    let description = &resolved;
     check_system(description)?;
     let law = law_spec(description)?;
     let c = &description.collision;
@@ -320,65 +325,6 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
         },
         LawKind::Stochastic => stochastic_spec(description)?,
     })
-}
-
-/// The material of `[collision]` (`young`, `poisson`, `dissipative_constant`), if any of
-/// its keys is given: then all three, in range.
-pub(crate) fn material(description: &RunDescription) -> Result<Option<ViscoelasticMaterial>> {
-    let c = &description.collision;
-    let keys = [
-        ("collision.young", c.young),
-        ("collision.poisson", c.poisson),
-        ("collision.dissipative_constant", c.dissipative_constant),
-    ];
-    if keys.iter().all(|k| k.1.is_none()) {
-        return Ok(None);
-    }
-    if let Some((key, _)) = keys.iter().find(|k| k.1.is_none()) {
-        return Err(Error::input(
-            *key,
-            "missing: a material needs young, poisson and dissipative_constant",
-        ));
-    }
-    let (young, poisson, a) = (keys[0].1.unwrap(), keys[1].1.unwrap(), keys[2].1.unwrap());
-    ViscoelasticMaterial::new(young, poisson, a)
-        .map(Some)
-        .map_err(|e| {
-            let key = ["young", "poisson", "dissipative_constant"]
-                .into_iter()
-                .find(|k| e.to_string().starts_with(k))
-                .unwrap_or("young");
-            Error::input(format!("collision.{key}"), e)
-        })
-}
-
-/// beta of the viscoelastic law: `collision.beta`, or from the material and the spheres
-/// of one kind, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
-fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
-    let c = &description.collision;
-    match (c.beta, material(description)?) {
-        (Some(beta), None) => Ok(beta),
-        (None, Some(m)) => {
-            let s = &description.system;
-            if s.species.is_some() {
-                return Err(Error::input(
-                    "collision.young",
-                    "a material with system.species needs a beta per pair of species, which \
-                     the viscoelastic law does not have yet; give one diameter and mass",
-                ));
-            }
-            let (r, mass) = (0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
-            Ok(m.beta(r, r, mass, mass))
-        }
-        (Some(_), Some(_)) => Err(Error::input(
-            "collision.beta",
-            "give beta or the material (young, poisson, dissipative_constant), not both",
-        )),
-        (None, None) => Err(Error::input(
-            "collision.beta",
-            "missing: give beta, or young, poisson and dissipative_constant",
-        )),
-    }
 }
 
 /// The keys of `[run]` that only DSMC reads, `time_step` among them if `time_step_too`

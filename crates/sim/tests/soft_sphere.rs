@@ -164,3 +164,69 @@ fn summary_reports_the_contacts_of_soft_sphere_runs() {
         number("elastic_energy") == 0.0
     );
 }
+
+/// Soda-lime glass spheres in SI (d = 2 mm, sqrt(T/m) = 1 m/s, A = 1e-9 s), the material
+/// given by its keys or by name.
+fn glass(collision: &str, mass: &str) -> String {
+    format!(
+        "[system]\ndimension = 3\nparticles = 200\npacking_fraction = 0.05\ndiameter = 2e-3\n\
+         {mass}temperature = 1.0471975511965977e-5\nseed = 1\n\
+         [collision]\nlaw = \"viscoelastic\"\n{collision}dissipative_constant = 1e-9\n\
+         [run]\nengine = \"soft-sphere\"\nend_time = 2e-3\nsamples = 4\n"
+    )
+}
+
+/// `material = "soda-lime-glass"` is the table's Y = 72 GPa, nu = 0.23 and the mass of a
+/// 2 mm sphere of density 2500 kg/m^3, 2500 pi (2e-3)^3 / 6 = 1.0471975511965977e-5 kg:
+/// the run equals the one with those keys (the same events; T and the energy lost to
+/// 1e-12, as the two masses may differ in the last bit). Errors name the key.
+#[test]
+fn a_named_material_gives_young_poisson_and_the_mass() {
+    let samples = |text: &str| {
+        let mut run = Simulation::from_toml(text, "g.toml".as_ref()).unwrap();
+        run.run(&mut (), None).unwrap();
+        run.samples().to_vec()
+    };
+    let mass = "mass = 1.0471975511965977e-5\n";
+    let explicit = glass("young = 72e9\npoisson = 0.23\n", mass);
+    let named = glass("material = \"soda-lime-glass\"\n", "");
+    let by_keys = samples(&explicit);
+    assert!(by_keys.last().unwrap().collisions_per_particle > 0.5);
+    let same = |other: &[sim::observer::Sample]| {
+        assert_eq!(other.len(), by_keys.len());
+        for (a, b) in by_keys.iter().zip(other) {
+            assert_eq!((a.time, a.events), (b.time, b.events));
+            assert!(
+                (a.temperature / b.temperature - 1.0).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
+            assert!((a.energy_lost - b.energy_lost).abs() <= 1e-12 * a.temperature);
+        }
+    };
+    same(&samples(&named));
+    // With the mass given (matching), and with an explicit key overriding the table.
+    same(&samples(&glass("material = \"Soda_Lime_Glass\"\n", mass)));
+    let softer = glass("material = \"soda-lime-glass\"\nyoung = 36e9\n", "");
+    assert_ne!(by_keys, samples(&softer));
+    for (text, key) in [
+        (
+            glass("material = \"unobtainium\"\n", ""),
+            "collision.material",
+        ),
+        (
+            glass("material = \"ice\"\n", "").replace("dimension = 3", "dimension = 2"),
+            "collision.material",
+        ),
+        (
+            glass("material = \"ice\"\n", "").replace("viscoelastic", "constant"),
+            "collision.material",
+        ),
+        (glass("material = \"ice\"\n", mass), "system.mass"),
+        (
+            glass("material = \"ice\"\n", "").replace("dissipative_constant = 1e-9\n", ""),
+            "collision.dissipative_constant",
+        ),
+    ] {
+        assert_eq!(refused_key(&text), key, "{text}");
+    }
+}

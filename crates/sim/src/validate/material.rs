@@ -1,0 +1,140 @@
+//! The viscoelastic material of `[collision]`: a built-in one by name
+//! (`material = "ice"`, SI, as `haff cor eps --material` takes it) or `young`, `poisson`
+//! and `dissipative_constant` in the units of the system; beta per pair from it.
+
+use crate::description::RunDescription;
+use crate::error::{Error, Result};
+use gas::soft::contact::ViscoelasticMaterial;
+
+/// Relative tolerance between a given mass and the one a material's density gives: the
+/// masses of a run file are decimals, printed to about nine digits or more.
+const MASS_TOLERANCE: f64 = 1e-6;
+
+/// `description` with a built-in `collision.material` resolved: `young` and `poisson` from
+/// the table unless given (explicit keys win, as in `haff cor eps`), and `system.mass`
+/// from the density, m = density pi d^3 / 6 (SI: diameter in m, mass in kg). A given mass
+/// (or species mass) must match the density. Spheres only: dimension 3.
+pub(crate) fn resolve_named_material(description: &RunDescription) -> Result<RunDescription> {
+    let mut resolved = description.clone();
+    let Some(name) = description.collision.material.as_deref() else {
+        return Ok(resolved);
+    };
+    let table = restitution::material::material_by_name(name)
+        .map_err(|e| Error::input("collision.material", e))?;
+    if description.collision.law != crate::description::LawKind::Viscoelastic {
+        return Err(Error::input(
+            "collision.material",
+            "a material is for law = \"viscoelastic\"",
+        ));
+    }
+    let s = &description.system;
+    if s.dimension != 3 {
+        return Err(Error::input(
+            "collision.material",
+            format!(
+                "a material's density gives the masses of spheres: system.dimension = 3 \
+                 (is {}); in {}D give young, poisson, dissipative_constant and system.mass",
+                s.dimension, s.dimension
+            ),
+        ));
+    }
+    let c = &mut resolved.collision;
+    c.young.get_or_insert(table.young_modulus);
+    c.poisson.get_or_insert(table.poisson_ratio);
+    let mass_of = |d: f64| table.density * std::f64::consts::PI * d * d * d / 6.0;
+    let mismatch = |key: String, given: f64, d: f64| {
+        Error::input(
+            key,
+            format!(
+                "= {given}, but {} (density {} kg/m^3) gives {} for diameter {d} (SI units); \
+                 leave the mass out or match it",
+                table.name,
+                table.density,
+                mass_of(d)
+            ),
+        )
+    };
+    match &s.species {
+        None => {
+            let d = s.diameter.unwrap_or(1.0);
+            match s.mass {
+                None => resolved.system.mass = Some(mass_of(d)),
+                Some(m) if (m / mass_of(d) - 1.0).abs() > MASS_TOLERANCE => {
+                    return Err(mismatch("system.mass".into(), m, d))
+                }
+                Some(_) => {}
+            }
+        }
+        Some(species) => {
+            for (i, sp) in species.iter().enumerate() {
+                if (sp.mass / mass_of(sp.diameter) - 1.0).abs() > MASS_TOLERANCE {
+                    return Err(mismatch(
+                        format!("system.species[{i}].mass"),
+                        sp.mass,
+                        sp.diameter,
+                    ));
+                }
+            }
+        }
+    }
+    Ok(resolved)
+}
+
+/// The material of `[collision]` (`young`, `poisson`, `dissipative_constant`), if any of
+/// its keys is given: then all three, in range.
+pub(crate) fn material(description: &RunDescription) -> Result<Option<ViscoelasticMaterial>> {
+    let c = &description.collision;
+    let keys = [
+        ("collision.young", c.young),
+        ("collision.poisson", c.poisson),
+        ("collision.dissipative_constant", c.dissipative_constant),
+    ];
+    if keys.iter().all(|k| k.1.is_none()) {
+        return Ok(None);
+    }
+    if let Some((key, _)) = keys.iter().find(|k| k.1.is_none()) {
+        return Err(Error::input(
+            *key,
+            "missing: a material needs young, poisson and dissipative_constant",
+        ));
+    }
+    let (young, poisson, a) = (keys[0].1.unwrap(), keys[1].1.unwrap(), keys[2].1.unwrap());
+    ViscoelasticMaterial::new(young, poisson, a)
+        .map(Some)
+        .map_err(|e| {
+            let key = ["young", "poisson", "dissipative_constant"]
+                .into_iter()
+                .find(|k| e.to_string().starts_with(k))
+                .unwrap_or("young");
+            Error::input(format!("collision.{key}"), e)
+        })
+}
+
+/// beta of the viscoelastic law: `collision.beta`, or from the material and the spheres
+/// of one kind, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
+pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
+    let c = &description.collision;
+    match (c.beta, material(description)?) {
+        (Some(beta), None) => Ok(beta),
+        (None, Some(m)) => {
+            let s = &description.system;
+            if s.species.is_some() {
+                return Err(Error::input(
+                    "collision.young",
+                    "a material with system.species needs a beta per pair of species, which \
+                     the viscoelastic law does not have yet; give one diameter and mass",
+                ));
+            }
+            let (r, mass) = (0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+            Ok(m.beta(r, r, mass, mass))
+        }
+        (Some(_), Some(_)) => Err(Error::input(
+            "collision.beta",
+            "give beta or the material (young, poisson, dissipative_constant), not both",
+        )),
+        (None, None) => Err(Error::input(
+            "collision.beta",
+            "missing: give beta, or young, poisson and dissipative_constant",
+        )),
+    }
+}
