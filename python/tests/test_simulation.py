@@ -209,6 +209,9 @@ def test_write_gives_the_files_of_the_command(tmp_path, cli):
         ({"run": {"samples": "many"}}, "run.samples"),
         ({"run": {"engine": "dsmc", "dsmc_scheme": "fastest"}}, "run.dsmc_scheme"),
         ({"collision": {"beta": None}}, "collision.beta"),
+        ({"collision": {"law": "viscoelastic", "material": "cheese",
+                        "dissipative_constant": 1e-9}}, "collision.material"),
+        ({"run": {"engine": "soft-sphere"}}, "collision.law"),
     ],
 )
 def test_bad_configs_name_the_key(change, key):
