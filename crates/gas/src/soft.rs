@@ -29,11 +29,12 @@
 pub mod accuracy;
 pub mod contact;
 pub mod neighbors;
+mod step;
 
 use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{require_positive, Error, Result};
 use crate::system::{minimum_image, wrap, System, Vector};
-use contact::{contact_duration, normal_force, ViscoelasticMaterial};
+use contact::{contact_duration, ViscoelasticMaterial};
 use neighbors::NeighborList;
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
@@ -159,11 +160,16 @@ pub struct SoftSphere<const D: usize> {
     statistics: ContactStatistics,
     /// See [`accuracy::eps_error`] (NaN for the engines the probe builds).
     eps_error: f64,
-    neighbors: NeighborList<D>,
-    /// Scratch: contacts of each particle in the current step.
+    neighbors: NeighborList,
+    /// The particles in contact at the last force computation, the only ones whose force
+    /// may be nonzero (for a restored engine: those whose force is nonzero).
+    active: Vec<u32>,
+    /// Scratch: contacts of each particle in the current step (zero outside `active`).
     touching: Vec<u8>,
     /// Scratch: the contacts of the current step.
     current: Vec<(u32, u32)>,
+    /// Scratch: the force on the second particle of each pair of `current`.
+    impulses: Vec<Vector<D>>,
 }
 
 impl<const D: usize> SoftSphere<D> {
@@ -242,8 +248,10 @@ impl<const D: usize> SoftSphere<D> {
             statistics: ContactStatistics::default(),
             eps_error: f64::NAN,
             neighbors: NeighborList::new(skin),
+            active: Vec::new(),
             touching: vec![0; n],
             current: Vec::new(),
+            impulses: Vec::new(),
             system,
         };
         // Forces of the initial state (velocities known exactly at t = 0); overlaps present
@@ -284,9 +292,14 @@ impl<const D: usize> SoftSphere<D> {
             ));
         }
         let largest = 2.0 * state.system.radii.iter().copied().fold(0.0, f64::max);
+        let active = (0..n as u32)
+            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
+            .collect();
         Ok(SoftSphere {
+            active,
             touching: vec![0; n],
             current: Vec::new(),
+            impulses: Vec::new(),
             neighbors: NeighborList::new(state.options.skin * largest),
             system: state.system,
             forces: state.forces,
@@ -355,135 +368,6 @@ impl<const D: usize> SoftSphere<D> {
                 0.4 * self.material.elastic_constant(s.radii[i], s.radii[j]) * xi.powf(2.5)
             })
             .sum()
-    }
-
-    /// Forces at the current positions with the velocities `predicted` (the current ones
-    /// if None); replaces the contact list. Returns the dissipated power Σ F_dis ξ̇, the
-    /// virial rate Σ F_n d and the number of contacts begun.
-    fn compute_forces(&mut self, predicted: Option<&[Vector<D>]>) -> (f64, f64, u64) {
-        if self.neighbors.stale(&self.system) {
-            self.neighbors.build(&self.system);
-        }
-        for f in &mut self.forces {
-            *f = [0.0; D];
-        }
-        self.touching.iter_mut().for_each(|t| *t = 0);
-        self.current.clear();
-        let velocities = predicted.unwrap_or(&self.system.velocities);
-        let (s, a) = (&self.system, self.material.dissipative_constant);
-        let (mut power, mut virial) = (0.0, 0.0);
-        for &(i, j) in &self.neighbors.pairs {
-            let (i, j) = (i as usize, j as usize);
-            let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
-            });
-            let d2: f64 = r.iter().map(|x| x * x).sum();
-            let contact = s.radii[i] + s.radii[j];
-            if d2 >= contact * contact {
-                continue;
-            }
-            let d = d2.sqrt();
-            let xi = contact - d;
-            let normal: Vector<D> = std::array::from_fn(|k| r[k] / d);
-            let xi_dot = -(0..D)
-                .map(|k| (velocities[j][k] - velocities[i][k]) * normal[k])
-                .sum::<f64>();
-            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
-            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
-            for (k, n) in normal.iter().enumerate() {
-                self.forces[i][k] -= force * n;
-                self.forces[j][k] += force * n;
-            }
-            power += dissipative * xi_dot;
-            virial += force * d;
-            let relative = xi / contact;
-            if relative > self.statistics.max_relative_overlap {
-                self.statistics.max_relative_overlap = relative;
-            }
-            self.touching[i] = self.touching[i].saturating_add(1);
-            self.touching[j] = self.touching[j].saturating_add(1);
-            self.current.push((i as u32, j as u32));
-        }
-        for &t in &self.touching {
-            if t >= 1 {
-                self.statistics.contact_steps += 1;
-            }
-            if t >= 2 {
-                self.statistics.multi_contact_steps += 1;
-            }
-        }
-        // Contacts begun: in `current` but not in the previous list (both sorted).
-        let mut begun = 0;
-        let mut old = self.contacts.iter().peekable();
-        for &pair in &self.current {
-            while old.peek().is_some_and(|&&p| p < pair) {
-                old.next();
-            }
-            if old.peek() != Some(&&pair) {
-                begun += 1;
-                let (i, j) = (pair.0 as usize, pair.1 as usize);
-                self.collision_counts[i] = self.collision_counts[i].wrapping_add(1);
-                self.collision_counts[j] = self.collision_counts[j].wrapping_add(1);
-            }
-        }
-        std::mem::swap(&mut self.contacts, &mut self.current);
-        (power, virial, begun)
-    }
-
-    /// One velocity-Verlet step of length `dt` (see the [module](self) documentation).
-    fn step(&mut self, dt: f64) {
-        let (power_before, virial_before) = self.contact_rates();
-        let length = self.system.length;
-        let s = &mut self.system;
-        for i in 0..s.len() {
-            let kick = 0.5 * dt / s.masses[i];
-            for k in 0..D {
-                s.velocities[i][k] += kick * self.forces[i][k];
-                s.positions[i][k] = wrap(s.positions[i][k] + dt * s.velocities[i][k], length);
-            }
-        }
-        let predicted: Vec<Vector<D>> = (0..s.len())
-            .map(|i| {
-                let kick = 0.5 * dt / s.masses[i];
-                std::array::from_fn(|k| s.velocities[i][k] + kick * self.forces[i][k])
-            })
-            .collect();
-        let (power, virial, begun) = self.compute_forces(Some(&predicted));
-        let s = &mut self.system;
-        for i in 0..s.len() {
-            let kick = 0.5 * dt / s.masses[i];
-            for k in 0..D {
-                s.velocities[i][k] += kick * self.forces[i][k];
-            }
-        }
-        self.steps += 1;
-        self.tally.collisions += begun;
-        self.tally.events += 1;
-        self.tally.energy_lost += 0.5 * dt * (power_before + power);
-        self.tally.virial += 0.5 * dt * (virial_before + virial);
-    }
-
-    /// The dissipated power and virial rate of the current contacts with the current
-    /// velocities (the trapezoid's left end).
-    fn contact_rates(&self) -> (f64, f64) {
-        let (s, a) = (&self.system, self.material.dissipative_constant);
-        let (mut power, mut virial) = (0.0, 0.0);
-        for &(i, j) in &self.contacts {
-            let (i, j) = (i as usize, j as usize);
-            let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
-            });
-            let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-            let xi = s.radii[i] + s.radii[j] - d;
-            let xi_dot = -(0..D)
-                .map(|k| (s.velocities[j][k] - s.velocities[i][k]) * r[k] / d)
-                .sum::<f64>();
-            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
-            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
-            power += dissipative * xi_dot;
-            virial += force * d;
-        }
-        (power, virial)
     }
 
     /// Steps while the time is below `end`, the collisions below `collisions` and below
@@ -602,6 +486,8 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
         n * (std::mem::size_of::<Vector<D>>() * 3 + 16 + 5)
             + self.contacts.capacity() * 8
             + self.current.capacity() * 8
+            + self.active.capacity() * 4
+            + self.impulses.capacity() * std::mem::size_of::<Vector<D>>()
             + self.neighbors.memory_bytes()
     }
 }

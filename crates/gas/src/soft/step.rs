@@ -1,0 +1,210 @@
+//! The time step of [`SoftSphere`]: velocity Verlet with the forces of the contacts.
+//!
+//! In a gas most particles touch no other at a given step, so the work per step is
+//! arranged around the contacts: the forces are zero except on the particles in contact
+//! (`active`), so the half kicks visit only those, and the predicted velocities are
+//! needed only for the pairs in contact and are computed there. What remains per particle
+//! is the drift and the pair search of the neighbour list.
+
+use super::contact::normal_force;
+use super::SoftSphere;
+use crate::system::{minimum_image, wrap, Vector};
+
+/// d = x_j − x_i for coordinates in [0, L) (|d| < L), as [`minimum_image`] but without
+/// its rounding (select instructions instead of branches in the pair loop).
+#[inline(always)]
+fn image_of_difference(d: f64, length: f64) -> f64 {
+    let half = 0.5 * length;
+    if d > half {
+        d - length
+    } else if d < -half {
+        d + length
+    } else {
+        d
+    }
+}
+
+/// x = wrap(x + dt v) for coordinates in [0, L): by blocks that move and take the least
+/// and largest coordinate lane by lane (vector min and max instructions), wrapping the
+/// rare blocks that leave the box.
+fn drift(x: &mut [f64], v: &[f64], dt: f64, length: f64) {
+    const LANES: usize = 8;
+    const BLOCK: usize = 8 * LANES;
+    let mut xs = x.chunks_exact_mut(BLOCK);
+    let mut vs = v.chunks_exact(BLOCK);
+    for (x, v) in (&mut xs).zip(&mut vs) {
+        let (mut low, mut high) = ([0.0f64; LANES], [0.0f64; LANES]);
+        for (x, v) in x.chunks_exact_mut(LANES).zip(v.chunks_exact(LANES)) {
+            for k in 0..LANES {
+                x[k] += dt * v[k];
+                low[k] = if x[k] < low[k] { x[k] } else { low[k] };
+                high[k] = if x[k] > high[k] { x[k] } else { high[k] };
+            }
+        }
+        if low.iter().any(|&c| c < 0.0) || high.iter().any(|&c| c >= length) {
+            x.iter_mut().for_each(|c| *c = wrap(*c, length));
+        }
+    }
+    for (x, v) in xs.into_remainder().iter_mut().zip(vs.remainder()) {
+        *x = wrap(*x + dt * v, length);
+    }
+}
+
+impl<const D: usize> SoftSphere<D> {
+    /// One velocity-Verlet step of length `dt` (see the [module](super) documentation).
+    pub(super) fn step(&mut self, dt: f64) {
+        let (power_before, virial_before) = self.contact_rates();
+        self.half_kick(dt);
+        drift(
+            self.system.positions.as_flattened_mut(),
+            self.system.velocities.as_flattened(),
+            dt,
+            self.system.length,
+        );
+        self.neighbors.drifted(dt);
+        let (power, virial, begun) = self.compute_forces(Some(dt));
+        self.half_kick(dt);
+        self.steps += 1;
+        self.tally.collisions += begun;
+        self.tally.events += 1;
+        self.tally.energy_lost += 0.5 * dt * (power_before + power);
+        self.tally.virial += 0.5 * dt * (virial_before + virial);
+    }
+
+    /// v += (dt/2) F / m on the particles with a force (the others have F = 0).
+    fn half_kick(&mut self, dt: f64) {
+        let s = &mut self.system;
+        for &i in &self.active {
+            let i = i as usize;
+            let kick = 0.5 * dt / s.masses[i];
+            for k in 0..D {
+                s.velocities[i][k] += kick * self.forces[i][k];
+            }
+            self.neighbors.kicked(&s.velocities[i]);
+        }
+    }
+
+    /// Forces at the current positions, with the velocities predicted half a step ahead by
+    /// the forces so far, v + (dt/2) F / m, for `Some(dt)`, the current velocities for
+    /// None; replaces the contact list. Returns the dissipated power Σ F_dis ξ̇, the virial
+    /// rate Σ F_n d and the number of contacts begun.
+    pub(super) fn compute_forces(&mut self, predicting: Option<f64>) -> (f64, f64, u64) {
+        if self.neighbors.stale() {
+            self.neighbors.build(&self.system);
+        }
+        // The pairs in contact, in the order of the list (i < j, sorted).
+        self.current.clear();
+        let s = &self.system;
+        // The largest contact distance first, which saves loading the radii of the pairs
+        // far from contact (most of them); r_i + r_j <= 2 r_max also in floating point.
+        let widest = 2.0 * self.neighbors.largest_radius;
+        let widest2 = widest * widest;
+        for &(i, j) in &self.neighbors.pairs {
+            let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
+            let d2: f64 = (0..D)
+                .map(|k| image_of_difference(xj[k] - xi[k], s.length).powi(2))
+                .sum();
+            if d2 < widest2 {
+                let contact = s.radii[i as usize] + s.radii[j as usize];
+                if d2 < contact * contact {
+                    self.current.push((i, j));
+                }
+            }
+        }
+        // Their forces, before the forces of the last step, which predict the velocities,
+        // are cleared.
+        let a = self.material.dissipative_constant;
+        let (mut power, mut virial) = (0.0, 0.0);
+        self.impulses.clear();
+        for &(i, j) in &self.current {
+            let (i, j) = (i as usize, j as usize);
+            let r: Vector<D> = std::array::from_fn(|k| {
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+            });
+            let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let contact = s.radii[i] + s.radii[j];
+            let xi = contact - d;
+            let normal: Vector<D> = std::array::from_fn(|k| r[k] / d);
+            let velocity = |p: usize, k: usize| match predicting {
+                Some(dt) => s.velocities[p][k] + 0.5 * dt / s.masses[p] * self.forces[p][k],
+                None => s.velocities[p][k],
+            };
+            let xi_dot = -(0..D)
+                .map(|k| (velocity(j, k) - velocity(i, k)) * normal[k])
+                .sum::<f64>();
+            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
+            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
+            self.impulses
+                .push(std::array::from_fn(|k| force * normal[k]));
+            power += dissipative * xi_dot;
+            virial += force * d;
+            let relative = xi / contact;
+            if relative > self.statistics.max_relative_overlap {
+                self.statistics.max_relative_overlap = relative;
+            }
+        }
+        for &i in &self.active {
+            self.forces[i as usize] = [0.0; D];
+            self.touching[i as usize] = 0;
+        }
+        self.active.clear();
+        for (&(i, j), f) in self.current.iter().zip(&self.impulses) {
+            for p in [i, j] {
+                let t = &mut self.touching[p as usize];
+                *t = t.saturating_add(1);
+                match *t {
+                    1 => {
+                        self.statistics.contact_steps += 1;
+                        self.active.push(p);
+                    }
+                    2 => self.statistics.multi_contact_steps += 1,
+                    _ => {}
+                }
+            }
+            let (i, j) = (i as usize, j as usize);
+            for (k, f) in f.iter().enumerate() {
+                self.forces[i][k] -= f;
+                self.forces[j][k] += f;
+            }
+        }
+        // Contacts begun: in `current` but not in the previous list (both sorted).
+        let mut begun = 0;
+        let mut old = self.contacts.iter().peekable();
+        for &pair in &self.current {
+            while old.peek().is_some_and(|&&p| p < pair) {
+                old.next();
+            }
+            if old.peek() != Some(&&pair) {
+                begun += 1;
+                let (i, j) = (pair.0 as usize, pair.1 as usize);
+                self.collision_counts[i] = self.collision_counts[i].wrapping_add(1);
+                self.collision_counts[j] = self.collision_counts[j].wrapping_add(1);
+            }
+        }
+        std::mem::swap(&mut self.contacts, &mut self.current);
+        (power, virial, begun)
+    }
+
+    /// The dissipated power and virial rate of the current contacts with the current
+    /// velocities (the trapezoid's left end).
+    fn contact_rates(&self) -> (f64, f64) {
+        let (s, a) = (&self.system, self.material.dissipative_constant);
+        let (mut power, mut virial) = (0.0, 0.0);
+        for &(i, j) in &self.contacts {
+            let (i, j) = (i as usize, j as usize);
+            let r: Vector<D> = std::array::from_fn(|k| {
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+            });
+            let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let xi = s.radii[i] + s.radii[j] - d;
+            let xi_dot = -(0..D)
+                .map(|k| (s.velocities[j][k] - s.velocities[i][k]) * r[k] / d)
+                .sum::<f64>();
+            let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
+            let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
+            power += dissipative * xi_dot;
+            virial += force * d;
+        }
+        (power, virial)
+    }
+}
