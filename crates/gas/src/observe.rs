@@ -21,7 +21,7 @@ pub fn temperature<const D: usize>(s: &System<D>) -> f64 {
 ///
 /// For a mixture (unequal masses) c^2 is weighted by the mass, m c^2 (twice the kinetic
 /// energy of the peculiar motion), so that a2 vanishes for Maxwellians of one temperature
-/// whatever the masses; for equal masses the two definitions coincide.
+/// whatever the masses; for equal masses the two definitions coincide. 0 for a gas at rest.
 pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
     let (mean, _) = mean_velocity(s);
     let equal_masses = s.masses.iter().all(|&m| m == s.masses[0]);
@@ -35,6 +35,11 @@ pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
         };
         c2 += x;
         c4 += x * x;
+    }
+    if c2 == 0.0 {
+        // A gas at rest (a tiny system whose baths took all the energy) has no velocity
+        // distribution to compare with a Maxwellian: 0 rather than 0/0.
+        return 0.0;
     }
     let n = s.len() as f64;
     D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0

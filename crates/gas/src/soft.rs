@@ -185,6 +185,23 @@ impl<const D: usize> SoftSphere<D> {
     ) -> Result<Self> {
         let mut engine = Self::build(system, material, options)?;
         engine.eps_error = accuracy::eps_error(&engine.system, material, engine.time_step)?;
+        // A step too coarse for the contacts (too few steps for strongly damped ones, whose
+        // damping the explicit scheme then overshoots) gives a silently different run, or
+        // NaN: refused, naming the option that set the step.
+        if !(engine.eps_error <= accuracy::MAX_EPS_ERROR) {
+            let allowed = format!(
+                "a step that resolves contacts: eps of isolated contacts within {} of the exact \
+                 law (this step: {:.2e}); more steps per contact",
+                accuracy::MAX_EPS_ERROR,
+                engine.eps_error
+            );
+            return Err(match options.time_step {
+                Some(dt) => Error::out_of_range("time_step", dt, allowed),
+                None => {
+                    Error::out_of_range("steps_per_contact", options.steps_per_contact, allowed)
+                }
+            });
+        }
         Ok(engine)
     }
 
@@ -415,7 +432,20 @@ fn shortest_contact<const D: usize>(
     material: &ViscoelasticMaterial,
 ) -> Result<f64> {
     let kinds = species(system);
-    let speed = 10.0 * reference_speed(system, &kinds);
+    let temperature = crate::observe::temperature(system).max(f64::MIN_POSITIVE);
+    shortest_contact_duration(&kinds, temperature, material)
+}
+
+/// The contact duration the default time step resolves: the shortest among the pairs of
+/// the species `kinds` (radius, mass) at ten thermal speeds sqrt(T/m) of the lightest, at
+/// temperature T (see [`SoftSphereOptions::steps_per_contact`]).
+pub fn shortest_contact_duration(
+    kinds: &[(f64, f64)],
+    temperature: f64,
+    material: &ViscoelasticMaterial,
+) -> Result<f64> {
+    let lightest = kinds.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
+    let speed = 10.0 * (temperature / lightest).sqrt();
     let mut shortest = f64::INFINITY;
     for (a, &(r1, m1)) in kinds.iter().enumerate() {
         for &(r2, m2) in &kinds[a..] {

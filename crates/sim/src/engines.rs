@@ -169,7 +169,17 @@ pub(crate) fn start<const D: usize>(
             SpatialDsmc::new(system, s.packing_fraction, law, s.seed, options).map_err(fail)?,
         ),
         EngineSpec::SoftSphere(options, material) => {
-            Box::new(SoftSphere::new(system, material, options).map_err(fail)?)
+            Box::new(
+                SoftSphere::new(system, material, options).map_err(|e| match &e {
+                    // The step comes from run.steps_per_contact or run.time_step.
+                    gas::Error::OutOfRange { name, .. }
+                        if name == "steps_per_contact" || name == "time_step" =>
+                    {
+                        Error::input(format!("run.{name}"), e)
+                    }
+                    _ => fail(e),
+                })?,
+            )
         }
     })
 }
@@ -244,7 +254,38 @@ impl<const D: usize> Planned<D> for SoftSphere<D> {
                 )
             }
         }
-        no_energy_gained(plan, &state.system, None)
+        no_energy_gained(plan, &state.system, None)?;
+        let contact = crate::validate::contact_duration(&plan.description, &state.material)
+            .map_err(|e| e.to_string())?;
+        let (finest, coarsest) = crate::validate::time_step_range(contact);
+        let dt = state.time_step;
+        if !(finest..=coarsest).contains(&dt) {
+            return Err(format!(
+                "time_step {dt:e} outside {finest:e} ..= {coarsest:e} (4 to 1e6 steps per contact)"
+            ));
+        }
+        // A half kick changes no velocity by more than a few times the largest speed the
+        // initial energy allows (the forces are repulsive contact forces): a bound that
+        // every state of the run meets, and forged forces do not.
+        let s = &plan.description.system;
+        let energy = 0.5 * (D * s.particles) as f64 * s.temperature;
+        let lightest = state
+            .system
+            .masses
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        let speed = (2.0 * energy / lightest).sqrt();
+        for (force, mass) in state.forces.iter().zip(&state.system.masses) {
+            let kick = force.iter().map(|f| f * f).sum::<f64>().sqrt() * 0.5 * dt / mass;
+            if !(kick <= 10.0 * speed) {
+                return Err(format!(
+                    "a force kicks a particle by {kick:e} in half a step, more than 10 times \
+                     the largest speed {speed:e} the initial energy allows"
+                ));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -146,6 +146,9 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         }
     };
     check_histograms(r, stop)?;
+    if let EngineSpec::SoftSphere(options, material) = &engine {
+        check_soft_sphere_steps(description, options, material, stop)?;
+    }
     crate::space::check_output(description, &engine)?;
     if r.engine == EngineKind::Dsmc {
         check_time_step(r, stop)?;
@@ -383,9 +386,99 @@ fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
         options.steps_per_contact = s;
     }
     if let Some(dt) = r.time_step {
-        options.time_step = Some(positive("run.time_step", dt)?);
+        // The range steps_per_contact allows, 4 ..= 1e6 steps per contact: coarser steps
+        // miss contacts, finer ones would run for ever.
+        let contact = contact_duration(description, &material)
+            .map_err(|e| Error::input("run.time_step", e))?;
+        let (finest, coarsest) = time_step_range(contact);
+        if !(dt.is_finite() && (finest..=coarsest).contains(&dt)) {
+            return Err(Error::out_of_range(
+                "run.time_step",
+                dt,
+                &format!(
+                    "{finest:e} ..= {coarsest:e} (4 to 1e6 steps per contact duration {contact:e} \
+                     at ten thermal speeds)"
+                ),
+            ));
+        }
+        options.time_step = Some(dt);
     }
     Ok(EngineSpec::SoftSphere(options, material))
+}
+
+/// The contact duration the soft-sphere time step resolves, for the spheres and the
+/// temperature of `[system]` ([`gas::soft::shortest_contact_duration`]).
+pub(crate) fn contact_duration(
+    description: &RunDescription,
+    material: &ViscoelasticMaterial,
+) -> gas::Result<f64> {
+    let s = &description.system;
+    let kinds: Vec<(f64, f64)> = match &s.species {
+        Some(species) => species.iter().map(|x| (0.5 * x.diameter, x.mass)).collect(),
+        None => vec![(0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0))],
+    };
+    gas::soft::shortest_contact_duration(&kinds, s.temperature, material)
+}
+
+/// The soft-sphere time steps allowed for a contact duration: 4 to 1e6 steps per contact
+/// (as steps_per_contact), finest first.
+pub(crate) fn time_step_range(contact: f64) -> (f64, f64) {
+    (contact / 1e6, contact / 4.0)
+}
+
+/// A soft-sphere run takes at most 1e8 time steps: end_time / dt, or, to reach
+/// collisions_per_particle, at least that many over the initial Enskog collision frequency
+/// (a cooling gas collides ever more slowly). A very stiff material in the run's units
+/// (young = 1e19 with sigma = m = T = 1) would otherwise run for days.
+fn check_soft_sphere_steps(
+    description: &RunDescription,
+    options: &SoftSphereOptions,
+    material: &ViscoelasticMaterial,
+    stop: Stop,
+) -> Result<()> {
+    let key = match stop {
+        Stop::Time(_) => "run.end_time",
+        Stop::CollisionsPerParticle(_) => "run.collisions_per_particle",
+    };
+    let contact = contact_duration(description, material).map_err(|e| Error::input(key, e))?;
+    let dt = options
+        .time_step
+        .unwrap_or(contact / options.steps_per_contact);
+    let s = &description.system;
+    let (diameter, mass) = match &s.species {
+        Some(species) => (species[0].diameter, species[0].mass),
+        None => (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0)),
+    };
+    let time = match stop {
+        Stop::Time(end) => end,
+        Stop::CollisionsPerParticle(c) => {
+            let phi = s.packing_fraction;
+            let omega = match s.dimension {
+                1 => enskog_frequency::<1>(phi, diameter, mass, s.temperature),
+                2 => enskog_frequency::<2>(phi, diameter, mass, s.temperature),
+                _ => enskog_frequency::<3>(phi, diameter, mass, s.temperature),
+            };
+            c / omega
+        }
+    };
+    let steps = time / dt;
+    if steps <= MAX_STEPS {
+        return Ok(());
+    }
+    Err(Error::input(
+        key,
+        format!(
+            "{steps:.3e} time steps of {dt:e} (contacts of this material last {contact:e} at \
+             ten thermal speeds); a run takes at most 1e8: shorten the run, or check \
+             collision.young in the units of the system"
+        ),
+    ))
+}
+
+/// The Enskog collision frequency of one sphere of the gas at its initial temperature.
+fn enskog_frequency<const D: usize>(phi: f64, diameter: f64, mass: f64, temperature: f64) -> f64 {
+    let density = phi / gas::system::ball_volume::<D>(0.5 * diameter);
+    gas::theory::collision_frequency::<D>(density, diameter, mass, temperature, phi)
 }
 
 /// Giese's stochastic law: event-driven only, `modes`, `distribution` and, tabulated,

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 6] = [
+const SEEDS: [&str; 8] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -36,10 +36,16 @@ const SEEDS: [&str; 6] = [
     "[system]\ndimension = 1\nparticles = 40\npacking_fraction = 0.3\n\
      [collision]\nlaw = \"stochastic\"\nmodes = 5\nbath_temperature = 0.5\n\
      [run]\ncollisions_per_particle = 5\nsamples = 4\n",
+    "[system]\nparticles = 40\npacking_fraction = 0.1\n\
+     [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\ndissipative_constant = 0.01\n\
+     [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\nsteps_per_contact = 20\n",
+    "[system]\nparticles = 40\npacking_fraction = 0.1\ndiameter = 2e-3\ntemperature = 1e-5\n\
+     [collision]\nlaw = \"viscoelastic\"\nmaterial = \"ice\"\ndissipative_constant = 1e-9\n\
+     [run]\nengine = \"soft-sphere\"\nend_time = 1e-4\nsamples = 3\ntime_step = 2e-7\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 24] = [
+const KEYS: [&str; 30] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -63,6 +69,12 @@ const KEYS: [&str; 24] = [
     "histogram_at",
     "dsmc_scheme",
     "modes",
+    "young",
+    "poisson",
+    "dissipative_constant",
+    "material",
+    "steps_per_contact",
+    "time_step",
     "colour",
 ];
 

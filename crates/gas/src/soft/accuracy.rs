@@ -8,6 +8,10 @@ use crate::error::Result;
 use crate::system::System;
 use restitution::exact::{solve, Criterion};
 
+/// The largest eps error of isolated contacts a run may have ([`super::SoftSphere::new`]
+/// refuses coarser steps): ten times the default step's worst (8.4e-4, at v* ~ 1).
+pub const MAX_EPS_ERROR: f64 = 1e-2;
+
 /// Impact speeds probed, in units of the reference speed sqrt(T/m) of the lightest species.
 pub const PROBED_SPEEDS: [f64; 3] = [0.1, 1.0, 10.0];
 
@@ -16,8 +20,8 @@ pub const PROBED_SPEEDS: [f64; 3] = [0.1, 1.0, 10.0];
 const PHASES: [f64; 4] = [0.125, 0.375, 0.625, 0.875];
 
 /// eps of one head-on contact of spheres (r1, m1) and (r2, m2) meeting at relative speed
-/// `v`, integrated with the step `dt`, the contact beginning `phase` of a step after a
-/// step boundary.
+/// `v`, integrated with the step `dt`, the contact beginning 1 − `phase` of a step after
+/// the start (a step boundary).
 pub fn isolated_contact_eps(
     material: ViscoelasticMaterial,
     (r1, m1): (f64, f64),
@@ -45,17 +49,26 @@ pub fn isolated_contact_eps(
         ..Default::default()
     };
     let mut engine = SoftSphere::<1>::build(system, material, options)?;
-    // The contact is over once the force has vanished (clamped: it stays zero while the
-    // pair separates, however slowly a strongly damped pair creeps apart) or the spheres
-    // no longer overlap; the velocities are final then. A contact lasts a few hundred
-    // steps at the steps the engine chooses; the bound only stops a pathological step.
+    // The contact is over once the spheres no longer overlap, or once the force of the
+    // current state vanishes while they separate: then xi + (3/2) A xi' <= 0 keeps holding
+    // as xi shrinks at constant xi' < 0, the force stays zero however slowly a strongly
+    // damped pair creeps apart, and the velocities are final. (The force the step computed
+    // from its predicted velocity is not enough: it can vanish for a step while the pair
+    // still approaches.) A contact lasts a few hundred steps at the steps the engine
+    // chooses; the bound only stops a pathological step.
+    let rho = material.elastic_constant(r1, r2);
     let mut touched = false;
     for _ in 0..10_000_000 {
         engine.run_steps(1);
         let overlapping = !engine.contacts().is_empty();
         touched |= overlapping;
-        if touched && (!overlapping || engine.forces[0][0] == 0.0) {
-            let u = &engine.system.velocities;
+        let (x, u) = (&engine.system.positions, &engine.system.velocities);
+        let xi = contact - (x[1][0] - x[0][0]);
+        let xi_dot = u[0][0] - u[1][0];
+        let released = xi_dot < 0.0
+            && super::contact::normal_force(rho, material.dissipative_constant, xi, xi_dot).0
+                == 0.0;
+        if touched && (!overlapping || released) {
             return Ok((u[1][0] - u[0][0]) / v);
         }
     }
