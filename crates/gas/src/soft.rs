@@ -188,7 +188,7 @@ impl<const D: usize> SoftSphere<D> {
         // A step too coarse for the contacts (too few steps for strongly damped ones, whose
         // damping the explicit scheme then overshoots) gives a silently different run, or
         // NaN: refused, naming the option that set the step.
-        if !(engine.eps_error <= accuracy::MAX_EPS_ERROR) {
+        if engine.eps_error.is_nan() || engine.eps_error > accuracy::MAX_EPS_ERROR {
             let allowed = format!(
                 "a step that resolves contacts: eps of isolated contacts within {} of the exact \
                  law (this step: {:.2e}); more steps per contact",

@@ -278,7 +278,7 @@ impl<const D: usize> Planned<D> for SoftSphere<D> {
         let speed = (2.0 * energy / lightest).sqrt();
         for (force, mass) in state.forces.iter().zip(&state.system.masses) {
             let kick = force.iter().map(|f| f * f).sum::<f64>().sqrt() * 0.5 * dt / mass;
-            if !(kick <= 10.0 * speed) {
+            if kick.is_nan() || kick > 10.0 * speed {
                 return Err(format!(
                     "a force kicks a particle by {kick:e} in half a step, more than 10 times \
                      the largest speed {speed:e} the initial energy allows"
