@@ -469,30 +469,19 @@ mod tests {
     /// S(k) to round-off, in 1, 2 and 3 dimensions, on grids of powers of two and others.
     #[test]
     fn pruned_transform_matches_the_full_transform() {
-        for g in [8, 64, 100] {
-            let s = random_system::<1>(3000, 40.0, 7);
-            assert_same(
-                &structure_factor(&s, g),
-                &full_transform_structure_factor(&s, g),
-                &format!("1D, G = {g}"),
-            );
+        fn check<const D: usize>(grids: [usize; 3], length: f64, seed: u64) {
+            let s = random_system::<D>(3000, length, seed);
+            for g in grids {
+                assert_same(
+                    &structure_factor(&s, g),
+                    &full_transform_structure_factor(&s, g),
+                    &format!("{D}D, G = {g}"),
+                );
+            }
         }
-        for g in [8, 48, 64] {
-            let s = random_system::<2>(3000, 40.0, 8);
-            assert_same(
-                &structure_factor(&s, g),
-                &full_transform_structure_factor(&s, g),
-                &format!("2D, G = {g}"),
-            );
-        }
-        for g in [8, 20, 32] {
-            let s = random_system::<3>(3000, 12.0, 9);
-            assert_same(
-                &structure_factor(&s, g),
-                &full_transform_structure_factor(&s, g),
-                &format!("3D, G = {g}"),
-            );
-        }
+        check::<1>([8, 64, 100], 40.0, 7);
+        check::<2>([8, 48, 64], 40.0, 8);
+        check::<3>([8, 20, 32], 12.0, 9);
     }
 
     /// A crystal with clustered particles has S far from 1 at small k; the pruned transform
