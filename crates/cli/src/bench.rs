@@ -38,6 +38,15 @@ pub enum DsmcSchemeChoice {
 }
 
 /// [median, min, max] of a non-empty sample.
+/// `--packing-fraction` of the bench gases, 1e-6 ..= 0.45.
+pub(crate) fn packing_fraction(text: &str) -> crate::CliResult<f64> {
+    crate::output::parse_number(
+        "--packing-fraction",
+        text,
+        crate::output::Allowed::between("phi", 1e-6, 0.45),
+    )
+}
+
 pub(crate) fn median_min_max(mut sample: Vec<f64>) -> [f64; 3] {
     sample.sort_by(f64::total_cmp);
     let n = sample.len();

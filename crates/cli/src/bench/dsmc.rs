@@ -24,11 +24,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         .law
         .as_deref()
         .unwrap_or(if spatial { "1" } else { "fast" });
-    let phi = crate::output::parse_number(
-        "--packing-fraction",
-        &args.packing_fraction,
-        crate::output::Allowed::between("phi", 1e-6, 0.45),
-    )?;
+    let phi = super::packing_fraction(&args.packing_fraction)?;
     let per_particle = crate::output::parse_number(
         "--collisions",
         &args.collisions,

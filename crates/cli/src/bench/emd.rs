@@ -23,11 +23,7 @@ struct EmdTiming {
 pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
     use gas::{init, EventDriven, SorterKind};
     let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
-    let phi = crate::output::parse_number(
-        "--packing-fraction",
-        &args.packing_fraction,
-        crate::output::Allowed::between("phi", 1e-6, 0.45),
-    )?;
+    let phi = super::packing_fraction(&args.packing_fraction)?;
     let width = crate::output::parse_number(
         "--cell-width",
         &args.cell_width,

@@ -43,11 +43,7 @@ const TASKS: [&str; 6] = [
 /// that drifts of the machine hit all alike.
 pub fn observers(args: &crate::BenchObserversArgs) -> CliResult {
     let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
-    let phi = crate::output::parse_number(
-        "--packing-fraction",
-        &args.packing_fraction,
-        crate::output::Allowed::between("phi", 1e-6, 0.45),
-    )?;
+    let phi = super::packing_fraction(&args.packing_fraction)?;
     let dimension = parse_count("--dimension", &args.dimension, 2, 3)?;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
     let field_grid = match &args.field_grid {
