@@ -417,9 +417,8 @@ fn species<const D: usize>(system: &System<D>) -> Vec<(f64, f64)> {
     kinds
 }
 
-/// The thermal speed sqrt(T/m) of the lightest species (T of the system).
-fn reference_speed<const D: usize>(system: &System<D>, kinds: &[(f64, f64)]) -> f64 {
-    let temperature = crate::observe::temperature(system).max(f64::MIN_POSITIVE);
+/// The thermal speed sqrt(T/m) of the lightest of the species `kinds` (radius, mass).
+fn thermal_speed(kinds: &[(f64, f64)], temperature: f64) -> f64 {
     let lightest = kinds.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
     (temperature / lightest).sqrt()
 }
@@ -444,8 +443,7 @@ pub fn shortest_contact_duration(
     temperature: f64,
     material: &ViscoelasticMaterial,
 ) -> Result<f64> {
-    let lightest = kinds.iter().map(|k| k.1).fold(f64::INFINITY, f64::min);
-    let speed = 10.0 * (temperature / lightest).sqrt();
+    let speed = 10.0 * thermal_speed(kinds, temperature);
     let mut shortest = f64::INFINITY;
     for (a, &(r1, m1)) in kinds.iter().enumerate() {
         for &(r2, m2) in &kinds[a..] {

@@ -84,7 +84,8 @@ pub fn eps_error<const D: usize>(
     dt: f64,
 ) -> Result<f64> {
     let kinds = super::species(system);
-    let reference = super::reference_speed(system, &kinds);
+    let temperature = crate::observe::temperature(system).max(f64::MIN_POSITIVE);
+    let reference = super::thermal_speed(&kinds, temperature);
     let mut worst: f64 = 0.0;
     for (a, &(r1, m1)) in kinds.iter().enumerate() {
         for &(r2, m2) in &kinds[a..] {
