@@ -107,10 +107,15 @@ pub fn structure_factor<const D: usize>(system: &System<D>, grid: usize) -> Vec<
             total.2 += count;
         }
     }
+    shell_means(&sums, system.length)
+}
+
+/// The points of the occupied shells from their sums (S, |n|, count): mean k and mean S.
+fn shell_means(sums: &[(f64, f64, usize)], length: f64) -> Vec<StructurePoint> {
     sums.iter()
         .filter(|e| e.2 > 0)
         .map(|&(s, norm, count)| StructurePoint {
-            x: 2.0 * PI / system.length * norm / count as f64,
+            x: 2.0 * PI / length * norm / count as f64,
             value: s / count as f64,
             count: count as f64,
         })
@@ -443,14 +448,7 @@ mod tests {
             sums[shell].1 += (norm2 as f64).sqrt();
             sums[shell].2 += 1;
         }
-        sums.iter()
-            .filter(|e| e.2 > 0)
-            .map(|&(s, norm, count)| StructurePoint {
-                x: 2.0 * PI / system.length * norm / count as f64,
-                value: s / count as f64,
-                count: count as f64,
-            })
-            .collect()
+        shell_means(&sums, system.length)
     }
 
     fn assert_same(pruned: &[StructurePoint], full: &[StructurePoint], what: &str) {
