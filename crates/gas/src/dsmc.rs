@@ -23,6 +23,7 @@
 //! exactness, [`crate::theory`] for the kinetic theory the tests compare with.
 
 mod cell_sort;
+mod domain;
 mod homogeneous;
 pub mod kernel;
 mod spatial;
@@ -386,6 +387,9 @@ macro_rules! dsmc_engine {
             }
             fn memory_bytes(&self) -> usize {
                 $engine::memory_bytes(self)
+            }
+            fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
+                $engine::rank_reports(self)
             }
         }
 

@@ -111,6 +111,12 @@ pub trait Engine<const D: usize> {
         None
     }
 
+    /// Every rank's share of a distributed run and its communication (collective: every
+    /// rank calls it); None for a run in one process.
+    fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
+        None
+    }
+
     /// Bytes held by the engine's per-particle and per-cell data.
     fn memory_bytes(&self) -> usize;
 }

@@ -252,9 +252,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
         &self.system
     }
 
+    /// None: the homogeneous engine runs in one process.
+    pub fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
+        None
+    }
+
     /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
     /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
     /// and the species tables.
+
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let records = match &self.store {

@@ -392,23 +392,6 @@ impl<const D: usize> Moments<D> {
     pub fn mean(&self) -> Vector<D> {
         scaled(&self.momentum, self.mass)
     }
-
-    /// The spread of the union of `parts` about its own mean, sum of spread_b +
-    /// M_b |u_b - u|^2 (parallel-axis theorem: no cancellation however large the mean).
-    pub fn pooled_spread(parts: &[Moments<D>]) -> f64 {
-        let mass: f64 = parts.iter().map(|p| p.mass).sum();
-        let momentum: Vector<D> =
-            std::array::from_fn(|k| parts.iter().map(|p| p.momentum[k]).sum());
-        let mean = scaled(&momentum, mass);
-        parts
-            .iter()
-            .map(|p| {
-                let u = p.mean();
-                let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
-                p.spread + p.mass * dot(&d, &d)
-            })
-            .sum()
-    }
 }
 
 /// Mass, momentum and sum of m |v - center|^2 of a group, in one pass.

@@ -2,16 +2,21 @@
 //! majorant process inside each collision cell.
 
 use super::cell_sort::CellSorter;
+use super::domain::{self, Slabs, Traffic, REBALANCE_STEPS};
 use super::kernel::{self, Collider, Moments, Record, Simulator};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
+use crate::exact_sum::{ExactSum, LIMBS};
+use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
 use crate::system::{dot, wrap, System, Vector};
 use crate::theory;
 use rayon::prelude::*;
 use restitution::Restitution;
+use std::sync::Arc;
+use std::time::Instant;
 
 /// Collision cell width in mean free paths when none is given.
 pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
@@ -80,6 +85,15 @@ pub struct SpatialDsmc<const D: usize> {
     system: System<D>,
     /// Scratch of the sort into cells.
     sorter: CellSorter,
+    /// The ranks the run is spread over ([`Local`]: this process alone), the slabs of cells
+    /// each owns, and the particles of all ranks.
+    comm: Arc<dyn Communicator>,
+    slabs: Slabs,
+    total: usize,
+    /// Places of the local particles in the global order, until the first step sorts them
+    /// by cell (None after it, and on one rank).
+    ordinals: Option<Vec<u64>>,
+    traffic: Traffic,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -93,6 +107,22 @@ impl<const D: usize> SpatialDsmc<D> {
         law: Box<dyn Restitution>,
         seed: u64,
         options: SpatialOptions,
+    ) -> Result<Self> {
+        Self::distributed(system, phi, law, seed, options, Arc::new(Local))
+    }
+
+    /// The engine of [`SpatialDsmc::new`] spread over the ranks of `comm` (every rank calls
+    /// this with the same arguments): each keeps the particles in its slab of collision
+    /// cells ([`super::domain`]). Its run is the single process's, bit for bit, on any
+    /// number of ranks. Fails for more ranks than planes of cells along the last axis
+    /// (`ranks`).
+    pub fn distributed(
+        system: System<D>,
+        phi: f64,
+        law: Box<dyn Restitution>,
+        seed: u64,
+        options: SpatialOptions,
+        comm: Arc<dyn Communicator>,
     ) -> Result<Self> {
         check_input(&system, phi)?;
         let length = system.length;
@@ -146,7 +176,20 @@ impl<const D: usize> SpatialDsmc<D> {
                 format!("at most 2^62 cells (box side {length})"),
             ));
         }
-        let simulators: Vec<Simulator<D>> = system
+        let cells_per_side = cells_per_side as u64;
+        let ranks = comm.size();
+        if ranks as u64 > cells_per_side {
+            return Err(Error::out_of_range(
+                "ranks",
+                ranks,
+                format!(
+                    "at most {cells_per_side}, the planes of collision cells along the last \
+                     axis (cell width {}): each rank owns whole planes",
+                    length / cells_per_side as f64
+                ),
+            ));
+        }
+        let mut simulators: Vec<Simulator<D>> = system
             .positions
             .iter()
             .zip(&system.velocities)
@@ -158,6 +201,23 @@ impl<const D: usize> SpatialDsmc<D> {
             })
             .collect();
         let temperature = Moments::of(&simulators, &species).spread / (n * D) as f64;
+        let width = length / cells_per_side as f64;
+        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells_per_side);
+        let cells_per_plane = cells_per_side.pow(D as u32 - 1);
+        let mut counts = vec![0u64; cells_per_side as usize];
+        simulators
+            .iter()
+            .for_each(|p| counts[(key(p) / cells_per_plane) as usize] += 1);
+        let slabs = Slabs::balanced(&counts, cells_per_plane, ranks);
+        let mut ordinals = None;
+        if ranks > 1 {
+            let rank = comm.rank();
+            let mine: Vec<usize> = (0..n)
+                .filter(|&i| slabs.owner(key(&simulators[i])) == rank)
+                .collect();
+            simulators = mine.iter().map(|&i| simulators[i]).collect();
+            ordinals = Some(mine.into_iter().map(|i| i as u64).collect());
+        }
         Ok(SpatialDsmc {
             simulators,
             species,
@@ -166,7 +226,7 @@ impl<const D: usize> SpatialDsmc<D> {
             phi,
             seed,
             length,
-            cells_per_side: cells_per_side as u64,
+            cells_per_side,
             weight,
             time: 0.0,
             steps: 0,
@@ -180,18 +240,34 @@ impl<const D: usize> SpatialDsmc<D> {
                 masses: Vec::new(),
             },
             sorter: CellSorter::default(),
+            comm,
+            slabs,
+            total: n,
+            ordinals,
+            traffic: Traffic::default(),
         })
     }
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
     pub fn restore(snapshot: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        Self::restore_distributed(snapshot, law, Arc::new(Local))
+    }
+
+    /// [`SpatialDsmc::restore`] over the ranks of `comm` (every rank reads the same
+    /// snapshot; it need not come from as many ranks): the single process's run, bit for bit.
+    pub fn restore_distributed(
+        snapshot: SpatialSnapshot<D>,
+        law: Box<dyn Restitution>,
+        comm: Arc<dyn Communicator>,
+    ) -> Result<Self> {
         snapshot.check_step_temperature()?;
-        let mut engine = Self::new(
+        let mut engine = Self::distributed(
             snapshot.system,
             snapshot.packing_fraction,
             law,
             snapshot.seed,
             snapshot.options,
+            comm,
         )?;
         engine.time = snapshot.time;
         engine.steps = snapshot.steps;
@@ -238,12 +314,57 @@ impl<const D: usize> SpatialDsmc<D> {
         self.steps
     }
 
+    /// Particles on all ranks.
     pub fn len(&self) -> usize {
-        self.simulators.len()
+        self.total
     }
 
     pub fn is_empty(&self) -> bool {
-        self.simulators.is_empty()
+        self.total == 0
+    }
+
+    /// The ranks of the run (1: this process alone).
+    pub fn ranks(&self) -> usize {
+        self.comm.size()
+    }
+
+    /// Every rank's particles, cells and communication so far (collective: every rank
+    /// calls it); None on one rank.
+    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
+        if self.comm.size() == 1 {
+            return None;
+        }
+        let t = &self.traffic;
+        let (_, cells) = self.slabs.keys(self.comm.rank());
+        let mine = [
+            self.simulators.len() as f64,
+            cells as f64,
+            t.steps as f64,
+            t.migrants_sent as f64,
+            t.bytes_sent as f64,
+            t.bytes_received as f64,
+            t.step_seconds,
+            t.communication_seconds,
+            t.gather_seconds,
+        ];
+        let all = self.comm.all_gather(mine.to_vec());
+        Some(
+            all.iter()
+                .enumerate()
+                .map(|(rank, v)| RankReport {
+                    rank,
+                    particles: v[0] as usize,
+                    cells: v[1] as u64,
+                    steps: v[2] as u64,
+                    migrants_sent: v[3] as u64,
+                    bytes_sent: v[4] as u64,
+                    bytes_received: v[5] as u64,
+                    step_seconds: v[6],
+                    communication_seconds: v[7],
+                    gather_seconds: v[8],
+                })
+                .collect(),
+        )
     }
 
     /// Collisions per particle so far (each collision counts for two particles).
@@ -271,18 +392,41 @@ impl<const D: usize> SpatialDsmc<D> {
         self.temperature
     }
 
-    /// The current state in the engine's current order (sorted by cell every step).
+    /// The current state in the engine's current order (sorted by cell every step); on
+    /// several ranks, gathered from all of them in rank order (the same order; collective).
     pub fn system(&mut self) -> &System<D> {
         let s = &mut self.system;
         s.positions.clear();
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();
-        for p in &self.simulators {
+        let mut push = |p: &Simulator<D>| {
             s.positions.push(p.position);
             s.velocities.push(p.velocity);
             s.radii.push(self.species.radii[p.species as usize]);
             s.masses.push(self.species.masses[p.species as usize]);
+        };
+        if self.comm.size() == 1 {
+            self.simulators.iter().for_each(push);
+        } else {
+            let clock = Instant::now();
+            let width = 2 * D + 1;
+            let mut mine = Vec::with_capacity(width * self.simulators.len());
+            for p in &self.simulators {
+                mine.extend_from_slice(&p.position);
+                mine.extend_from_slice(&p.velocity);
+                mine.push(p.species as f64);
+            }
+            for values in self.comm.all_gather(mine) {
+                for v in values.chunks_exact(width) {
+                    push(&Simulator {
+                        position: std::array::from_fn(|k| v[k]),
+                        velocity: std::array::from_fn(|k| v[D + k]),
+                        species: v[2 * D] as u32,
+                    });
+                }
+            }
+            self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         }
         &self.system
     }
@@ -352,8 +496,10 @@ impl<const D: usize> SpatialDsmc<D> {
         }
     }
 
-    /// One step of time dt: stream, sort into cells, collide in every cell.
+    /// One step of time dt: stream, sort into cells (on several ranks: migrate first),
+    /// collide in every cell, sum over the cells exactly.
     fn step(&mut self, dt: f64) {
+        let clock = Instant::now();
         let (length, cells) = (self.length, self.cells_per_side);
         let width = self.cell_width();
         let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
@@ -362,9 +508,30 @@ impl<const D: usize> SpatialDsmc<D> {
                 p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
             }
         };
-        let starts =
+        let starts = if self.comm.size() == 1 {
             self.sorter
-                .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key);
+                .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key)
+        } else {
+            self.simulators.par_iter_mut().for_each(stream);
+            if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
+                let clock = Instant::now();
+                self.slabs = self
+                    .slabs
+                    .rebalanced(&self.simulators, key, self.comm.as_ref());
+                self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
+            }
+            let slabs = &self.slabs;
+            self.simulators = domain::migrate(
+                std::mem::take(&mut self.simulators),
+                self.ordinals.take(),
+                |p| slabs.owner(key(p)),
+                self.comm.as_ref(),
+                &mut self.traffic,
+            );
+            let (first, count) = slabs.keys(self.comm.rank());
+            self.sorter
+                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - first)
+        };
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
             law: self.law.as_ref(),
@@ -400,12 +567,87 @@ impl<const D: usize> SpatialDsmc<D> {
                 (tally, spread_about_mean(cell, species, mass, momentum))
             })
             .collect();
-        for (t, _) in &results {
-            self.tally.add(t);
-        }
-        let moments: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
-        self.temperature = Moments::pooled_spread(&moments) / (self.simulators.len() * D) as f64;
+        let (tally, spread) = self.sum_over_cells(&results);
+        self.tally.add(&tally);
+        self.temperature = spread / (self.total * D) as f64;
         self.steps += 1;
+        self.traffic.steps += 1;
+        self.traffic.step_seconds += clock.elapsed().as_secs_f64();
+    }
+
+    /// The counters of a step and the spread of all velocities about their mean, summed
+    /// over the cells of all ranks exactly ([`crate::exact_sum`]): the same bits however
+    /// the cells are spread over ranks and threads. The spread pools the cells' spreads
+    /// about their own means (parallel-axis theorem: sum of spread_c + M_c |u_c - u|^2, no
+    /// cancellation however large the mean velocity), so it
+    /// takes two sums: mass and momentum first.
+    fn sum_over_cells(&mut self, results: &[(Counters, Moments<D>)]) -> (Counters, f64) {
+        // Mass, momentum, energy lost, virial; then collisions, events, TC-elastic.
+        let (sums, counts) = results
+            .par_iter()
+            .fold(
+                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
+                |(mut sums, mut counts), (t, m)| {
+                    sums[0].add(m.mass);
+                    (0..D).for_each(|k| sums[1 + k].add(m.momentum[k]));
+                    sums[D + 1].add(t.energy_lost);
+                    sums[D + 2].add(t.virial);
+                    counts[0] += t.collisions as i64;
+                    counts[1] += t.events as i64;
+                    counts[2] += t.tc_elastic as i64;
+                    (sums, counts)
+                },
+            )
+            .reduce(
+                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
+                |(mut a, mut ca), (b, cb)| {
+                    a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
+                    (0..3).for_each(|k| ca[k] += cb[k]);
+                    (a, ca)
+                },
+            );
+        let mut packed: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
+        packed.extend_from_slice(&counts);
+        self.all_ranks_sum(&mut packed);
+        let values: Vec<f64> = packed
+            .chunks_exact(LIMBS + 1)
+            .take(D + 3)
+            .map(|limbs| ExactSum::from_limbs(limbs).value())
+            .collect();
+        let counts = &packed[(D + 3) * (LIMBS + 1)..];
+        let momentum: Vector<D> = std::array::from_fn(|k| values[1 + k]);
+        let mean = scaled(&momentum, values[0]);
+        let spread = results
+            .par_iter()
+            .fold(ExactSum::default, |mut sum, (_, m)| {
+                let u = m.mean();
+                let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
+                sum.add(m.spread + m.mass * dot(&d, &d));
+                sum
+            })
+            .reduce(ExactSum::default, |mut a, b| {
+                a.merge(&b);
+                a
+            });
+        let mut limbs = spread.to_limbs();
+        self.all_ranks_sum(&mut limbs);
+        let tally = Counters {
+            collisions: counts[0] as u64,
+            events: counts[1] as u64,
+            energy_lost: values[D + 1],
+            virial: values[D + 2],
+            tc_elastic: counts[2] as u64,
+        };
+        (tally, ExactSum::from_limbs(&limbs).value())
+    }
+
+    /// Element-wise sums over the ranks (timed as communication).
+    fn all_ranks_sum(&mut self, values: &mut [i64]) {
+        if self.comm.size() > 1 {
+            let clock = Instant::now();
+            self.comm.sum_i64(values);
+            self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
+        }
     }
 }
 

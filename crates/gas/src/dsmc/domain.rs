@@ -1,0 +1,224 @@
+//! The domain decomposition of the spatial DSMC engine over ranks: slabs of whole planes of
+//! collision cells along the last axis, balanced by particle count; the migration of
+//! particles between ranks after streaming, in the order that makes the run independent of
+//! the number of ranks; and the per-rank tally of what that costs.
+//!
+//! Why the result does not depend on the ranks: the single-process engine keeps its
+//! particles sorted by cell key (a stable sort after every streaming), and the cell key's
+//! most significant digit is the plane along the last axis. A rank owns a contiguous range
+//! of planes, hence of keys, so the single process's order is the concatenation of the
+//! ranks' local orders in rank order. After streaming, a rank receives the particles whose
+//! new cell it owns and lays them out in that global order (source rank by source rank, its
+//! own in its place), then sorts them stably by cell: the single process's order restricted
+//! to its cells. Each cell's collisions draw from the stream keyed (seed, step, cell), and
+//! sums over cells are exact ([`crate::exact_sum`]), so every number is the single
+//! process's, bit for bit.
+
+use super::kernel::Simulator;
+use crate::parallel::Communicator;
+use std::time::Instant;
+
+/// Steps between re-balancings of the slabs (an all-reduce of one count per plane).
+pub const REBALANCE_STEPS: u64 = 20;
+
+/// Contiguous ranges of planes of cells, one per rank.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Slabs {
+    /// Planes (cells per side) and cells in a plane (cells per side^(D - 1)).
+    planes: u64,
+    cells_per_plane: u64,
+    /// Rank r owns planes bounds[r] .. bounds[r + 1].
+    bounds: Vec<u64>,
+}
+
+impl Slabs {
+    /// Slabs over `ranks` ranks balancing the particle `counts` per plane: rank r's slab
+    /// starts at the first plane where the particles before reach r N / ranks, every slab at
+    /// least one plane. Needs ranks <= planes.
+    pub fn balanced(counts: &[u64], cells_per_plane: u64, ranks: usize) -> Slabs {
+        let planes = counts.len() as u64;
+        assert!(ranks as u64 <= planes && ranks > 0, "ranks <= planes");
+        let total: u128 = counts.iter().map(|&c| c as u128).sum();
+        let mut bounds = vec![0u64; ranks + 1];
+        bounds[ranks] = planes;
+        let mut before: u128 = 0; // particles in planes below `plane`
+        let mut plane = 0u64;
+        for r in 1..ranks {
+            let lowest = bounds[r - 1] + 1;
+            let highest = planes - (ranks - r) as u64;
+            while plane < lowest {
+                before += counts[plane as usize] as u128;
+                plane += 1;
+            }
+            while plane < highest && before * (ranks as u128) < (r as u128) * total {
+                before += counts[plane as usize] as u128;
+                plane += 1;
+            }
+            bounds[r] = plane;
+        }
+        Slabs {
+            planes,
+            cells_per_plane,
+            bounds,
+        }
+    }
+
+    pub fn ranks(&self) -> usize {
+        self.bounds.len() - 1
+    }
+
+    /// The plane of cell `key`.
+    #[inline]
+    pub fn plane(&self, key: u64) -> u64 {
+        key / self.cells_per_plane
+    }
+
+    /// The rank owning cell `key`.
+    #[inline]
+    pub fn owner(&self, key: u64) -> usize {
+        let plane = self.plane(key);
+        self.bounds.partition_point(|&b| b <= plane) - 1
+    }
+
+    /// The first cell key of `rank`'s slab and its number of cells.
+    pub fn keys(&self, rank: usize) -> (u64, u64) {
+        let (first, end) = (self.bounds[rank], self.bounds[rank + 1]);
+        (
+            first * self.cells_per_plane,
+            (end - first) * self.cells_per_plane,
+        )
+    }
+
+    /// The slabs re-balanced for the particles of all ranks (`cells` gives each local
+    /// particle's key): one all-reduce of a count per plane.
+    pub fn rebalanced<const D: usize>(
+        &self,
+        local: &[Simulator<D>],
+        key: impl Fn(&Simulator<D>) -> u64,
+        comm: &dyn Communicator,
+    ) -> Slabs {
+        let mut counts = vec![0i64; self.planes as usize];
+        for p in local {
+            counts[self.plane(key(p)) as usize] += 1;
+        }
+        comm.sum_i64(&mut counts);
+        let counts: Vec<u64> = counts.iter().map(|&c| c as u64).collect();
+        Slabs::balanced(&counts, self.cells_per_plane, self.ranks())
+    }
+}
+
+/// What a rank spent on being one of many: the tally behind
+/// [`crate::parallel::RankReport`].
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Traffic {
+    pub steps: u64,
+    pub migrants_sent: u64,
+    pub bytes_sent: u64,
+    pub bytes_received: u64,
+    /// Seconds in collective operations of the steps (migration and sums).
+    pub communication_seconds: f64,
+    /// Seconds in the steps, all in.
+    pub step_seconds: f64,
+    /// Seconds gathering the state for samples and check-points.
+    pub gather_seconds: f64,
+}
+
+/// f64 values per migrating particle: position, velocity, species, global place.
+pub(crate) const fn values_per_particle(d: usize) -> usize {
+    2 * d + 2
+}
+
+/// Moves the (already streamed) local particles to the ranks owning their cells and
+/// returns this rank's new particles in the global order before the sort into cells.
+/// `ordinals` are the places of the local particles in that order (None: the local order
+/// after the last step, which is the global order rank by rank).
+pub(crate) fn migrate<const D: usize>(
+    local: Vec<Simulator<D>>,
+    ordinals: Option<Vec<u64>>,
+    owner: impl Fn(&Simulator<D>) -> usize,
+    comm: &dyn Communicator,
+    traffic: &mut Traffic,
+) -> Vec<Simulator<D>> {
+    let (rank, ranks) = (comm.rank(), comm.size());
+    let place = |i: usize| match &ordinals {
+        Some(o) => o[i],
+        None => ((rank as u64) << 40) | i as u64,
+    };
+    let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
+    let mut staying = Vec::with_capacity(local.len());
+    let mut staying_places = Vec::new();
+    for (i, p) in local.iter().enumerate() {
+        let to = owner(p);
+        if to == rank {
+            staying.push(*p);
+            if ordinals.is_some() {
+                staying_places.push(place(i));
+            }
+        } else {
+            let out = &mut outgoing[to];
+            out.extend_from_slice(&p.position);
+            out.extend_from_slice(&p.velocity);
+            out.push(p.species as f64);
+            out.push(f64::from_bits(place(i)));
+            traffic.migrants_sent += 1;
+        }
+    }
+    traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
+    let clock = Instant::now();
+    let incoming = comm.all_to_all(outgoing);
+    traffic.communication_seconds += clock.elapsed().as_secs_f64();
+    traffic.bytes_received += incoming.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
+    let arriving: usize = incoming.iter().map(|v| v.len()).sum::<usize>() / values_per_particle(D);
+    let mut merged = Vec::with_capacity(staying.len() + arriving);
+    let mut places = Vec::new();
+    for (from, values) in incoming.into_iter().enumerate() {
+        if from == rank {
+            merged.append(&mut staying);
+            places.append(&mut staying_places);
+            continue;
+        }
+        for v in values.chunks_exact(values_per_particle(D)) {
+            merged.push(Simulator {
+                position: std::array::from_fn(|k| v[k]),
+                velocity: std::array::from_fn(|k| v[D + k]),
+                species: v[2 * D] as u32,
+            });
+            if ordinals.is_some() {
+                places.push(v[2 * D + 1].to_bits());
+            }
+        }
+    }
+    if ordinals.is_some() {
+        // Explicit places (the first step after a start): lay the particles out by them.
+        let mut order: Vec<usize> = (0..merged.len()).collect();
+        order.sort_unstable_by_key(|&i| places[i]);
+        merged = order.into_iter().map(|i| merged[i]).collect();
+    }
+    merged
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Balanced slabs split the particles evenly where the planes allow, give every rank a
+    /// plane, and each key one owner.
+    #[test]
+    fn slabs_balance_and_cover() {
+        let even = Slabs::balanced(&[10; 8], 4, 4);
+        assert_eq!(even.bounds, vec![0, 2, 4, 6, 8]);
+        // A cluster in plane 5: rank 1 takes it with the planes below, ranks 2 and 3 one
+        // plane each (every rank keeps at least one).
+        let clustered = Slabs::balanced(&[1, 1, 1, 1, 1, 100, 1, 1], 4, 4);
+        assert_eq!(clustered.bounds, vec![0, 5, 6, 7, 8]);
+        let crowded = Slabs::balanced(&[0, 0, 0, 50], 4, 4);
+        assert_eq!(crowded.bounds, vec![0, 1, 2, 3, 4]);
+        for slabs in [even, clustered, crowded] {
+            for key in 0..slabs.planes * 4 {
+                let r = slabs.owner(key);
+                let (first, cells) = slabs.keys(r);
+                assert!((first..first + cells).contains(&key));
+            }
+        }
+    }
+}

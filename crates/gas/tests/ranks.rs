@@ -1,0 +1,180 @@
+//! The spatial DSMC engine spread over ranks gives the single process's run bit for bit:
+//! ranks run as threads of this process ([`InProcess`], the collectives MPI's would be), so
+//! the argument of `gas::dsmc::domain` is checked without MPI. (The MPI build runs the same
+//! engine through `mpirun`: crates/cli/tests/mpi.rs.)
+
+use gas::dsmc::{point_gas, SpatialOptions, SpatialSnapshot, StepSize};
+use gas::parallel::{Communicator, InProcess};
+use gas::{Checkpoint, Counters, Engine, SpatialDsmc, System};
+use restitution::{Constant, Restitution};
+use std::sync::Arc;
+
+fn law() -> Box<dyn Restitution> {
+    Box::new(Constant::new(0.8).unwrap())
+}
+
+/// What a run ends with: the state in the engine's order, the counters (energy and virial
+/// sums included), the step temperature and the time.
+#[derive(Debug, Clone, PartialEq)]
+struct End<const D: usize> {
+    system: System<D>,
+    counters: Counters,
+    temperature: f64,
+    time: f64,
+}
+
+fn end<const D: usize>(engine: &mut SpatialDsmc<D>) -> End<D> {
+    End {
+        system: engine.system().clone(),
+        counters: engine.counters(),
+        temperature: engine.step_temperature(),
+        time: engine.time(),
+    }
+}
+
+/// Runs `system` for `collisions` collisions on `ranks` in-process ranks; every rank must
+/// end with the same (gathered) result, which is returned.
+fn on_ranks<const D: usize>(
+    ranks: usize,
+    system: &System<D>,
+    options: SpatialOptions,
+    collisions: u64,
+) -> End<D> {
+    let ends = InProcess::run(ranks, |comm| {
+        let comm: Arc<dyn Communicator> = Arc::new(comm);
+        let mut e = SpatialDsmc::distributed(system.clone(), 0.1, law(), 7, options, comm).unwrap();
+        e.run_collisions(collisions);
+        end(&mut e)
+    });
+    ends.iter()
+        .for_each(|e| same(e, &ends[0], "rank against rank 0"));
+    ends.into_iter().next().unwrap()
+}
+
+/// Asserts equal ends, printing the counters (not the particles) if they differ.
+fn same<const D: usize>(got: &End<D>, want: &End<D>, what: &str) {
+    assert!(
+        got == want,
+        "{what}: {:?} T = {} t = {} where the single process has {:?} T = {} t = {}",
+        got.counters,
+        got.temperature,
+        got.time,
+        want.counters,
+        want.temperature,
+        want.time
+    );
+}
+
+/// Half the particles of `system` heavier and larger: a mixture of two species.
+fn mixture<const D: usize>(mut system: System<D>) -> System<D> {
+    for i in (1..system.len()).step_by(2) {
+        system.radii[i] = 0.7;
+        system.masses[i] = 2.0;
+    }
+    system
+}
+
+fn assert_identical<const D: usize>(system: &System<D>, options: SpatialOptions, collisions: u64) {
+    let mut single = SpatialDsmc::new(system.clone(), 0.1, law(), 7, options).unwrap();
+    single.run_collisions(collisions);
+    let want = end(&mut single);
+    assert!(want.counters.collisions >= collisions);
+    for ranks in [1, 2, 3, 4] {
+        let got = on_ranks(ranks, system, options, collisions);
+        same(&got, &want, &format!("{ranks} ranks, {D}D"));
+    }
+}
+
+/// 3D, one species and a mixture, the default step: long enough for the slabs to be
+/// re-balanced several times (every 20 steps).
+#[test]
+fn three_dimensions_on_1_2_3_4_ranks() {
+    let system = point_gas::<3>(3000, 20.0, 1.0, 1.0, 1.0, 11).unwrap();
+    assert_identical(&system, SpatialOptions::default(), 30_000);
+    assert_identical(&mixture(system), SpatialOptions::default(), 30_000);
+}
+
+/// 1D and 2D, with a step so long that particles cross several slabs in one step (the
+/// migration then goes beyond the neighbouring ranks).
+#[test]
+fn long_steps_in_one_and_two_dimensions() {
+    let long = SpatialOptions {
+        cell_width: None,
+        step: StepSize::CollisionsPerParticle(2.0),
+    };
+    let plane = point_gas::<2>(2000, 60.0, 1.0, 1.0, 1.0, 12).unwrap();
+    assert_identical(&plane, long, 20_000);
+    let line = point_gas::<1>(1000, 2000.0, 1.0, 1.0, 1.0, 13).unwrap();
+    assert_identical(&mixture(line), long, 10_000);
+}
+
+/// A snapshot taken on 3 ranks (it is the whole gas, gathered) continues on 2 ranks, and on
+/// one, as the uninterrupted single-process run.
+#[test]
+fn a_snapshot_from_3_ranks_continues_on_2_and_on_1() {
+    let system = point_gas::<3>(2000, 18.0, 1.0, 1.0, 1.0, 14).unwrap();
+    let options = SpatialOptions::default();
+    // The reference runs in the same two pieces (the last steps of a piece are shortened
+    // to its target).
+    let mut single = SpatialDsmc::new(system.clone(), 0.1, law(), 7, options).unwrap();
+    single.run_collisions(9_000);
+    single.run_collisions(20_000 - single.counters().collisions);
+    let want = end(&mut single);
+    let snapshots: Vec<SpatialSnapshot<3>> = InProcess::run(3, |comm| {
+        let comm: Arc<dyn Communicator> = Arc::new(comm);
+        let mut e = SpatialDsmc::distributed(system.clone(), 0.1, law(), 7, options, comm).unwrap();
+        e.run_collisions(9_000);
+        e.save()
+    });
+    assert!(snapshots.iter().all(|s| s.system == snapshots[0].system));
+    let snapshot = snapshots.into_iter().next().unwrap();
+    let remaining = 20_000 - snapshot.counters.collisions;
+    let ends = InProcess::run(2, |comm| {
+        let comm: Arc<dyn Communicator> = Arc::new(comm);
+        let mut e = SpatialDsmc::restore_distributed(snapshot.clone(), law(), comm).unwrap();
+        e.run_collisions(remaining);
+        end(&mut e)
+    });
+    same(&ends[0], &want, "restored on 2 ranks");
+    same(&ends[1], &want, "restored on 2 ranks");
+    let mut one = SpatialDsmc::restore(snapshot, law()).unwrap();
+    one.run_collisions(remaining);
+    same(&end(&mut one), &want, "restored on 1 rank");
+}
+
+/// More ranks than planes of cells: refused, naming `ranks` and the limit. Rank reports
+/// add up to the gas.
+#[test]
+fn ranks_beyond_the_planes_are_refused_and_reports_add_up() {
+    let system = point_gas::<3>(200, 10.0, 1.0, 1.0, 1.0, 15).unwrap();
+    let errors = InProcess::run(5, |comm| {
+        let comm: Arc<dyn Communicator> = Arc::new(comm);
+        let options = SpatialOptions {
+            cell_width: Some(2.5),
+            ..Default::default()
+        };
+        SpatialDsmc::distributed(system.clone(), 0.1, law(), 7, options, comm)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default()
+    });
+    assert!(
+        errors[0].contains("ranks") && errors[0].contains("at most 4"),
+        "{}",
+        errors[0]
+    );
+    let reports = InProcess::run(2, |comm| {
+        let comm: Arc<dyn Communicator> = Arc::new(comm);
+        let mut e =
+            SpatialDsmc::distributed(system.clone(), 0.1, law(), 7, Default::default(), comm)
+                .unwrap();
+        e.run_collisions(500);
+        e.rank_reports().unwrap()
+    });
+    assert_eq!(reports[0], reports[1]);
+    let r = &reports[0];
+    assert_eq!(r.iter().map(|x| x.particles).sum::<usize>(), 200);
+    assert_eq!(r[0].bytes_sent, r[1].bytes_received);
+    assert_eq!(r[0].bytes_sent, 8 * 8 * r[0].migrants_sent);
+    assert!(r[0].steps > 0 && r[0].steps == r[1].steps);
+}
