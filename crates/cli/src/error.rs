@@ -94,8 +94,12 @@ impl From<sim::Error> for CliError {
 }
 
 impl CliError {
-    /// An error of `haff ... --resume DIR`: a check-point that cannot be read is named by
-    /// the flag.
+    /// This error, reported by no one (another rank of the run reports it).
+    pub fn silenced(mut self) -> Self {
+        self.quiet = true;
+        self
+    }
+
     /// An error of the run file `path` (its reading, its keys, the run it describes before
     /// it starts): the message names the file first.
     pub fn in_file(path: &std::path::Path) -> impl Fn(sim::Error) -> Self + '_ {
@@ -108,6 +112,8 @@ impl CliError {
         }
     }
 
+    /// An error of `haff ... --resume DIR`: a check-point that cannot be read is named by
+    /// the flag.
     pub fn resume(error: sim::Error) -> Self {
         match error {
             sim::Error::Checkpoint { .. } => CliError::argument("--resume", error),

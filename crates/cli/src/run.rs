@@ -10,9 +10,48 @@ use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::Simulation;
 use std::path::PathBuf;
 
-/// `haff run`.
+/// `haff run`. Launched by `mpirun -n R` (a binary built with the feature `mpi`), every
+/// rank runs it: the run is spread over the ranks, rank 0 writes and reports. Errors of the
+/// run description happen on every rank alike (rank 0 reports them); a rank that fails
+/// alone once the run goes (writing its files) ends all ranks (MPI_Abort).
 pub fn run(args: &RunArgs) -> CliResult {
-    let (mut simulation, out) = match (&args.file, &args.resume) {
+    let _session = sim::parallel::start()?;
+    let root = sim::parallel::world().rank() == 0;
+    let quiet_unless_root = |e: CliError| if root { e } else { e.silenced() };
+    let (simulation, out, every, stop_after) = prepare(args).map_err(quiet_unless_root)?;
+    // Rank 0 alone opens the output directory; all ranks learn whether it could.
+    let opened = if root {
+        let hash = run_hash(simulation.description());
+        Some(OutputDir::open(
+            &out,
+            args.resume.as_deref(),
+            "run",
+            &hash,
+            args.force,
+        ))
+    } else {
+        None
+    };
+    let mut failed = [opened.as_ref().is_some_and(|o| o.is_err()) as i64];
+    sim::parallel::world().sum_i64(&mut failed);
+    let dir = match opened {
+        Some(Ok(dir)) => Some(dir),
+        Some(Err(e)) => return Err(e.into()),
+        None if failed[0] > 0 => {
+            return Err(CliError::argument("--out", "rank 0 could not open it").silenced())
+        }
+        None => None,
+    };
+    go(simulation, &out, dir, every, stop_after).inspect_err(|e| {
+        e.report();
+        sim::parallel::abort_others(1);
+    })
+}
+
+/// A checked run of `args` on every rank, its output directory, its check-point interval
+/// and its `--stop-after-samples`.
+fn prepare(args: &RunArgs) -> CliResult<(Simulation, PathBuf, Option<usize>, Option<usize>)> {
+    let (simulation, out) = match (&args.file, &args.resume) {
         (Some(path), None) => {
             let in_file = CliError::in_file(path);
             let description = sim::RunDescription::from_path(path).map_err(&in_file)?;
@@ -39,12 +78,28 @@ pub fn run(args: &RunArgs) -> CliResult {
         .as_ref()
         .map(|text| parse_count("--stop-after-samples", text, 1, 1_000_000))
         .transpose()?;
-    let hash = run_hash(simulation.description());
-    let mut dir = OutputDir::open(&out, args.resume.as_deref(), "run", &hash, args.force)?;
-    simulation.set_checkpoints(&out, every);
-    simulation.set_output_dir(&out);
-    let outcome = simulation.run(&mut Bar::samples(), stop_after)?;
-    simulation.write(&out)?;
+    Ok((simulation, out, every, stop_after))
+}
+
+/// Runs `simulation` into `out` (its directory `dir` open on rank 0 only) and reports.
+fn go(
+    mut simulation: Simulation,
+    out: &std::path::Path,
+    dir: Option<OutputDir>,
+    every: Option<usize>,
+    stop_after: Option<usize>,
+) -> CliResult {
+    simulation.set_checkpoints(out, every);
+    simulation.set_output_dir(out);
+    let outcome = match dir {
+        Some(_) => simulation.run(&mut Bar::samples(), stop_after)?,
+        None => simulation.run(&mut (), stop_after)?,
+    };
+    simulation.write(out)?;
+    let reports = simulation.rank_reports();
+    let Some(mut dir) = dir else {
+        return Ok(());
+    };
     dir.set_state(if outcome.complete {
         RunState::Complete
     } else {
@@ -58,6 +113,21 @@ pub fn run(args: &RunArgs) -> CliResult {
         counters.events as f64 / wall,
         out.display()
     );
+    if let Some(ranks) = reports {
+        let steps = ranks[0].steps.max(1) as f64;
+        let step: f64 = ranks.iter().map(|r| r.step_seconds).sum::<f64>() / ranks.len() as f64;
+        let talk: f64 = ranks.iter().map(|r| r.communication_seconds).sum::<f64>();
+        let sent: u64 = ranks.iter().map(|r| r.bytes_sent).sum();
+        eprintln!(
+            "haff run: {} ranks, {} steps of {:.3e} s, {:.1} % of it communicating, {:.3e} \
+             bytes migrating per rank and step (summary.json: parallel)",
+            ranks.len(),
+            ranks[0].steps,
+            step / steps,
+            100.0 * talk / (step * ranks.len() as f64).max(1e-300),
+            sent as f64 / ranks.len() as f64 / steps
+        );
+    }
     if let Some(c) = simulation.contact_report() {
         eprintln!(
             "haff run: soft-sphere time step {:.3e} ({} steps), eps of isolated contacts within \

@@ -33,6 +33,7 @@
 //! # dsmc: dsmc_scheme = "blocks" | "exact" | "spatial", block_size = 4096 (blocks),
 //! #       collisions_per_step = 1 (blocks; spatial: 0.2) or time_step = DT,
 //! #       collision_cell_width = W (spatial)
+//! #       ranks = 4 (spatial: must be launched by mpirun -n 4; see docs/scaling.md)
 //! collisions_per_particle = 500   # or end_time = ...
 //! samples = 200
 //! spacing = "log"          # log | linear
@@ -315,6 +316,10 @@ pub struct RunSection {
     /// Soft-sphere MD: time steps per Hertz contact duration (or `time_step`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steps_per_contact: Option<f64>,
+    /// Spatial DSMC: the MPI ranks the run must be launched on (`mpirun -n RANKS`; a binary
+    /// built with the feature `mpi`). Without it, a run takes the ranks it is launched on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ranks: Option<usize>,
 }
 
 fn three() -> u32 {

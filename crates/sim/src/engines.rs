@@ -7,6 +7,7 @@ use crate::description::species;
 use crate::error::{Error, Result};
 use crate::observer::{TimeSeries, VelocityHistograms};
 use crate::validate::{EngineSpec, LawSpec, Plan};
+use gas::parallel::Communicator;
 use gas::{
     BathState, Checkpoint, Engine, EventDriven, EventDrivenState, HomogeneousDsmc, SoftSphere,
     SoftSphereState, SpatialDsmc, System,
@@ -14,6 +15,7 @@ use gas::{
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::Arc;
 
 /// The `format` of a run check-point.
 pub const FORMAT: &str = "haff-run-checkpoint";
@@ -46,13 +48,23 @@ pub(crate) struct RecordsRef<'a> {
 /// An engine the driver runs: the engine interface and a check-point writer. Engines are
 /// `Send`, so that a run can go on in another thread (Python releases the GIL).
 pub(crate) trait Driven<const D: usize>: Engine<D> + Send {
-    /// Saves the engine's state with `records` as the check-point file `path`.
-    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>) -> Result<()>;
+    /// Saves the engine's state with `records` as the check-point file `path` if `write`
+    /// (the state is taken in any case: on several ranks that is collective).
+    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>, write: bool)
+        -> Result<()>;
 }
 
 impl<const D: usize, E: Checkpoint<D> + Send> Driven<D> for E {
-    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>) -> Result<()> {
+    fn write_checkpoint(
+        &mut self,
+        path: &Path,
+        records: RecordsRef<'_>,
+        write: bool,
+    ) -> Result<()> {
         let state = self.save();
+        if !write {
+            return Ok(());
+        }
         checkpoint::write_to(path, FORMAT, &records, &state)
     }
 }
@@ -135,6 +147,7 @@ fn mixture_side<const D: usize>(system: &System<D>, phi: f64, weight: f64) -> f6
 pub(crate) fn start<const D: usize>(
     plan: &Plan,
     law: Box<dyn Restitution>,
+    comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
     let system = initial_system::<D>(plan)?;
     let s = &plan.description.system;
@@ -166,7 +179,15 @@ pub(crate) fn start<const D: usize>(
             HomogeneousDsmc::new(system, s.packing_fraction, law, s.seed, scheme).map_err(fail)?,
         ),
         EngineSpec::SpatialDsmc(options) => Box::new(
-            SpatialDsmc::new(system, s.packing_fraction, law, s.seed, options).map_err(fail)?,
+            SpatialDsmc::distributed(
+                system,
+                s.packing_fraction,
+                law,
+                s.seed,
+                options,
+                comm.clone(),
+            )
+            .map_err(ranks_or_system)?,
         ),
         EngineSpec::SoftSphere(options, material) => {
             Box::new(
@@ -190,7 +211,19 @@ pub(crate) fn restore<const D: usize>(
     plan: &Plan,
     law: Box<dyn Restitution>,
     sections: &Sections,
+    comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
+    if let (EngineSpec::SpatialDsmc(_), true) = (plan.engine, comm.size() > 1) {
+        let state: gas::dsmc::SpatialSnapshot<D> = sections.engine()?;
+        SpatialDsmc::check_state(plan, &state)
+            .map_err(|e| sections.error(format!("engine state: {e}")))?;
+        state
+            .check(true)
+            .map_err(|e| sections.error(format!("engine state: {e}")))?;
+        let engine =
+            SpatialDsmc::restore_distributed(state, law, comm.clone()).map_err(ranks_or_system)?;
+        return Ok(Box::new(engine));
+    }
     match plan.engine {
         EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(plan, law, sections),
         EngineSpec::HomogeneousDsmc(_) => restore_as::<D, HomogeneousDsmc<D>>(plan, law, sections),
@@ -209,6 +242,15 @@ fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(
     let engine =
         E::restore(state, law).map_err(|e| sections.error(format!("engine state: {e}")))?;
     Ok(Box::new(engine))
+}
+
+/// An error of the spatial engine spread over ranks: too many ranks for its planes of
+/// cells (naming `run.ranks`, the launch's count), else an error of `[system]`.
+fn ranks_or_system(e: gas::Error) -> Error {
+    match &e {
+        gas::Error::OutOfRange { name, .. } if name == "ranks" => Error::input("run.ranks", e),
+        _ => Error::input("system", e),
+    }
 }
 
 /// An engine state that can be checked against the run it claims to belong to.

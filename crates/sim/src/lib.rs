@@ -29,6 +29,7 @@ pub mod maps;
 pub mod observer;
 pub mod outdir;
 pub mod output;
+pub mod parallel;
 pub mod plot;
 pub mod reproduce;
 pub mod rod_ring;

@@ -12,11 +12,13 @@ use crate::observer::{
     Histogram, Observer, Sample, TimeSeries, VelocityHistograms, HISTOGRAM_BINS,
 };
 use crate::output::write_json_file;
+use crate::parallel::{self, Communicator};
 use crate::schedule::{sample_targets, schedule, Target};
 use crate::space::{SpaceObserver, SpaceRecords};
 use crate::validate::{validate, Plan, Stop};
 use gas::Counters;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Progress of a run, for a progress bar (the CLI's) or nothing (`()`).
@@ -101,6 +103,9 @@ pub struct Simulation {
     checkpoint_dir: Option<PathBuf>,
     /// Wall-clock seconds spent by this process building the run and in [`Simulation::run`].
     wall_seconds: f64,
+    /// The ranks the run is spread over ([`parallel::world`]: this process alone unless
+    /// launched by mpirun); only rank 0 writes files.
+    comm: Arc<dyn Communicator>,
 }
 
 /// The run in its dimension (the engines are generic over it).
@@ -157,8 +162,15 @@ struct Run<const D: usize> {
 impl Simulation {
     /// A run at time 0 from a description (checked first; errors name the key).
     pub fn new(description: &RunDescription) -> Result<Self> {
+        Self::new_on(description, parallel::world())
+    }
+
+    /// A run at time 0 spread over the ranks of `comm` (every rank calls this with the
+    /// same description; see [`parallel`]).
+    pub fn new_on(description: &RunDescription, comm: Arc<dyn Communicator>) -> Result<Self> {
         let clock = Instant::now();
         let plan = validate(description)?;
+        parallel::check_ranks(&plan, comm.size())?;
         let law = law::build(&plan.law, plan.max_impact_speed())?;
         let bins = plan
             .description
@@ -168,7 +180,7 @@ impl Simulation {
         let (timeseries, histograms) = (TimeSeries::default(), VelocityHistograms::new(bins));
         let run = in_dimension!(plan.description.system.dimension, D => Ok::<_, Error>(Run::<D>::new(
             &plan,
-            engines::start::<D>(&plan, law)?,
+            engines::start::<D>(&plan, law, &comm)?,
             timeseries,
             histograms,
             SpaceObserver::new(&plan, SpaceRecords::default()),
@@ -179,6 +191,7 @@ impl Simulation {
             checkpoint_every: None,
             checkpoint_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
+            comm,
         })
     }
 
@@ -192,9 +205,15 @@ impl Simulation {
     /// meaning: the run description like a fresh run's, the engine state and the records
     /// against it. Its check-point interval is kept, and further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
+        Self::resume_on(dir, parallel::world())
+    }
+
+    /// [`Simulation::resume`] spread over the ranks of `comm` (any number: a check-point
+    /// holds the whole gas).
+    pub fn resume_on(dir: &Path, comm: Arc<dyn Communicator>) -> Result<Self> {
         let clock = Instant::now();
         let sections = checkpoint::read(dir, engines::FORMAT)?;
-        let mut run = Self::from_sections(&sections, clock)?;
+        let mut run = Self::from_sections(&sections, clock, comm)?;
         run.checkpoint_dir = Some(dir.to_path_buf());
         Ok(run)
     }
@@ -209,13 +228,19 @@ impl Simulation {
             return Ok(run);
         }
         let clock = Instant::now();
-        Self::from_sections(&checkpoint::read_from(path, engines::FORMAT)?, clock)
+        let sections = checkpoint::read_from(path, engines::FORMAT)?;
+        Self::from_sections(&sections, clock, parallel::world())
     }
 
     /// The run of a verified check-point, checked for meaning.
-    fn from_sections(sections: &checkpoint::Sections, clock: Instant) -> Result<Self> {
+    fn from_sections(
+        sections: &checkpoint::Sections,
+        clock: Instant,
+        comm: Arc<dyn Communicator>,
+    ) -> Result<Self> {
         let records: Records = sections.records()?;
         let plan = validate(&records.description).map_err(|e| sections.error(e))?;
+        parallel::check_ranks(&plan, comm.size())?;
         if records.description != plan.description {
             return Err(sections.error("the run description is not in its normal form"));
         }
@@ -225,7 +250,7 @@ impl Simulation {
         let law = law::build(&plan.law, plan.max_impact_speed()).map_err(|e| sections.error(e))?;
         let run = in_dimension!(plan.description.system.dimension, D => Run::<D>::resumed(
             &plan,
-            engines::restore::<D>(&plan, law, sections)?,
+            engines::restore::<D>(&plan, law, sections, &comm)?,
             records.timeseries,
             records.histograms,
             SpaceObserver::new(&plan, records.space.clone()),
@@ -237,6 +262,7 @@ impl Simulation {
             checkpoint_every: records.every,
             checkpoint_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
+            comm,
         })
     }
 
@@ -250,15 +276,36 @@ impl Simulation {
         } else {
             path.to_path_buf()
         };
-        let (plan, every) = (&self.plan, self.checkpoint_every);
-        each!(&mut self.run, r => r.write_checkpoint(plan, &file, every))
+        let (plan, every, root) = (&self.plan, self.checkpoint_every, self.is_root());
+        each!(&mut self.run, r => r.write_checkpoint(plan, &file, every, root))
+    }
+
+    /// Whether this process is rank 0 of the run, the one that writes files (true for a
+    /// run in one process).
+    pub fn is_root(&self) -> bool {
+        self.comm.rank() == 0
+    }
+
+    /// The ranks the run is spread over.
+    pub fn ranks(&self) -> usize {
+        self.comm.size()
+    }
+
+    /// Every rank's particles and communication so far (collective: every rank calls
+    /// it); None for a run in one process.
+    pub fn rank_reports(&self) -> Option<Vec<gas::parallel::RankReport>> {
+        each!(&self.run, r => r.engine.rank_reports())
     }
 
     /// The directory that field and snapshot files (`[output]`) are written to during the
     /// run; without one a run that asks for them is refused before it goes on (an input
     /// error naming `output.fields` or `output.snapshots`).
     pub fn set_output_dir(&mut self, dir: &Path) {
-        each!(&mut self.run, r => r.space.set_directory(dir))
+        let root = self.is_root();
+        each!(&mut self.run, r => {
+            r.space.set_directory(dir);
+            r.space.set_writer(root);
+        })
     }
 
     /// The directory set by [`Simulation::set_output_dir`], if any.
@@ -392,15 +439,22 @@ impl Simulation {
     ) -> Result<()> {
         let clock = Instant::now();
         let saving = self.checkpoint_dir.as_deref().zip(self.checkpoint_every);
-        let plan = &self.plan;
-        let result = each!(&mut self.run, r => r.go(plan, saving, progress, stop_after, point));
+        let (plan, root) = (&self.plan, self.is_root());
+        let result =
+            each!(&mut self.run, r => r.go(plan, saving, root, progress, stop_after, point));
         self.wall_seconds += clock.elapsed().as_secs_f64();
         result
     }
 
     /// Writes the output files into `dir`: `timeseries.csv`, `velocity_histograms.csv`
     /// (with `run.histogram_at`), `temperature.png` and `summary.json`.
+    /// On several ranks every rank calls it (it gathers the ranks' reports) and rank 0
+    /// writes, adding `parallel` to `summary.json`.
     pub fn write(&self, dir: &Path) -> Result<()> {
+        let reports = self.rank_reports();
+        if !self.is_root() {
+            return Ok(());
+        }
         let run = &self.plan.description.run;
         each!(&self.run, r => {
             r.timeseries.write(&dir.join("timeseries.csv"))?;
@@ -425,6 +479,10 @@ impl Simulation {
         });
         if let Some(contacts) = self.contact_report() {
             summary["contacts"] = serde_json::json!(contacts);
+        }
+        if let Some(ranks) = reports {
+            summary["parallel"] =
+                parallel::summary(&ranks, self.plan.description.system.dimension as usize);
         }
         write_json_file(&dir.join("summary.json"), &summary)
     }
@@ -553,6 +611,7 @@ impl<const D: usize> Run<D> {
         &mut self,
         plan: &Plan,
         saving: Option<(&Path, usize)>,
+        root: bool,
         progress: &mut dyn Progress,
         stop_after: Option<usize>,
         point: Option<Point>,
@@ -580,7 +639,7 @@ impl<const D: usize> Run<D> {
                     if let Some((dir, every)) = saving {
                         if taken.is_multiple_of(every) {
                             let file = dir.join(checkpoint::FILE_NAME);
-                            self.write_checkpoint(plan, &file, Some(every))?;
+                            self.write_checkpoint(plan, &file, Some(every), root)?;
                         }
                     }
                     let events = self.engine.counters().events as f64;
@@ -662,7 +721,15 @@ impl<const D: usize> Run<D> {
         Ok(!at_target && point.is_some_and(|p| self.reached(p, particles)))
     }
 
-    fn write_checkpoint(&mut self, plan: &Plan, file: &Path, every: Option<usize>) -> Result<()> {
+    /// Saves the state (collective on several ranks: the engine gathers it) and, on the
+    /// `root` rank, writes it to `file`.
+    fn write_checkpoint(
+        &mut self,
+        plan: &Plan,
+        file: &Path,
+        every: Option<usize>,
+        root: bool,
+    ) -> Result<()> {
         let records = RecordsRef {
             description: &plan.description,
             every,
@@ -670,6 +737,6 @@ impl<const D: usize> Run<D> {
             histograms: &self.histograms,
             space: &self.space.records,
         };
-        self.engine.write_checkpoint(file, records)
+        self.engine.write_checkpoint(file, records, root)
     }
 }

@@ -215,6 +215,9 @@ pub struct SpaceObserver {
     /// The species' (diameter, mass), to label the particles of snapshots.
     species: Vec<(f64, f64)>,
     directory: Option<PathBuf>,
+    /// Whether this process writes the files (rank 0 of a run on several ranks; the others
+    /// keep the same records).
+    writer: bool,
     pub records: SpaceRecords,
 }
 
@@ -242,8 +245,14 @@ impl SpaceObserver {
             structure_factor0,
             species,
             directory: None,
+            writer: true,
             records,
         }
+    }
+
+    /// Whether this process writes the field and snapshot files (default true).
+    pub fn set_writer(&mut self, writer: bool) {
+        self.writer = writer;
     }
 
     /// Whether anything is asked for.
@@ -384,26 +393,30 @@ impl SpaceObserver {
         if let (Some(f), true) = (o.fields, fields_due) {
             let name = format!("fields_{sample:06}.vti");
             let path = self.file(&name, "output.fields")?;
-            let fields = coarse_grained_fields(system, f.grid);
-            write_fields(&path, &fields)?;
-            write_maps(&path.with_extension("png"), system, &fields, time, cpp)?;
+            if self.writer {
+                let fields = coarse_grained_fields(system, f.grid);
+                write_fields(&path, &fields)?;
+                write_maps(&path.with_extension("png"), system, &fields, time, cpp)?;
+            }
             self.records.fields.push((time, name));
         }
         if snapshot_due {
             let name = format!("snapshot_{sample:06}.vtu");
             let path = self.file(&name, "output.snapshots")?;
-            let species: Vec<u32> = system
-                .radii
-                .iter()
-                .zip(&system.masses)
-                .map(|(&r, &m)| self.species_of(2.0 * r, m))
-                .collect();
-            let data = ParticleData {
-                collisions: collisions.as_deref(),
-                species: &species,
-                bath_temperatures: baths.as_deref(),
-            };
-            write_particles(&path, system, &data)?;
+            if self.writer {
+                let species: Vec<u32> = system
+                    .radii
+                    .iter()
+                    .zip(&system.masses)
+                    .map(|(&r, &m)| self.species_of(2.0 * r, m))
+                    .collect();
+                let data = ParticleData {
+                    collisions: collisions.as_deref(),
+                    species: &species,
+                    bath_temperatures: baths.as_deref(),
+                };
+                write_particles(&path, system, &data)?;
+            }
             self.records.snapshots.push((time, name));
         }
         Ok(())

@@ -153,6 +153,17 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     if r.engine == EngineKind::Dsmc {
         check_time_step(r, stop)?;
     }
+    if let Some(ranks) = r.ranks {
+        if !(1..=1_000_000).contains(&ranks) {
+            return Err(Error::out_of_range("run.ranks", ranks, "1 <= ranks <= 1e6"));
+        }
+        if ranks > 1 && !matches!(engine, EngineSpec::SpatialDsmc(_)) {
+            return Err(Error::input(
+                "run.ranks",
+                "several ranks only for run.engine = \"dsmc\" with dsmc_scheme = \"spatial\"",
+            ));
+        }
+    }
     let mut description = description.clone();
     description.normalize();
     Ok(Plan {

@@ -410,21 +410,30 @@ impl<const D: usize> SpatialDsmc<D> {
             self.simulators.iter().for_each(push);
         } else {
             let clock = Instant::now();
-            let width = 2 * D + 1;
+            // Before the first step the global order is the places of `ordinals`; after,
+            // rank by rank.
+            let places = self.ordinals.as_ref();
+            let width = 2 * D + 1 + places.is_some() as usize;
             let mut mine = Vec::with_capacity(width * self.simulators.len());
-            for p in &self.simulators {
+            for (i, p) in self.simulators.iter().enumerate() {
                 mine.extend_from_slice(&p.position);
                 mine.extend_from_slice(&p.velocity);
                 mine.push(p.species as f64);
-            }
-            for values in self.comm.all_gather(mine) {
-                for v in values.chunks_exact(width) {
-                    push(&Simulator {
-                        position: std::array::from_fn(|k| v[k]),
-                        velocity: std::array::from_fn(|k| v[D + k]),
-                        species: v[2 * D] as u32,
-                    });
+                if let Some(places) = places {
+                    mine.push(f64::from_bits(places[i]));
                 }
+            }
+            let all = self.comm.all_gather(mine);
+            let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
+            if places.is_some() {
+                rows.sort_unstable_by_key(|v| v[2 * D + 1].to_bits());
+            }
+            for v in rows {
+                push(&Simulator {
+                    position: std::array::from_fn(|k| v[k]),
+                    velocity: std::array::from_fn(|k| v[D + k]),
+                    species: v[2 * D] as u32,
+                });
             }
             self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         }

@@ -1,0 +1,140 @@
+//! A spatial DSMC run of the driver spread over ranks (threads of this process standing for
+//! MPI ranks, `sim::parallel::InProcess`) gives the single process's records bit for bit:
+//! time series, velocity histograms, modes and S(k), summary; its check-point continues on
+//! another number of ranks. Runs that cannot spread are refused naming the key. (The MPI
+//! build is checked through mpirun in crates/cli/tests/mpi.rs.)
+
+use sim::parallel::{Communicator, InProcess, Local};
+use sim::{RunDescription, Simulation};
+use std::path::Path;
+use std::sync::Arc;
+
+fn description(extra: &str) -> RunDescription {
+    let text = format!(
+        "[system]\ndimension = 3\nparticles = 3000\npacking_fraction = 0.1\nseed = 9\n\
+         [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
+         [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 40\n\
+         samples = 8\nhistogram_at = [0.0, 20.0]\n{extra}\
+         [output]\nmodes = true\nstructure = true\n"
+    );
+    RunDescription::from_toml(&text, Path::new("ranks.toml")).unwrap()
+}
+
+/// Everything a run records, as text (bit-exact: floats in their shortest round-trip form).
+fn records(simulation: &Simulation) -> String {
+    format!(
+        "{:?}\n{:?}\n{:?}\n{:?}",
+        simulation.samples(),
+        simulation.histograms(),
+        simulation.space_records(),
+        simulation.counters()
+    )
+}
+
+fn comm(c: InProcess) -> Arc<dyn Communicator> {
+    Arc::new(c)
+}
+
+#[test]
+fn a_run_on_1_2_4_ranks_records_the_same() {
+    let d = description("");
+    let mut single = Simulation::new_on(&d, Arc::new(Local)).unwrap();
+    single.run(&mut (), None).unwrap();
+    let want = records(&single);
+    assert!(single.rank_reports().is_none());
+    for ranks in [1, 2, 4] {
+        let got = InProcess::run(ranks, |c| {
+            let mut s = Simulation::new_on(&d, comm(c)).unwrap();
+            s.run(&mut (), None).unwrap();
+            (records(&s), s.rank_reports())
+        });
+        for (rank, (text, reports)) in got.iter().enumerate() {
+            if *text != want {
+                let (a, b): (Vec<&str>, Vec<&str>) =
+                    (text.split(", ").collect(), want.split(", ").collect());
+                let i = a.iter().zip(&b).position(|(x, y)| x != y).unwrap_or(0);
+                panic!(
+                    "{ranks} ranks, rank {rank}: records differ at item {i}: {:?} vs {:?}",
+                    &a[i.saturating_sub(3)..i + 2],
+                    &b[i.saturating_sub(3)..i + 2]
+                );
+            }
+            assert_eq!(reports.is_some(), ranks > 1);
+        }
+    }
+}
+
+/// A check-point written on 2 ranks (by rank 0: the whole gas) resumes on 3 ranks and on
+/// one, and ends as the uninterrupted run.
+#[test]
+fn a_checkpoint_from_2_ranks_resumes_on_3_and_on_1() {
+    let d = description("");
+    let mut single = Simulation::new_on(&d, Arc::new(Local)).unwrap();
+    single.run(&mut (), None).unwrap();
+    let want = records(&single);
+    let dir = std::env::temp_dir().join(format!("haff-ranks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    InProcess::run(2, |c| {
+        let mut s = Simulation::new_on(&d, comm(c)).unwrap();
+        s.set_checkpoints(&dir, Some(3));
+        s.run(&mut (), Some(4)).unwrap();
+    });
+    let resumed = InProcess::run(3, |c| {
+        let mut s = Simulation::resume_on(&dir, comm(c)).unwrap();
+        s.run(&mut (), None).unwrap();
+        records(&s)
+    });
+    assert!(resumed.iter().all(|r| *r == want), "resumed on 3 ranks");
+    let mut one = Simulation::resume_on(&dir, Arc::new(Local)).unwrap();
+    one.run(&mut (), None).unwrap();
+    assert!(records(&one) == want, "resumed on 1 rank");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `run.ranks` must match the launch; only spatial DSMC spreads; no more ranks than planes.
+#[test]
+fn runs_that_cannot_spread_are_refused() {
+    let message = |e: sim::Error| {
+        assert!(e.is_input(), "{e}");
+        e.to_string()
+    };
+    let e = message(
+        Simulation::new_on(&description("ranks = 2\n"), Arc::new(Local))
+            .err()
+            .unwrap(),
+    );
+    assert!(
+        e.contains("run.ranks") && e.contains("2 ranks and runs on 1"),
+        "{e}"
+    );
+    let event_driven = RunDescription::from_toml(
+        "[system]\nparticles = 100\npacking_fraction = 0.1\n[collision]\nlaw = \"constant\"\n\
+         restitution = 0.9\n[run]\ncollisions_per_particle = 1\nsamples = 2\n",
+        Path::new("e.toml"),
+    )
+    .unwrap();
+    let errors = InProcess::run(2, |c| {
+        message(Simulation::new_on(&event_driven, comm(c)).err().unwrap())
+    });
+    assert!(
+        errors[0].contains("run.engine") && errors[0].contains("2 ranks"),
+        "{}",
+        errors[0]
+    );
+    let wide = description("collision_cell_width = 5.0\n");
+    let errors = InProcess::run(8, |c| {
+        message(Simulation::new_on(&wide, comm(c)).err().unwrap())
+    });
+    assert!(
+        errors[0].contains("run.ranks") && errors[0].contains("at most"),
+        "{}",
+        errors[0]
+    );
+    let bad = RunDescription::from_toml(
+        &format!("{}", "[system]\nparticles = 100\npacking_fraction = 0.1\n[collision]\nlaw = \"constant\"\nrestitution = 0.9\n[run]\ncollisions_per_particle = 1\nsamples = 2\nranks = 3\n"),
+        Path::new("e.toml"),
+    )
+    .unwrap();
+    let e = message(Simulation::new_on(&bad, Arc::new(Local)).err().unwrap());
+    assert!(e.contains("run.ranks") && e.contains("spatial"), "{e}");
+}
