@@ -17,8 +17,15 @@ use std::path::PathBuf;
 pub fn run(args: &RunArgs) -> CliResult {
     let _session = sim::parallel::start()?;
     let root = sim::parallel::world().rank() == 0;
-    let quiet_unless_root = |e: CliError| if root { e } else { e.silenced() };
-    let (simulation, out, every, stop_after) = prepare(args).map_err(quiet_unless_root)?;
+    // Errors of the description are every rank's: rank 0 reports, then all leave together
+    // (after rank 0 has written the message: mpirun ends the job at the first failed exit).
+    let (simulation, out, every, stop_after) = prepare(args).map_err(|e| {
+        if root {
+            e.report();
+        }
+        sim::parallel::world().sum_i64(&mut [0]);
+        e.silenced()
+    })?;
     // Rank 0 alone opens the output directory; all ranks learn whether it could.
     let opened = if root {
         let hash = run_hash(simulation.description());

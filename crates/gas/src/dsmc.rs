@@ -391,6 +391,9 @@ macro_rules! dsmc_engine {
             fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
                 $engine::rank_reports(self)
             }
+            fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
+                $engine::velocity_statistics(self)
+            }
         }
 
         impl<const D: usize> Checkpoint<D> for $engine<D> {

@@ -40,6 +40,14 @@ impl Counters {
     }
 }
 
+/// What [`Engine::velocity_statistics`] gives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityStatistics {
+    pub temperature: f64,
+    pub a2: f64,
+    pub volume: f64,
+}
+
 /// An engine over N particles in D dimensions.
 pub trait Engine<const D: usize> {
     /// Runs until the time reaches `t` (no effect if it already has).
@@ -108,6 +116,14 @@ pub trait Engine<const D: usize> {
     /// What the contacts of a force-based engine did (soft-sphere MD); None for engines
     /// of instantaneous collisions.
     fn contact_report(&self) -> Option<crate::soft::ContactReport> {
+        None
+    }
+
+    /// The temperature and Sonine a2 of all particles ([`crate::observe::temperature`],
+    /// [`crate::observe::sonine_a2`]) and the box volume, from sums over the particles where
+    /// they are (a distributed engine: exact sums over ranks, collective, the same bits on
+    /// any number of ranks); None: compute them from [`Engine::system`].
+    fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
         None
     }
 

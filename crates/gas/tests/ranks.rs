@@ -178,3 +178,45 @@ fn ranks_beyond_the_planes_are_refused_and_reports_add_up() {
     assert_eq!(r[0].bytes_sent, 8 * 8 * r[0].migrants_sent);
     assert!(r[0].steps > 0 && r[0].steps == r[1].steps);
 }
+
+/// The temperature and a2 from exact sums over the ranks are those of the gathered gas
+/// (`gas::observe`, sequential sums: equal to rounding, 1e-12 relative), the same bits on
+/// every number of ranks.
+#[test]
+fn velocity_statistics_are_the_gathered_gas_s() {
+    let system = mixture(point_gas::<3>(3000, 20.0, 1.0, 1.0, 1.0, 16).unwrap());
+    let stats = |ranks: usize| {
+        InProcess::run(ranks, |comm| {
+            let comm: Arc<dyn Communicator> = Arc::new(comm);
+            let mut e =
+                SpatialDsmc::distributed(system.clone(), 0.1, law(), 7, Default::default(), comm)
+                    .unwrap();
+            e.run_collisions(5_000);
+            let s = e.velocity_statistics().unwrap();
+            let gathered = e.system().clone();
+            (
+                s,
+                gas::observe::temperature(&gathered),
+                gas::observe::sonine_a2(&gathered),
+            )
+        })
+    };
+    let one = stats(1);
+    let (s, t, a2) = one[0];
+    assert!(
+        (s.temperature - t).abs() <= 1e-12 * t,
+        "{} {t}",
+        s.temperature
+    );
+    assert!(
+        (s.a2 - a2).abs() <= 1e-12 * (1.0 + a2.abs()),
+        "{} {a2}",
+        s.a2
+    );
+    assert_eq!(s.volume, 20f64.powi(3));
+    for ranks in [2, 3] {
+        for (s2, _, _) in stats(ranks) {
+            assert_eq!(s2, s, "{ranks} ranks");
+        }
+    }
+}

@@ -66,18 +66,25 @@ impl<const D: usize> Observer<D> for TimeSeries {
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
         let (weight, particles) = (engine.weight(), engine.particles());
         let bath_temperature = engine.bath_temperatures().map(mean);
-        let system = engine.system();
-        let t = temperature(system);
+        let statistics = engine.velocity_statistics().unwrap_or_else(|| {
+            let system = engine.system();
+            gas::engine::VelocityStatistics {
+                temperature: temperature(system),
+                a2: sonine_a2(system),
+                volume: system.volume(),
+            }
+        });
+        let t = statistics.temperature;
         let (last_time, last_virial) = self.last_virial;
         self.samples.push(Sample {
             time,
             collisions_per_particle,
             temperature: t,
-            a2: sonine_a2(system),
+            a2: statistics.a2,
             energy_lost: counters.energy_lost,
             pressure: pressure::<D>(
                 particles,
-                system.volume(),
+                statistics.volume,
                 t,
                 weight,
                 counters.virial - last_virial,

@@ -103,6 +103,9 @@ pub struct Simulation {
     checkpoint_dir: Option<PathBuf>,
     /// Wall-clock seconds spent by this process building the run and in [`Simulation::run`].
     wall_seconds: f64,
+    /// Of which in [`Simulation::run`] and [`Simulation::advance`] (the run, without
+    /// building it).
+    run_seconds: f64,
     /// The ranks the run is spread over ([`parallel::world`]: this process alone unless
     /// launched by mpirun); only rank 0 writes files.
     comm: Arc<dyn Communicator>,
@@ -191,6 +194,7 @@ impl Simulation {
             checkpoint_every: None,
             checkpoint_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
+            run_seconds: 0.0,
             comm,
         })
     }
@@ -262,6 +266,7 @@ impl Simulation {
             checkpoint_every: records.every,
             checkpoint_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
+            run_seconds: 0.0,
             comm,
         })
     }
@@ -443,6 +448,7 @@ impl Simulation {
         let result =
             each!(&mut self.run, r => r.go(plan, saving, root, progress, stop_after, point));
         self.wall_seconds += clock.elapsed().as_secs_f64();
+        self.run_seconds += clock.elapsed().as_secs_f64();
         result
     }
 
@@ -472,6 +478,7 @@ impl Simulation {
             "events": counters.events,
             "tc_elastic_collisions": counters.tc_elastic,
             "wall_seconds": wall,
+            "run_seconds": self.run_seconds,
             "events_per_second": counters.events as f64 / wall,
             "collisions_per_second": counters.collisions as f64 / wall,
             "final": self.samples().last(),

@@ -29,6 +29,8 @@ pub(crate) struct Slabs {
     cells_per_plane: u64,
     /// Rank r owns planes bounds[r] .. bounds[r + 1].
     bounds: Vec<u64>,
+    /// The owner of each plane (a lookup: this runs for every particle every step).
+    owners: Vec<u32>,
 }
 
 impl Slabs {
@@ -56,10 +58,14 @@ impl Slabs {
             }
             bounds[r] = plane;
         }
+        let owners = (0..ranks)
+            .flat_map(|r| std::iter::repeat_n(r as u32, (bounds[r + 1] - bounds[r]) as usize))
+            .collect();
         Slabs {
             planes,
             cells_per_plane,
             bounds,
+            owners,
         }
     }
 
@@ -67,17 +73,10 @@ impl Slabs {
         self.bounds.len() - 1
     }
 
-    /// The plane of cell `key`.
+    /// The rank owning `plane`.
     #[inline]
-    pub fn plane(&self, key: u64) -> u64 {
-        key / self.cells_per_plane
-    }
-
-    /// The rank owning cell `key`.
-    #[inline]
-    pub fn owner(&self, key: u64) -> usize {
-        let plane = self.plane(key);
-        self.bounds.partition_point(|&b| b <= plane) - 1
+    pub fn owner(&self, plane: u64) -> usize {
+        self.owners[plane as usize] as usize
     }
 
     /// The first cell key of `rank`'s slab and its number of cells.
@@ -89,17 +88,17 @@ impl Slabs {
         )
     }
 
-    /// The slabs re-balanced for the particles of all ranks (`cells` gives each local
-    /// particle's key): one all-reduce of a count per plane.
+    /// The slabs re-balanced for the particles of all ranks (`plane` gives each local
+    /// particle's plane): one all-reduce of a count per plane.
     pub fn rebalanced<const D: usize>(
         &self,
         local: &[Simulator<D>],
-        key: impl Fn(&Simulator<D>) -> u64,
+        plane: impl Fn(&Simulator<D>) -> u64,
         comm: &dyn Communicator,
     ) -> Slabs {
         let mut counts = vec![0i64; self.planes as usize];
         for p in local {
-            counts[self.plane(key(p)) as usize] += 1;
+            counts[plane(p) as usize] += 1;
         }
         comm.sum_i64(&mut counts);
         let counts: Vec<u64> = counts.iter().map(|&c| c as u64).collect();
@@ -128,73 +127,113 @@ pub(crate) const fn values_per_particle(d: usize) -> usize {
     2 * d + 2
 }
 
-/// Moves the (already streamed) local particles to the ranks owning their cells and
-/// returns this rank's new particles in the global order before the sort into cells.
-/// `ordinals` are the places of the local particles in that order (None: the local order
-/// after the last step, which is the global order rank by rank).
+/// Moves the (already streamed) local particles to the ranks owning their cells and lays
+/// this rank's particles out in the global order before the sort into cells: the arrivals
+/// from lower ranks, the staying particles in their order, the arrivals from higher ranks
+/// (source rank by source rank). `ordinals` are the places of the local particles in the
+/// global order when it is not rank by rank (before the first step).
+///
+/// In place and near the identity: a staying particle moves by the difference of arrivals
+/// from below and departures before it, so the stable sort that follows moves few
+/// particles far (as in one process), and no particle array is allocated per step.
 pub(crate) fn migrate<const D: usize>(
-    local: Vec<Simulator<D>>,
+    local: &mut Vec<Simulator<D>>,
     ordinals: Option<Vec<u64>>,
     owner: impl Fn(&Simulator<D>) -> usize,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
-) -> Vec<Simulator<D>> {
+) {
     let (rank, ranks) = (comm.rank(), comm.size());
-    let place = |i: usize| match &ordinals {
-        Some(o) => o[i],
-        None => ((rank as u64) << 40) | i as u64,
-    };
     let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
-    let mut staying = Vec::with_capacity(local.len());
-    let mut staying_places = Vec::new();
+    let mut leaving = 0;
     for (i, p) in local.iter().enumerate() {
         let to = owner(p);
-        if to == rank {
-            staying.push(*p);
-            if ordinals.is_some() {
-                staying_places.push(place(i));
-            }
-        } else {
+        if to != rank {
             let out = &mut outgoing[to];
             out.extend_from_slice(&p.position);
             out.extend_from_slice(&p.velocity);
             out.push(p.species as f64);
-            out.push(f64::from_bits(place(i)));
-            traffic.migrants_sent += 1;
+            out.push(f64::from_bits(ordinals.as_ref().map_or(0, |o| o[i])));
+            leaving += 1;
         }
     }
+    traffic.migrants_sent += leaving as u64;
     traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
     let clock = Instant::now();
     let incoming = comm.all_to_all(outgoing);
     traffic.communication_seconds += clock.elapsed().as_secs_f64();
     traffic.bytes_received += incoming.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
-    let arriving: usize = incoming.iter().map(|v| v.len()).sum::<usize>() / values_per_particle(D);
-    let mut merged = Vec::with_capacity(staying.len() + arriving);
-    let mut places = Vec::new();
-    for (from, values) in incoming.into_iter().enumerate() {
-        if from == rank {
-            merged.append(&mut staying);
-            places.append(&mut staying_places);
+    let decode = |v: &[f64]| Simulator {
+        position: std::array::from_fn(|k| v[k]),
+        velocity: std::array::from_fn(|k| v[D + k]),
+        species: v[2 * D] as u32,
+    };
+    let arrivals = |ranks: std::ops::Range<usize>| {
+        incoming[ranks]
+            .iter()
+            .flat_map(|v| v.chunks_exact(values_per_particle(D)))
+    };
+    if let Some(ordinals) = ordinals {
+        // Explicit places (the first step after a start): lay the particles out by them.
+        let mut placed: Vec<(u64, Simulator<D>)> = local
+            .iter()
+            .zip(&ordinals)
+            .filter(|(p, _)| owner(p) == rank)
+            .map(|(p, &o)| (o, *p))
+            .chain(arrivals(0..ranks).map(|v| (v[2 * D + 1].to_bits(), decode(v))))
+            .collect();
+        placed.sort_unstable_by_key(|e| e.0);
+        *local = placed.into_iter().map(|e| e.1).collect();
+        return;
+    }
+    let below = arrivals(0..rank).count();
+    let above = arrivals(rank + 1..ranks).count();
+    let staying = local.len() - leaving;
+    let total = below + staying + above;
+    let old = local.len();
+    if total > old {
+        let filler = Simulator {
+            position: [0.0; D],
+            velocity: [0.0; D],
+            species: 0,
+        };
+        local.resize(total, filler);
+    }
+    // The k-th staying particle goes to below + k. Its displacement below + k - (its
+    // index) does not grow with k: first those moving down (or staying), in increasing
+    // order, which write only above every particle moving up; then those moving up, in
+    // decreasing order (the positions up to the last of them still hold the originals).
+    let (mut k, mut moving_up) = (0, None);
+    for i in 0..old {
+        if owner(&local[i]) != rank {
             continue;
         }
-        for v in values.chunks_exact(values_per_particle(D)) {
-            merged.push(Simulator {
-                position: std::array::from_fn(|k| v[k]),
-                velocity: std::array::from_fn(|k| v[D + k]),
-                species: v[2 * D] as u32,
-            });
-            if ordinals.is_some() {
-                places.push(v[2 * D + 1].to_bits());
+        if below + k > i {
+            moving_up = Some((i, k + 1));
+        } else if below + k < i {
+            local[below + k] = local[i];
+        }
+        k += 1;
+    }
+    if let Some((last, count)) = moving_up {
+        let mut k = count;
+        for i in (0..=last).rev() {
+            if owner(&local[i]) == rank {
+                k -= 1;
+                local[below + k] = local[i];
             }
         }
     }
-    if ordinals.is_some() {
-        // Explicit places (the first step after a start): lay the particles out by them.
-        let mut order: Vec<usize> = (0..merged.len()).collect();
-        order.sort_unstable_by_key(|&i| places[i]);
-        merged = order.into_iter().map(|i| merged[i]).collect();
+    for (slot, v) in local[..below].iter_mut().zip(arrivals(0..rank)) {
+        *slot = decode(v);
     }
-    merged
+    for (slot, v) in local[below + staying..total]
+        .iter_mut()
+        .zip(arrivals(rank + 1..ranks))
+    {
+        *slot = decode(v);
+    }
+    local.truncate(total);
 }
 
 #[cfg(test)]
@@ -215,7 +254,7 @@ mod tests {
         assert_eq!(crowded.bounds, vec![0, 1, 2, 3, 4]);
         for slabs in [even, clustered, crowded] {
             for key in 0..slabs.planes * 4 {
-                let r = slabs.owner(key);
+                let r = slabs.owner(key / 4);
                 let (first, cells) = slabs.keys(r);
                 assert!((first..first + cells).contains(&key));
             }

@@ -257,6 +257,11 @@ impl<const D: usize> HomogeneousDsmc<D> {
         None
     }
 
+    /// None: computed from the system.
+    pub fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
+        None
+    }
+
     /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
     /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
     /// and the species tables.

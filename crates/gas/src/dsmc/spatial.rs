@@ -213,7 +213,7 @@ impl<const D: usize> SpatialDsmc<D> {
         if ranks > 1 {
             let rank = comm.rank();
             let mine: Vec<usize> = (0..n)
-                .filter(|&i| slabs.owner(key(&simulators[i])) == rank)
+                .filter(|&i| slabs.owner(key(&simulators[i]) / cells_per_plane) == rank)
                 .collect();
             simulators = mine.iter().map(|&i| simulators[i]).collect();
             ordinals = Some(mine.into_iter().map(|i| i as u64).collect());
@@ -512,6 +512,8 @@ impl<const D: usize> SpatialDsmc<D> {
         let (length, cells) = (self.length, self.cells_per_side);
         let width = self.cell_width();
         let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        // The most significant digit of the key.
+        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width, cells);
         let stream = |p: &mut Simulator<D>| {
             for k in 0..D {
                 p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
@@ -526,20 +528,20 @@ impl<const D: usize> SpatialDsmc<D> {
                 let clock = Instant::now();
                 self.slabs = self
                     .slabs
-                    .rebalanced(&self.simulators, key, self.comm.as_ref());
+                    .rebalanced(&self.simulators, plane, self.comm.as_ref());
                 self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
             }
             let slabs = &self.slabs;
-            self.simulators = domain::migrate(
-                std::mem::take(&mut self.simulators),
+            domain::migrate(
+                &mut self.simulators,
                 self.ordinals.take(),
-                |p| slabs.owner(key(p)),
+                |p| slabs.owner(plane(p)),
                 self.comm.as_ref(),
                 &mut self.traffic,
             );
-            let (first, count) = slabs.keys(self.comm.rank());
+            let (start, count) = slabs.keys(self.comm.rank());
             self.sorter
-                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - first)
+                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
         };
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
@@ -650,6 +652,79 @@ impl<const D: usize> SpatialDsmc<D> {
         (tally, ExactSum::from_limbs(&limbs).value())
     }
 
+    /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
+    /// over the particles of all ranks (collective): the definitions of
+    /// [`crate::observe::temperature`] and [`crate::observe::sonine_a2`], the same bits on
+    /// any number of ranks, without gathering the gas. On several ranks, one rank's cost
+    /// per sample is a pass over its particles and two all-reduces.
+    pub fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
+        let clock = Instant::now();
+        let masses = self.species.masses.clone();
+        let masses = &masses;
+        let equal_masses = masses.iter().all(|&m| m == masses[0]);
+        let simulators = std::mem::take(&mut self.simulators);
+        let sums = |n: usize, terms: &(dyn Fn(&Simulator<D>, &mut [ExactSum]) + Sync)| {
+            simulators
+                .par_iter()
+                .fold(
+                    || vec![ExactSum::default(); n],
+                    |mut sums, p| {
+                        terms(p, &mut sums);
+                        sums
+                    },
+                )
+                .reduce(
+                    || vec![ExactSum::default(); n],
+                    |mut a, b| {
+                        a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
+                        a
+                    },
+                )
+        };
+        let first = sums(D + 1, &|p, s| {
+            let m = masses[p.species as usize];
+            s[0].add(m);
+            (0..D).for_each(|k| s[1 + k].add(m * p.velocity[k]));
+        });
+        let first = self.global_values(&first);
+        let mean: Vector<D> = std::array::from_fn(|k| first[1 + k] / first[0]);
+        let second = sums(3, &|p, s| {
+            let m = masses[p.species as usize];
+            let c: Vector<D> = std::array::from_fn(|k| p.velocity[k] - mean[k]);
+            let c2 = dot(&c, &c);
+            let x = if equal_masses { c2 } else { m * c2 };
+            s[0].add(m * c2);
+            s[1].add(x);
+            s[2].add(x * x);
+        });
+        self.simulators = simulators;
+        let [spread, c2, c4] = self.global_values(&second)[..] else {
+            unreachable!("three sums")
+        };
+        let n = self.total as f64;
+        let a2 = if c2 == 0.0 {
+            0.0
+        } else {
+            D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
+        };
+        self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
+        Some(crate::engine::VelocityStatistics {
+            temperature: spread / (self.total * D) as f64,
+            a2,
+            volume: self.length.powi(D as i32),
+        })
+    }
+
+    /// The values of exact sums added over all ranks.
+    fn global_values(&mut self, sums: &[ExactSum]) -> Vec<f64> {
+        let mut limbs: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
+        self.all_ranks_sum(&mut limbs);
+        limbs
+            .chunks_exact(LIMBS + 1)
+            .map(|l| ExactSum::from_limbs(l).value())
+            .collect()
+    }
+
     /// Element-wise sums over the ranks (timed as communication).
     fn all_ranks_sum(&mut self, values: &mut [i64]) {
         if self.comm.size() > 1 {
@@ -722,14 +797,20 @@ fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
     }
 }
 
-/// Linear index of the cell holding x (in [0, L)^D).
+/// Linear index of the cell holding x (in [0, L)^D): the last axis most significant.
 #[inline]
 fn cell_key<const D: usize>(x: &Vector<D>, width: f64, cells: u64) -> u64 {
-    (0..D).rev().fold(0, |key, k| {
-        // Through i64 (x / width is in [0, cells)): the same value as `as u64`, which x86
-        // converts with a branchy sequence of instructions.
-        key * cells + ((x[k] / width) as i64 as u64).min(cells - 1)
-    })
+    (0..D)
+        .rev()
+        .fold(0, |key, k| key * cells + cell_index(x[k], width, cells))
+}
+
+/// The index along one axis of the cell holding coordinate x (in [0, L)).
+#[inline]
+fn cell_index(x: f64, width: f64, cells: u64) -> u64 {
+    // Through i64 (x / width is in [0, cells)): the same value as `as u64`, which x86
+    // converts with a branchy sequence of instructions.
+    ((x / width) as i64 as u64).min(cells - 1)
 }
 
 fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
