@@ -5,7 +5,7 @@
 
 use gas::dsmc::{point_gas, SpatialOptions, SpatialSnapshot, StepSize};
 use gas::parallel::{Communicator, InProcess};
-use gas::{Checkpoint, Counters, Engine, SpatialDsmc, System};
+use gas::{Checkpoint, Counters, SpatialDsmc, System};
 use restitution::{Constant, Restitution};
 use std::sync::Arc;
 

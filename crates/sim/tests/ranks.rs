@@ -131,7 +131,8 @@ fn runs_that_cannot_spread_are_refused() {
         errors[0]
     );
     let bad = RunDescription::from_toml(
-        &format!("{}", "[system]\nparticles = 100\npacking_fraction = 0.1\n[collision]\nlaw = \"constant\"\nrestitution = 0.9\n[run]\ncollisions_per_particle = 1\nsamples = 2\nranks = 3\n"),
+        "[system]\nparticles = 100\npacking_fraction = 0.1\n[collision]\nlaw = \"constant\"\n\
+         restitution = 0.9\n[run]\ncollisions_per_particle = 1\nsamples = 2\nranks = 3\n",
         Path::new("e.toml"),
     )
     .unwrap();

@@ -265,7 +265,6 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
     /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
     /// and the species tables.
-
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let records = match &self.store {
