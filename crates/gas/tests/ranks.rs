@@ -86,12 +86,19 @@ fn assert_identical<const D: usize>(system: &System<D>, options: SpatialOptions,
 }
 
 /// 3D, one species and a mixture, the default step: long enough for the slabs to be
-/// re-balanced several times (every 20 steps).
+/// re-balanced several times (every 20 steps); and cells so fine that the ranks sort by
+/// comparison.
 #[test]
 fn three_dimensions_on_1_2_3_4_ranks() {
     let system = point_gas::<3>(3000, 20.0, 1.0, 1.0, 1.0, 11).unwrap();
     assert_identical(&system, SpatialOptions::default(), 30_000);
-    assert_identical(&mixture(system), SpatialOptions::default(), 30_000);
+    assert_identical(&mixture(system.clone()), SpatialOptions::default(), 30_000);
+    // Cells narrow enough that a rank has more than 4 per particle: the comparison sort.
+    let fine = SpatialOptions {
+        cell_width: Some(1.0),
+        ..Default::default()
+    };
+    assert_identical(&system, fine, 10_000);
 }
 
 /// 1D and 2D, with a step so long that particles cross several slabs in one step (the

@@ -113,6 +113,75 @@ impl CellSorter {
     }
 }
 
+impl CellSorter {
+    /// The keys of the items for [`CellSorter::sort_keyed_in_sequence`], to be filled by
+    /// the caller (a cell index below its `cells` per item).
+    pub fn keys(&mut self) -> &mut Vec<u32> {
+        &mut self.places
+    }
+
+    /// Whether the counting sort of [`CellSorter::sort_keyed_in_sequence`] suits `n` items
+    /// in `cells` cells (else [`CellSorter::update_and_sort`]).
+    pub fn counts_cells(n: usize, cells: u64) -> bool {
+        cells <= COUNTING_SORT_CELLS_PER_PARTICLE * n as u64
+            && cells <= u32::MAX as u64
+            && n <= u32::MAX as usize
+    }
+
+    /// Sorts `items` stably by the keys left in [`CellSorter::keys`] (one per item), the
+    /// order kept being: the items at the indices `first` (in that order), then all the
+    /// others as they stand, then those at `last` (in that order); returns where each
+    /// non-empty cell starts. For a few items out of place (the arrivals and departures of
+    /// a rank): the others keep their places, so the permutation stays near the identity.
+    pub fn sort_keyed_in_sequence<T: Copy + Send>(
+        &mut self,
+        items: &mut [T],
+        cells: u64,
+        first: &[usize],
+        last: &[usize],
+    ) -> Vec<usize> {
+        let n = items.len();
+        assert_eq!(self.places.len(), n, "one key per item");
+        let cells = cells as usize;
+        self.counts.clear();
+        self.counts.resize(cells, 0);
+        for &k in &self.places {
+            self.counts[k as usize] += 1;
+        }
+        let mut starts = Vec::new();
+        let mut at = 0u32;
+        for count in self.counts.iter_mut() {
+            let here = *count;
+            if here > 0 {
+                starts.push(at as usize);
+            }
+            *count = at;
+            at += here;
+        }
+        let (places, next) = (&mut self.places, &mut self.counts);
+        let mut assign = |i: usize| {
+            let slot = &mut next[places[i] as usize];
+            places[i] = *slot;
+            *slot += 1;
+        };
+        first.iter().for_each(|&i| assign(i));
+        let mut special: Vec<usize> = first.iter().chain(last).copied().collect();
+        special.sort_unstable();
+        let mut skip = special.into_iter().peekable();
+        for i in 0..n {
+            if skip.peek() == Some(&i) {
+                skip.next();
+                continue;
+            }
+            assign(i);
+        }
+        last.iter().for_each(|&i| assign(i));
+        let threads = rayon::current_num_threads().max(1);
+        permute_in_parallel(items, &mut self.places, threads);
+        starts
+    }
+}
+
 /// Moves items[i] to items[places[i]] for every i (`places` a permutation of 0..n, left as
 /// the identity) on `threads` threads. The positions are split into one region per thread;
 /// first the few items whose place lies in another region are exchanged into it (serially:
@@ -223,6 +292,30 @@ mod tests {
         let mut want: Vec<(u64, u32)> = items.iter().map(|&(k, i)| ((k + 1) % 700, i)).collect();
         want.sort_by_key(key);
         assert_eq!(shifted, want);
+    }
+
+    /// The sort in a sequence: the stable sort of the items taken in that sequence.
+    #[test]
+    fn sort_in_sequence_is_the_stable_sort_of_the_sequence() {
+        let items: Vec<(u64, u32)> = (0..3000u32).map(|i| ((i as u64 * 7919) % 101, i)).collect();
+        let (first, last) = (vec![2999, 5, 17], vec![0, 1000, 2998]);
+        let mut sequence: Vec<(u64, u32)> = first.iter().map(|&i| items[i]).collect();
+        sequence.extend(
+            (0..items.len())
+                .filter(|i| !first.contains(i) && !last.contains(i))
+                .map(|i| items[i]),
+        );
+        sequence.extend(last.iter().map(|&i| items[i]));
+        sequence.sort_by_key(|x| x.0);
+        let mut sorter = CellSorter::default();
+        *sorter.keys() = items.iter().map(|x| x.0 as u32).collect();
+        let mut sorted = items.clone();
+        let starts = sorter.sort_keyed_in_sequence(&mut sorted, 101, &first, &last);
+        assert_eq!(sorted, sequence);
+        let want: Vec<usize> = (0..sorted.len())
+            .filter(|&i| i == 0 || sorted[i].0 != sorted[i - 1].0)
+            .collect();
+        assert_eq!(starts, want);
     }
 
     /// The region-parallel permutation moves every item to its place, for any number of

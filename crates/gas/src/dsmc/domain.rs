@@ -236,6 +236,99 @@ pub(crate) fn migrate<const D: usize>(
     local.truncate(total);
 }
 
+/// Where the particles of a rank stand after [`exchange_into_holes`], for
+/// `CellSorter::sort_keyed_in_sequence`: the indices of the particles that come before all
+/// others in the global order (arrivals from lower ranks) and after them (staying particles
+/// moved from the end into holes, then arrivals from higher ranks).
+pub(crate) struct Sequence {
+    pub first: Vec<usize>,
+    pub last: Vec<usize>,
+}
+
+/// Moves the particles at the indices `leaving` (ascending; streamed, their `owner` another
+/// rank) to their ranks, and puts the arrivals into the holes they leave (then at the end;
+/// holes left over are filled with the last staying particles). `keys` holds a key per
+/// particle (as `key` gives; the leaving ones' are replaced). Every other particle keeps
+/// its place: with the returned [`Sequence`], the stable sort by key gives the global order
+/// of the single process restricted to this rank, while moving few particles.
+pub(crate) fn exchange_into_holes<const D: usize>(
+    local: &mut Vec<Simulator<D>>,
+    keys: &mut Vec<u32>,
+    leaving: &[usize],
+    owner: impl Fn(&Simulator<D>) -> usize,
+    key: impl Fn(&Simulator<D>) -> u32,
+    comm: &dyn Communicator,
+    traffic: &mut Traffic,
+) -> Sequence {
+    let (rank, ranks) = (comm.rank(), comm.size());
+    let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
+    for &i in leaving {
+        let p = &local[i];
+        let out = &mut outgoing[owner(p)];
+        out.extend_from_slice(&p.position);
+        out.extend_from_slice(&p.velocity);
+        out.push(p.species as f64);
+        out.push(0.0);
+    }
+    traffic.migrants_sent += leaving.len() as u64;
+    traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
+    let clock = Instant::now();
+    let incoming = comm.all_to_all(outgoing);
+    traffic.communication_seconds += clock.elapsed().as_secs_f64();
+    traffic.bytes_received += incoming.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
+    let mut holes = leaving.iter().copied();
+    let (mut first, mut upper) = (Vec::new(), Vec::new());
+    for from in (0..ranks).filter(|&r| r != rank) {
+        for v in incoming[from].chunks_exact(values_per_particle(D)) {
+            let p = Simulator {
+                position: std::array::from_fn(|k| v[k]),
+                velocity: std::array::from_fn(|k| v[D + k]),
+                species: v[2 * D] as u32,
+            };
+            let slot = match holes.next() {
+                Some(h) => {
+                    local[h] = p;
+                    keys[h] = key(&p);
+                    h
+                }
+                None => {
+                    local.push(p);
+                    keys.push(key(&p));
+                    local.len() - 1
+                }
+            };
+            if from < rank {
+                first.push(slot);
+            } else {
+                upper.push(slot);
+            }
+        }
+    }
+    // Holes left: drop those at the end, fill the others (lowest first) with the last
+    // particle, a staying one (it comes after the other staying ones, in the order of its
+    // old index).
+    let mut left: Vec<usize> = holes.collect();
+    let mut moved = Vec::new();
+    let mut next = 0;
+    while next < left.len() {
+        let end = local.len() - 1;
+        if left.last() == Some(&end) {
+            left.pop();
+        } else {
+            let h = left[next];
+            local[h] = local[end];
+            keys[h] = keys[end];
+            moved.push(h);
+            next += 1;
+        }
+        local.pop();
+        keys.pop();
+    }
+    moved.reverse();
+    moved.extend(upper);
+    Sequence { first, last: moved }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -523,7 +523,6 @@ impl<const D: usize> SpatialDsmc<D> {
             self.sorter
                 .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key)
         } else {
-            self.simulators.par_iter_mut().for_each(stream);
             if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
                 let clock = Instant::now();
                 self.slabs = self
@@ -531,17 +530,60 @@ impl<const D: usize> SpatialDsmc<D> {
                     .rebalanced(&self.simulators, plane, self.comm.as_ref());
                 self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
             }
-            let slabs = &self.slabs;
-            domain::migrate(
-                &mut self.simulators,
-                self.ordinals.take(),
-                |p| slabs.owner(plane(p)),
-                self.comm.as_ref(),
-                &mut self.traffic,
-            );
-            let (start, count) = slabs.keys(self.comm.rank());
-            self.sorter
-                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
+            let (slabs, rank) = (&self.slabs, self.comm.rank());
+            let (start, count) = slabs.keys(rank);
+            let owner = |p: &Simulator<D>| slabs.owner(plane(p));
+            if self.ordinals.is_none() && CellSorter::counts_cells(self.simulators.len(), count) {
+                // One pass: stream, and key or mark as leaving; then arrivals into the holes.
+                const CHUNK: usize = 4096;
+                let keys = self.sorter.keys();
+                keys.resize(self.simulators.len(), 0);
+                let leaving: Vec<usize> = self
+                    .simulators
+                    .par_chunks_mut(CHUNK)
+                    .zip(keys.par_chunks_mut(CHUNK))
+                    .enumerate()
+                    .map(|(c, (items, keys))| {
+                        let mut leaving = Vec::new();
+                        for (j, (p, k)) in items.iter_mut().zip(keys).enumerate() {
+                            stream(p);
+                            if owner(p) == rank {
+                                *k = (key(p) - start) as u32;
+                            } else {
+                                leaving.push(c * CHUNK + j);
+                            }
+                        }
+                        leaving
+                    })
+                    .collect::<Vec<_>>()
+                    .concat();
+                let sequence = domain::exchange_into_holes(
+                    &mut self.simulators,
+                    keys,
+                    &leaving,
+                    owner,
+                    |p| (key(p) - start) as u32,
+                    self.comm.as_ref(),
+                    &mut self.traffic,
+                );
+                self.sorter.sort_keyed_in_sequence(
+                    &mut self.simulators,
+                    count,
+                    &sequence.first,
+                    &sequence.last,
+                )
+            } else {
+                self.simulators.par_iter_mut().for_each(stream);
+                domain::migrate(
+                    &mut self.simulators,
+                    self.ordinals.take(),
+                    owner,
+                    self.comm.as_ref(),
+                    &mut self.traffic,
+                );
+                self.sorter
+                    .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
+            }
         };
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
