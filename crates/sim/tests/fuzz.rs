@@ -45,7 +45,7 @@ const SEEDS: [&str; 8] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 30] = [
+const KEYS: [&str; 31] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -75,6 +75,7 @@ const KEYS: [&str; 30] = [
     "material",
     "steps_per_contact",
     "time_step",
+    "ranks",
     "colour",
 ];
 
