@@ -2,21 +2,24 @@
 //! majorant process inside each collision cell.
 
 use super::cell_sort::CellSorter;
-use super::domain::{self, Slabs, Traffic, REBALANCE_STEPS};
-use super::kernel::{self, Collider, Moments, Record, Simulator};
+use super::domain::{Slabs, Traffic};
+use super::kernel::{self, Collider, Moments, Simulator};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
-use crate::exact_sum::{ExactSum, LIMBS};
-use crate::parallel::{Communicator, Local, RankReport};
+use crate::parallel::{Communicator, Local};
 use crate::rng::{Purpose, Stream};
-use crate::system::{dot, wrap, System, Vector};
+use crate::system::{wrap, System, Vector};
 use crate::theory;
 use rayon::prelude::*;
 use restitution::Restitution;
 use std::sync::Arc;
+
+mod ranks;
+mod sums;
 use std::time::Instant;
+use sums::{mass_and_momentum, scaled, spread_about_mean};
 
 /// Collision cell width in mean free paths when none is given.
 pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
@@ -328,45 +331,6 @@ impl<const D: usize> SpatialDsmc<D> {
         self.comm.size()
     }
 
-    /// Every rank's particles, cells and communication so far (collective: every rank
-    /// calls it); None on one rank.
-    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
-        if self.comm.size() == 1 {
-            return None;
-        }
-        let t = &self.traffic;
-        let (_, cells) = self.slabs.keys(self.comm.rank());
-        let mine = [
-            self.simulators.len() as f64,
-            cells as f64,
-            t.steps as f64,
-            t.migrants_sent as f64,
-            t.bytes_sent as f64,
-            t.bytes_received as f64,
-            t.step_seconds,
-            t.communication_seconds,
-            t.gather_seconds,
-        ];
-        let all = self.comm.all_gather(mine.to_vec());
-        Some(
-            all.iter()
-                .enumerate()
-                .map(|(rank, v)| RankReport {
-                    rank,
-                    particles: v[0] as usize,
-                    cells: v[1] as u64,
-                    steps: v[2] as u64,
-                    migrants_sent: v[3] as u64,
-                    bytes_sent: v[4] as u64,
-                    bytes_received: v[5] as u64,
-                    step_seconds: v[6],
-                    communication_seconds: v[7],
-                    gather_seconds: v[8],
-                })
-                .collect(),
-        )
-    }
-
     /// Collisions per particle so far (each collision counts for two particles).
     pub fn collisions_per_particle(&self) -> f64 {
         2.0 * self.tally.collisions as f64 / self.len() as f64
@@ -395,47 +359,17 @@ impl<const D: usize> SpatialDsmc<D> {
     /// The current state in the engine's current order (sorted by cell every step); on
     /// several ranks, gathered from all of them in rank order (the same order; collective).
     pub fn system(&mut self) -> &System<D> {
+        let gathered = (self.comm.size() > 1).then(|| self.gathered());
         let s = &mut self.system;
         s.positions.clear();
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();
-        let mut push = |p: &Simulator<D>| {
+        for p in gathered.as_ref().unwrap_or(&self.simulators) {
             s.positions.push(p.position);
             s.velocities.push(p.velocity);
             s.radii.push(self.species.radii[p.species as usize]);
             s.masses.push(self.species.masses[p.species as usize]);
-        };
-        if self.comm.size() == 1 {
-            self.simulators.iter().for_each(push);
-        } else {
-            let clock = Instant::now();
-            // Before the first step the global order is the places of `ordinals`; after,
-            // rank by rank.
-            let places = self.ordinals.as_ref();
-            let width = 2 * D + 1 + places.is_some() as usize;
-            let mut mine = Vec::with_capacity(width * self.simulators.len());
-            for (i, p) in self.simulators.iter().enumerate() {
-                mine.extend_from_slice(&p.position);
-                mine.extend_from_slice(&p.velocity);
-                mine.push(p.species as f64);
-                if let Some(places) = places {
-                    mine.push(f64::from_bits(places[i]));
-                }
-            }
-            let all = self.comm.all_gather(mine);
-            let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
-            if places.is_some() {
-                rows.sort_unstable_by_key(|v| v[2 * D + 1].to_bits());
-            }
-            for v in rows {
-                push(&Simulator {
-                    position: std::array::from_fn(|k| v[k]),
-                    velocity: std::array::from_fn(|k| v[D + k]),
-                    species: v[2 * D] as u32,
-                });
-            }
-            self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         }
         &self.system
     }
@@ -512,8 +446,6 @@ impl<const D: usize> SpatialDsmc<D> {
         let (length, cells) = (self.length, self.cells_per_side);
         let width = self.cell_width();
         let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
-        // The most significant digit of the key.
-        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width, cells);
         let stream = |p: &mut Simulator<D>| {
             for k in 0..D {
                 p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
@@ -523,67 +455,7 @@ impl<const D: usize> SpatialDsmc<D> {
             self.sorter
                 .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key)
         } else {
-            if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
-                let clock = Instant::now();
-                self.slabs = self
-                    .slabs
-                    .rebalanced(&self.simulators, plane, self.comm.as_ref());
-                self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
-            }
-            let (slabs, rank) = (&self.slabs, self.comm.rank());
-            let (start, count) = slabs.keys(rank);
-            let owner = |p: &Simulator<D>| slabs.owner(plane(p));
-            if self.ordinals.is_none() && CellSorter::counts_cells(self.simulators.len(), count) {
-                // One pass: stream, and key or mark as leaving; then arrivals into the holes.
-                const CHUNK: usize = 4096;
-                let keys = self.sorter.keys();
-                keys.resize(self.simulators.len(), 0);
-                let leaving: Vec<usize> = self
-                    .simulators
-                    .par_chunks_mut(CHUNK)
-                    .zip(keys.par_chunks_mut(CHUNK))
-                    .enumerate()
-                    .map(|(c, (items, keys))| {
-                        let mut leaving = Vec::new();
-                        for (j, (p, k)) in items.iter_mut().zip(keys).enumerate() {
-                            stream(p);
-                            if owner(p) == rank {
-                                *k = (key(p) - start) as u32;
-                            } else {
-                                leaving.push(c * CHUNK + j);
-                            }
-                        }
-                        leaving
-                    })
-                    .collect::<Vec<_>>()
-                    .concat();
-                let sequence = domain::exchange_into_holes(
-                    &mut self.simulators,
-                    keys,
-                    &leaving,
-                    owner,
-                    |p| (key(p) - start) as u32,
-                    self.comm.as_ref(),
-                    &mut self.traffic,
-                );
-                self.sorter.sort_keyed_in_sequence(
-                    &mut self.simulators,
-                    count,
-                    &sequence.first,
-                    &sequence.last,
-                )
-            } else {
-                self.simulators.par_iter_mut().for_each(stream);
-                domain::migrate(
-                    &mut self.simulators,
-                    self.ordinals.take(),
-                    owner,
-                    self.comm.as_ref(),
-                    &mut self.traffic,
-                );
-                self.sorter
-                    .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
-            }
+            self.stream_and_sort_over_ranks(dt)
         };
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
@@ -626,216 +498,6 @@ impl<const D: usize> SpatialDsmc<D> {
         self.steps += 1;
         self.traffic.steps += 1;
         self.traffic.step_seconds += clock.elapsed().as_secs_f64();
-    }
-
-    /// The counters of a step and the spread of all velocities about their mean, summed
-    /// over the cells of all ranks exactly ([`crate::exact_sum`]): the same bits however
-    /// the cells are spread over ranks and threads. The spread pools the cells' spreads
-    /// about their own means (parallel-axis theorem: sum of spread_c + M_c |u_c - u|^2, no
-    /// cancellation however large the mean velocity), so it
-    /// takes two sums: mass and momentum first.
-    fn sum_over_cells(&mut self, results: &[(Counters, Moments<D>)]) -> (Counters, f64) {
-        // Mass, momentum, energy lost, virial; then collisions, events, TC-elastic.
-        let (sums, counts) = results
-            .par_iter()
-            .fold(
-                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
-                |(mut sums, mut counts), (t, m)| {
-                    sums[0].add(m.mass);
-                    (0..D).for_each(|k| sums[1 + k].add(m.momentum[k]));
-                    sums[D + 1].add(t.energy_lost);
-                    sums[D + 2].add(t.virial);
-                    counts[0] += t.collisions as i64;
-                    counts[1] += t.events as i64;
-                    counts[2] += t.tc_elastic as i64;
-                    (sums, counts)
-                },
-            )
-            .reduce(
-                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
-                |(mut a, mut ca), (b, cb)| {
-                    a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
-                    (0..3).for_each(|k| ca[k] += cb[k]);
-                    (a, ca)
-                },
-            );
-        let mut packed: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
-        packed.extend_from_slice(&counts);
-        self.all_ranks_sum(&mut packed);
-        let values: Vec<f64> = packed
-            .chunks_exact(LIMBS + 1)
-            .take(D + 3)
-            .map(|limbs| ExactSum::from_limbs(limbs).value())
-            .collect();
-        let counts = &packed[(D + 3) * (LIMBS + 1)..];
-        let momentum: Vector<D> = std::array::from_fn(|k| values[1 + k]);
-        let mean = scaled(&momentum, values[0]);
-        let spread = results
-            .par_iter()
-            .fold(ExactSum::default, |mut sum, (_, m)| {
-                let u = m.mean();
-                let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
-                sum.add(m.spread + m.mass * dot(&d, &d));
-                sum
-            })
-            .reduce(ExactSum::default, |mut a, b| {
-                a.merge(&b);
-                a
-            });
-        let mut limbs = spread.to_limbs();
-        self.all_ranks_sum(&mut limbs);
-        let tally = Counters {
-            collisions: counts[0] as u64,
-            events: counts[1] as u64,
-            energy_lost: values[D + 1],
-            virial: values[D + 2],
-            tc_elastic: counts[2] as u64,
-        };
-        (tally, ExactSum::from_limbs(&limbs).value())
-    }
-
-    /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
-    /// over the particles of all ranks (collective): the definitions of
-    /// [`crate::observe::temperature`] and [`crate::observe::sonine_a2`], the same bits on
-    /// any number of ranks, without gathering the gas. On several ranks, one rank's cost
-    /// per sample is a pass over its particles and two all-reduces.
-    pub fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
-        let clock = Instant::now();
-        let masses = self.species.masses.clone();
-        let masses = &masses;
-        let equal_masses = masses.iter().all(|&m| m == masses[0]);
-        let simulators = std::mem::take(&mut self.simulators);
-        let sums = |n: usize, terms: &(dyn Fn(&Simulator<D>, &mut [ExactSum]) + Sync)| {
-            simulators
-                .par_iter()
-                .fold(
-                    || vec![ExactSum::default(); n],
-                    |mut sums, p| {
-                        terms(p, &mut sums);
-                        sums
-                    },
-                )
-                .reduce(
-                    || vec![ExactSum::default(); n],
-                    |mut a, b| {
-                        a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
-                        a
-                    },
-                )
-        };
-        let first = sums(D + 1, &|p, s| {
-            let m = masses[p.species as usize];
-            s[0].add(m);
-            (0..D).for_each(|k| s[1 + k].add(m * p.velocity[k]));
-        });
-        let first = self.global_values(&first);
-        let mean: Vector<D> = std::array::from_fn(|k| first[1 + k] / first[0]);
-        let second = sums(3, &|p, s| {
-            let m = masses[p.species as usize];
-            let c: Vector<D> = std::array::from_fn(|k| p.velocity[k] - mean[k]);
-            let c2 = dot(&c, &c);
-            let x = if equal_masses { c2 } else { m * c2 };
-            s[0].add(m * c2);
-            s[1].add(x);
-            s[2].add(x * x);
-        });
-        self.simulators = simulators;
-        let [spread, c2, c4] = self.global_values(&second)[..] else {
-            unreachable!("three sums")
-        };
-        let n = self.total as f64;
-        let a2 = if c2 == 0.0 {
-            0.0
-        } else {
-            D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
-        };
-        self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
-        Some(crate::engine::VelocityStatistics {
-            temperature: spread / (self.total * D) as f64,
-            a2,
-            volume: self.length.powi(D as i32),
-        })
-    }
-
-    /// The values of exact sums added over all ranks.
-    fn global_values(&mut self, sums: &[ExactSum]) -> Vec<f64> {
-        let mut limbs: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
-        self.all_ranks_sum(&mut limbs);
-        limbs
-            .chunks_exact(LIMBS + 1)
-            .map(|l| ExactSum::from_limbs(l).value())
-            .collect()
-    }
-
-    /// Element-wise sums over the ranks (timed as communication).
-    fn all_ranks_sum(&mut self, values: &mut [i64]) {
-        if self.comm.size() > 1 {
-            let clock = Instant::now();
-            self.comm.sum_i64(values);
-            self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
-        }
-    }
-}
-
-/// The mass and momentum of a cell, summed in the order of [`Moments::of`] (so bit for bit
-/// its values), in one pass, without a mass lookup per particle for one species.
-#[inline]
-fn mass_and_momentum<const D: usize>(cell: &[Simulator<D>], species: &Species) -> (f64, Vector<D>) {
-    // -0.0: the start of std's float `Sum`, which `Moments::of` uses.
-    let mut mass = -0.0;
-    let mut momentum = [-0.0; D];
-    let mut add = |m: f64, v: &Vector<D>| {
-        mass += m;
-        for k in 0..D {
-            momentum[k] += m * v[k];
-        }
-    };
-    if species.len() == 1 {
-        let m = species.masses[0];
-        cell.iter().for_each(|r| add(m, &r.velocity));
-    } else {
-        cell.iter()
-            .for_each(|r| add(species.masses[r.species()], &r.velocity));
-    }
-    (mass, momentum)
-}
-
-/// The [`Moments`] of a cell from its mass and momentum (as [`Moments::of`] computes them,
-/// bit for bit): the spread sum of m |v - mean|^2 in a second pass.
-#[inline]
-fn spread_about_mean<const D: usize>(
-    cell: &[Simulator<D>],
-    species: &Species,
-    mass: f64,
-    momentum: Vector<D>,
-) -> Moments<D> {
-    let mean = scaled(&momentum, mass);
-    let term = |m: f64, v: &Vector<D>| {
-        let d: Vector<D> = std::array::from_fn(|k| v[k] - mean[k]);
-        m * dot(&d, &d)
-    };
-    let spread = if species.len() == 1 {
-        let m = species.masses[0];
-        cell.iter().map(|r| term(m, &r.velocity)).sum()
-    } else {
-        cell.iter()
-            .map(|r| term(species.masses[r.species()], &r.velocity))
-            .sum()
-    };
-    Moments {
-        mass,
-        momentum,
-        spread,
-    }
-}
-
-/// x / mass (zero for no mass), as [`Moments::mean`].
-#[inline]
-fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
-    if mass > 0.0 {
-        std::array::from_fn(|k| x[k] / mass)
-    } else {
-        [0.0; D]
     }
 }
 

@@ -1,0 +1,163 @@
+//! The spatial engine's side of being spread over ranks (see [`super::super::domain`]):
+//! the step's streaming, migration and sort, the state gathered in the global order, and
+//! each rank's report.
+
+use super::super::cell_sort::CellSorter;
+use super::super::domain::{self, REBALANCE_STEPS};
+use super::super::kernel::Simulator;
+use super::{cell_index, cell_key, SpatialDsmc};
+use crate::parallel::RankReport;
+use crate::system::wrap;
+use rayon::prelude::*;
+use std::time::Instant;
+
+impl<const D: usize> SpatialDsmc<D> {
+    /// Every rank's particles, cells and communication so far (collective: every rank
+    /// calls it); None on one rank.
+    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
+        if self.comm.size() == 1 {
+            return None;
+        }
+        let t = &self.traffic;
+        let (_, cells) = self.slabs.keys(self.comm.rank());
+        let mine = [
+            self.simulators.len() as f64,
+            cells as f64,
+            t.steps as f64,
+            t.migrants_sent as f64,
+            t.bytes_sent as f64,
+            t.bytes_received as f64,
+            t.step_seconds,
+            t.communication_seconds,
+            t.gather_seconds,
+        ];
+        let all = self.comm.all_gather(mine.to_vec());
+        Some(
+            all.iter()
+                .enumerate()
+                .map(|(rank, v)| RankReport {
+                    rank,
+                    particles: v[0] as usize,
+                    cells: v[1] as u64,
+                    steps: v[2] as u64,
+                    migrants_sent: v[3] as u64,
+                    bytes_sent: v[4] as u64,
+                    bytes_received: v[5] as u64,
+                    step_seconds: v[6],
+                    communication_seconds: v[7],
+                    gather_seconds: v[8],
+                })
+                .collect(),
+        )
+    }
+
+    /// The particles of all ranks in the global order (collective).
+    pub(super) fn gathered(&mut self) -> Vec<Simulator<D>> {
+        let clock = Instant::now();
+        // Before the first step the global order is the places of `ordinals`; after,
+        // rank by rank.
+        let places = self.ordinals.as_ref();
+        let width = 2 * D + 1 + places.is_some() as usize;
+        let mut mine = Vec::with_capacity(width * self.simulators.len());
+        for (i, p) in self.simulators.iter().enumerate() {
+            mine.extend_from_slice(&p.position);
+            mine.extend_from_slice(&p.velocity);
+            mine.push(p.species as f64);
+            if let Some(places) = places {
+                mine.push(f64::from_bits(places[i]));
+            }
+        }
+        let all = self.comm.all_gather(mine);
+        let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
+        if places.is_some() {
+            rows.sort_unstable_by_key(|v| v[2 * D + 1].to_bits());
+        }
+        let mut gathered = Vec::with_capacity(rows.len());
+        for v in rows {
+            gathered.push(Simulator {
+                position: std::array::from_fn(|k| v[k]),
+                velocity: std::array::from_fn(|k| v[D + k]),
+                species: v[2 * D] as u32,
+            });
+        }
+        self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
+        gathered
+    }
+
+    /// Streams the particles for `dt`, moves those that left the rank's slab to their
+    /// ranks and receives the arrivals, and sorts the rank's particles by cell in the
+    /// global order; returns where each non-empty cell starts.
+    pub(super) fn stream_and_sort_over_ranks(&mut self, dt: f64) -> Vec<usize> {
+        let (length, cells) = (self.length, self.cells_per_side);
+        let width = self.cell_width();
+        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        // The most significant digit of the key.
+        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width, cells);
+        let stream = |p: &mut Simulator<D>| {
+            for k in 0..D {
+                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
+            }
+        };
+        if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
+            let clock = Instant::now();
+            self.slabs = self
+                .slabs
+                .rebalanced(&self.simulators, plane, self.comm.as_ref());
+            self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
+        }
+        let (slabs, rank) = (&self.slabs, self.comm.rank());
+        let (start, count) = slabs.keys(rank);
+        let owner = |p: &Simulator<D>| slabs.owner(plane(p));
+        if self.ordinals.is_none() && CellSorter::counts_cells(self.simulators.len(), count) {
+            // One pass: stream, and key or mark as leaving; then arrivals into the holes.
+            const CHUNK: usize = 4096;
+            let keys = self.sorter.keys();
+            keys.resize(self.simulators.len(), 0);
+            let leaving: Vec<usize> = self
+                .simulators
+                .par_chunks_mut(CHUNK)
+                .zip(keys.par_chunks_mut(CHUNK))
+                .enumerate()
+                .map(|(c, (items, keys))| {
+                    let mut leaving = Vec::new();
+                    for (j, (p, k)) in items.iter_mut().zip(keys).enumerate() {
+                        stream(p);
+                        if owner(p) == rank {
+                            *k = (key(p) - start) as u32;
+                        } else {
+                            leaving.push(c * CHUNK + j);
+                        }
+                    }
+                    leaving
+                })
+                .collect::<Vec<_>>()
+                .concat();
+            let sequence = domain::exchange_into_holes(
+                &mut self.simulators,
+                keys,
+                &leaving,
+                owner,
+                |p| (key(p) - start) as u32,
+                self.comm.as_ref(),
+                &mut self.traffic,
+            );
+            self.sorter.sort_keyed_in_sequence(
+                &mut self.simulators,
+                count,
+                &sequence.first,
+                &sequence.last,
+            )
+        } else {
+            self.simulators.par_iter_mut().for_each(stream);
+            domain::migrate(
+                &mut self.simulators,
+                self.ordinals.take(),
+                owner,
+                self.comm.as_ref(),
+                &mut self.traffic,
+            );
+            self.sorter
+                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
+        }
+    }
+}
