@@ -55,16 +55,24 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// A scratch directory with the run file of [`GAS`] and its run in one process (in
+/// `single`): (directory, file, single).
 #[cfg(feature = "mpi")]
-#[test]
-fn one_two_and_four_ranks_write_the_same_files() {
-    let dir = scratch("same");
+fn with_single_run(name: &str) -> (PathBuf, PathBuf, PathBuf) {
+    let dir = scratch(name);
     let file = dir.join("gas.toml");
     std::fs::write(&file, GAS).unwrap();
-    let files = ["timeseries.csv", "velocity_histograms.csv"];
     let single = dir.join("single");
     let o = run(0, &file, &single);
     assert!(o.status.success(), "{}", stderr(&o));
+    (dir, file, single)
+}
+
+#[cfg(feature = "mpi")]
+#[test]
+fn one_two_and_four_ranks_write_the_same_files() {
+    let (dir, file, single) = with_single_run("same");
+    let files = ["timeseries.csv", "velocity_histograms.csv"];
     for ranks in [1, 2, 4] {
         let out = dir.join(format!("ranks{ranks}"));
         let o = run(ranks, &file, &out);
@@ -106,11 +114,7 @@ fn one_two_and_four_ranks_write_the_same_files() {
 #[cfg(feature = "mpi")]
 #[test]
 fn a_checkpoint_from_4_ranks_resumes_on_2() {
-    let dir = scratch("resume");
-    let file = dir.join("gas.toml");
-    std::fs::write(&file, GAS).unwrap();
-    let single = dir.join("single");
-    assert!(run(0, &file, &single).status.success());
+    let (dir, file, single) = with_single_run("resume");
     let out = dir.join("cut");
     let o = launch(
         4,
