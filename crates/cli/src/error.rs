@@ -57,6 +57,11 @@ impl CliError {
         ExitCode::from(self.exit_code)
     }
 
+    /// The exit code as a number.
+    pub fn code(&self) -> u8 {
+        self.exit_code
+    }
+
     /// Prints `haff: error: <message>` on stderr (nothing for a closed output pipe).
     pub fn report(&self) {
         if !self.quiet {

@@ -49,9 +49,10 @@ pub fn run(args: &RunArgs) -> CliResult {
         }
         None => None,
     };
-    go(simulation, &out, dir, every, stop_after).inspect_err(|e| {
+    go(simulation, &out, dir, every, stop_after).map_err(|e| {
         e.report();
-        sim::parallel::abort_others(1);
+        sim::parallel::abort_others(e.code().into());
+        e.silenced()
     })
 }
 

@@ -182,7 +182,8 @@ pub(crate) fn migrate<const D: usize>(
             .map(|(p, &o)| (o, *p))
             .chain(arrivals(0..ranks).map(|v| (v[2 * D + 1].to_bits(), decode(v))))
             .collect();
-        placed.sort_unstable_by_key(|e| e.0);
+        // Ranks + 1 runs, each in increasing places: the stable sort merges runs it finds.
+        placed.sort_by_key(|e| e.0);
         *local = placed.into_iter().map(|e| e.1).collect();
         return;
     }

@@ -70,7 +70,8 @@ impl<const D: usize> SpatialDsmc<D> {
         let all = self.comm.all_gather(mine);
         let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
         if places.is_some() {
-            rows.sort_unstable_by_key(|v| v[2 * D + 1].to_bits());
+            // One run per rank, each in increasing places: merged by the stable sort.
+            rows.sort_by_key(|v| v[2 * D + 1].to_bits());
         }
         let mut gathered = Vec::with_capacity(rows.len());
         for v in rows {
