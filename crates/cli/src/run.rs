@@ -122,18 +122,15 @@ fn go(
         out.display()
     );
     if let Some(ranks) = reports {
-        let steps = ranks[0].steps.max(1) as f64;
-        let step: f64 = ranks.iter().map(|r| r.step_seconds).sum::<f64>() / ranks.len() as f64;
-        let talk: f64 = ranks.iter().map(|r| r.communication_seconds).sum::<f64>();
-        let sent: u64 = ranks.iter().map(|r| r.bytes_sent).sum();
+        let p = sim::parallel::summary(&ranks, simulation.description().system.dimension as usize);
         eprintln!(
             "haff run: {} ranks, {} steps of {:.3e} s, {:.1} % of it communicating, {:.3e} \
              bytes migrating per rank and step (summary.json: parallel)",
-            ranks.len(),
-            ranks[0].steps,
-            step / steps,
-            100.0 * talk / (step * ranks.len() as f64).max(1e-300),
-            sent as f64 / ranks.len() as f64 / steps
+            p["ranks"],
+            p["steps"],
+            p["step_seconds"].as_f64().unwrap_or(0.0),
+            100.0 * p["communication_fraction"].as_f64().unwrap_or(0.0),
+            p["bytes_sent_per_rank_per_step"].as_f64().unwrap_or(0.0)
         );
     }
     if let Some(c) = simulation.contact_report() {

@@ -159,6 +159,32 @@ impl ExactSum {
     }
 }
 
+/// `n` exact sums over `items`, in parallel: `terms` adds an item's terms to the sums (the
+/// same bits whatever the split over threads).
+pub fn sums_of<T: Sync>(
+    items: &[T],
+    n: usize,
+    terms: impl Fn(&T, &mut [ExactSum]) + Sync,
+) -> Vec<ExactSum> {
+    use rayon::prelude::*;
+    items
+        .par_iter()
+        .fold(
+            || vec![ExactSum::default(); n],
+            |mut sums, item| {
+                terms(item, &mut sums);
+                sums
+            },
+        )
+        .reduce(
+            || vec![ExactSum::default(); n],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
+                a
+            },
+        )
+}
+
 /// x 2^k, exact while the result is a normal f64 (applied in steps that stay in range).
 fn scale_by_power_of_two(mut x: f64, mut k: i32) -> f64 {
     while k > 0 {

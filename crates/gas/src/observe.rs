@@ -36,12 +36,17 @@ pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
         c2 += x;
         c4 += x * x;
     }
+    sonine_a2_of_sums::<D>(c2, c4, s.len() as f64)
+}
+
+/// a2 = D/(D+2) <x^2>/<x>^2 - 1 from the sums `c2` of x and `c4` of x^2 over `n` particles
+/// (x = c^2, or m c^2 for a mixture: see [`sonine_a2`]).
+pub fn sonine_a2_of_sums<const D: usize>(c2: f64, c4: f64, n: f64) -> f64 {
     if c2 == 0.0 {
         // A gas at rest (a tiny system whose baths took all the energy) has no velocity
         // distribution to compare with a Maxwellian: 0 rather than 0/0.
         return 0.0;
     }
-    let n = s.len() as f64;
     D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
 }
 

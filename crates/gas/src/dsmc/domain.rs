@@ -122,20 +122,17 @@ pub(crate) struct Traffic {
     pub gather_seconds: f64,
 }
 
-/// f64 values per migrating particle: position, velocity, species, global place.
+/// f64 values per particle in messages: position, velocity, species, global place.
 pub(crate) const fn values_per_particle(d: usize) -> usize {
     2 * d + 2
 }
 
 /// Moves the (already streamed) local particles to the ranks owning their cells and lays
-/// this rank's particles out in the global order before the sort into cells: the arrivals
-/// from lower ranks, the staying particles in their order, the arrivals from higher ranks
-/// (source rank by source rank). `ordinals` are the places of the local particles in the
-/// global order when it is not rank by rank (before the first step).
-///
-/// In place and near the identity: a staying particle moves by the difference of arrivals
-/// from below and departures before it, so the stable sort that follows moves few
-/// particles far (as in one process), and no particle array is allocated per step.
+/// this rank's particles out in the global order before the sort into cells (each
+/// particle travels with its place in it). `ordinals` are the places of the local
+/// particles when the global order is not rank by rank (before the first step); after,
+/// it is rank by rank. The general path: the first step, and cells too fine for
+/// [`exchange_into_holes`] with its counting sort.
 pub(crate) fn migrate<const D: usize>(
     local: &mut Vec<Simulator<D>>,
     ordinals: Option<Vec<u64>>,
@@ -144,97 +141,54 @@ pub(crate) fn migrate<const D: usize>(
     traffic: &mut Traffic,
 ) {
     let (rank, ranks) = (comm.rank(), comm.size());
+    let place = |i: usize| match &ordinals {
+        Some(o) => o[i],
+        None => ((rank as u64) << 40) | i as u64,
+    };
     let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
-    let mut leaving = 0;
+    let mut placed: Vec<(u64, Simulator<D>)> = Vec::with_capacity(local.len());
     for (i, p) in local.iter().enumerate() {
         let to = owner(p);
-        if to != rank {
-            let out = &mut outgoing[to];
-            out.extend_from_slice(&p.position);
-            out.extend_from_slice(&p.velocity);
-            out.push(p.species as f64);
-            out.push(f64::from_bits(ordinals.as_ref().map_or(0, |o| o[i])));
-            leaving += 1;
+        if to == rank {
+            placed.push((place(i), *p));
+        } else {
+            encode(&mut outgoing[to], p, place(i));
+            traffic.migrants_sent += 1;
         }
     }
-    traffic.migrants_sent += leaving as u64;
     traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
     let clock = Instant::now();
     let incoming = comm.all_to_all(outgoing);
     traffic.communication_seconds += clock.elapsed().as_secs_f64();
     traffic.bytes_received += incoming.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
-    let decode = |v: &[f64]| Simulator {
+    placed.extend(
+        incoming
+            .iter()
+            .flat_map(|v| v.chunks_exact(values_per_particle(D)))
+            .map(|v| (v[2 * D + 1].to_bits(), decode(v))),
+    );
+    // Ranks + 1 runs, each in increasing places: the stable sort merges the runs it finds.
+    placed.sort_by_key(|e| e.0);
+    local.clear();
+    local.extend(placed.into_iter().map(|e| e.1));
+}
+
+/// Appends particle `p` and its place in the global order to a message
+/// ([`values_per_particle`] values).
+pub(crate) fn encode<const D: usize>(out: &mut Vec<f64>, p: &Simulator<D>, place: u64) {
+    out.extend_from_slice(&p.position);
+    out.extend_from_slice(&p.velocity);
+    out.push(p.species as f64);
+    out.push(f64::from_bits(place));
+}
+
+/// The particle of a message row written by [`encode`].
+pub(crate) fn decode<const D: usize>(v: &[f64]) -> Simulator<D> {
+    Simulator {
         position: std::array::from_fn(|k| v[k]),
         velocity: std::array::from_fn(|k| v[D + k]),
         species: v[2 * D] as u32,
-    };
-    let arrivals = |ranks: std::ops::Range<usize>| {
-        incoming[ranks]
-            .iter()
-            .flat_map(|v| v.chunks_exact(values_per_particle(D)))
-    };
-    if let Some(ordinals) = ordinals {
-        // Explicit places (the first step after a start): lay the particles out by them.
-        let mut placed: Vec<(u64, Simulator<D>)> = local
-            .iter()
-            .zip(&ordinals)
-            .filter(|(p, _)| owner(p) == rank)
-            .map(|(p, &o)| (o, *p))
-            .chain(arrivals(0..ranks).map(|v| (v[2 * D + 1].to_bits(), decode(v))))
-            .collect();
-        // Ranks + 1 runs, each in increasing places: the stable sort merges runs it finds.
-        placed.sort_by_key(|e| e.0);
-        *local = placed.into_iter().map(|e| e.1).collect();
-        return;
     }
-    let below = arrivals(0..rank).count();
-    let above = arrivals(rank + 1..ranks).count();
-    let staying = local.len() - leaving;
-    let total = below + staying + above;
-    let old = local.len();
-    if total > old {
-        let filler = Simulator {
-            position: [0.0; D],
-            velocity: [0.0; D],
-            species: 0,
-        };
-        local.resize(total, filler);
-    }
-    // The k-th staying particle goes to below + k. Its displacement below + k - (its
-    // index) does not grow with k: first those moving down (or staying), in increasing
-    // order, which write only above every particle moving up; then those moving up, in
-    // decreasing order (the positions up to the last of them still hold the originals).
-    let (mut k, mut moving_up) = (0, None);
-    for i in 0..old {
-        if owner(&local[i]) != rank {
-            continue;
-        }
-        if below + k > i {
-            moving_up = Some((i, k + 1));
-        } else if below + k < i {
-            local[below + k] = local[i];
-        }
-        k += 1;
-    }
-    if let Some((last, count)) = moving_up {
-        let mut k = count;
-        for i in (0..=last).rev() {
-            if owner(&local[i]) == rank {
-                k -= 1;
-                local[below + k] = local[i];
-            }
-        }
-    }
-    for (slot, v) in local[..below].iter_mut().zip(arrivals(0..rank)) {
-        *slot = decode(v);
-    }
-    for (slot, v) in local[below + staying..total]
-        .iter_mut()
-        .zip(arrivals(rank + 1..ranks))
-    {
-        *slot = decode(v);
-    }
-    local.truncate(total);
 }
 
 /// Where the particles of a rank stand after [`exchange_into_holes`], for
@@ -265,11 +219,7 @@ pub(crate) fn exchange_into_holes<const D: usize>(
     let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
     for &i in leaving {
         let p = &local[i];
-        let out = &mut outgoing[owner(p)];
-        out.extend_from_slice(&p.position);
-        out.extend_from_slice(&p.velocity);
-        out.push(p.species as f64);
-        out.push(0.0);
+        encode(&mut outgoing[owner(p)], p, 0);
     }
     traffic.migrants_sent += leaving.len() as u64;
     traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
@@ -281,11 +231,7 @@ pub(crate) fn exchange_into_holes<const D: usize>(
     let (mut first, mut upper) = (Vec::new(), Vec::new());
     for from in (0..ranks).filter(|&r| r != rank) {
         for v in incoming[from].chunks_exact(values_per_particle(D)) {
-            let p = Simulator {
-                position: std::array::from_fn(|k| v[k]),
-                velocity: std::array::from_fn(|k| v[D + k]),
-                species: v[2 * D] as u32,
-            };
+            let p = decode(v);
             let slot = match holes.next() {
                 Some(h) => {
                     local[h] = p;

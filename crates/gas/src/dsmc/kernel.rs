@@ -430,7 +430,8 @@ pub(crate) fn pooled_about<const D: usize>(
     (mean, about_center - mass * dot(&d, &d))
 }
 
-fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
+/// x / mass (zero for no mass).
+pub(crate) fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
     if mass > 0.0 {
         std::array::from_fn(|k| x[k] / mass)
     } else {

@@ -3,7 +3,7 @@
 
 use super::cell_sort::CellSorter;
 use super::domain::{Slabs, Traffic};
-use super::kernel::{self, Collider, Moments, Simulator};
+use super::kernel::{self, scaled, Collider, Moments, Simulator};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::Counters;
@@ -19,7 +19,7 @@ use std::sync::Arc;
 mod ranks;
 mod sums;
 use std::time::Instant;
-use sums::{mass_and_momentum, scaled, spread_about_mean};
+use sums::{mass_and_momentum, spread_about_mean};
 
 /// Collision cell width in mean free paths when none is given.
 pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;

@@ -57,15 +57,10 @@ impl<const D: usize> SpatialDsmc<D> {
         // Before the first step the global order is the places of `ordinals`; after,
         // rank by rank.
         let places = self.ordinals.as_ref();
-        let width = 2 * D + 1 + places.is_some() as usize;
+        let width = domain::values_per_particle(D);
         let mut mine = Vec::with_capacity(width * self.simulators.len());
         for (i, p) in self.simulators.iter().enumerate() {
-            mine.extend_from_slice(&p.position);
-            mine.extend_from_slice(&p.velocity);
-            mine.push(p.species as f64);
-            if let Some(places) = places {
-                mine.push(f64::from_bits(places[i]));
-            }
+            domain::encode(&mut mine, p, places.map_or(0, |o| o[i]));
         }
         let all = self.comm.all_gather(mine);
         let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
@@ -73,14 +68,7 @@ impl<const D: usize> SpatialDsmc<D> {
             // One run per rank, each in increasing places: merged by the stable sort.
             rows.sort_by_key(|v| v[2 * D + 1].to_bits());
         }
-        let mut gathered = Vec::with_capacity(rows.len());
-        for v in rows {
-            gathered.push(Simulator {
-                position: std::array::from_fn(|k| v[k]),
-                velocity: std::array::from_fn(|k| v[D + k]),
-                species: v[2 * D] as u32,
-            });
-        }
+        let gathered = rows.into_iter().map(domain::decode).collect();
         self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         gathered
     }

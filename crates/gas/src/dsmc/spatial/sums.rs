@@ -1,13 +1,12 @@
 //! The spatial engine's sums over cells and particles: exact ([`crate::exact_sum`]), so
 //! the same bits however cells and particles are spread over threads and ranks.
 
-use super::super::kernel::{Moments, Record, Simulator};
+use super::super::kernel::{scaled, Moments, Record, Simulator};
 use super::super::species::Species;
 use super::SpatialDsmc;
 use crate::engine::{Counters, VelocityStatistics};
-use crate::exact_sum::{ExactSum, LIMBS};
+use crate::exact_sum::{sums_of, ExactSum, LIMBS};
 use crate::system::{dot, Vector};
-use rayon::prelude::*;
 use std::time::Instant;
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -19,29 +18,18 @@ impl<const D: usize> SpatialDsmc<D> {
     /// takes two sums: mass and momentum first.
     pub(super) fn sum_over_cells(&mut self, results: &[(Counters, Moments<D>)]) -> (Counters, f64) {
         // Mass, momentum, energy lost, virial; then collisions, events, TC-elastic.
-        let (sums, counts) = results
-            .par_iter()
-            .fold(
-                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
-                |(mut sums, mut counts), (t, m)| {
-                    sums[0].add(m.mass);
-                    (0..D).for_each(|k| sums[1 + k].add(m.momentum[k]));
-                    sums[D + 1].add(t.energy_lost);
-                    sums[D + 2].add(t.virial);
-                    counts[0] += t.collisions as i64;
-                    counts[1] += t.events as i64;
-                    counts[2] += t.tc_elastic as i64;
-                    (sums, counts)
-                },
-            )
-            .reduce(
-                || (vec![ExactSum::default(); D + 3], [0i64; 3]),
-                |(mut a, mut ca), (b, cb)| {
-                    a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
-                    (0..3).for_each(|k| ca[k] += cb[k]);
-                    (a, ca)
-                },
-            );
+        let sums = sums_of(results, D + 3, |(t, m), s| {
+            s[0].add(m.mass);
+            (0..D).for_each(|k| s[1 + k].add(m.momentum[k]));
+            s[D + 1].add(t.energy_lost);
+            s[D + 2].add(t.virial);
+        });
+        let count = |f: fn(&Counters) -> u64| results.iter().map(|(t, _)| f(t) as i64).sum();
+        let counts: [i64; 3] = [
+            count(|t| t.collisions),
+            count(|t| t.events),
+            count(|t| t.tc_elastic),
+        ];
         let mut packed: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
         packed.extend_from_slice(&counts);
         self.all_ranks_sum(&mut packed);
@@ -53,20 +41,12 @@ impl<const D: usize> SpatialDsmc<D> {
         let counts = &packed[(D + 3) * (LIMBS + 1)..];
         let momentum: Vector<D> = std::array::from_fn(|k| values[1 + k]);
         let mean = scaled(&momentum, values[0]);
-        let spread = results
-            .par_iter()
-            .fold(ExactSum::default, |mut sum, (_, m)| {
-                let u = m.mean();
-                let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
-                sum.add(m.spread + m.mass * dot(&d, &d));
-                sum
-            })
-            .reduce(ExactSum::default, |mut a, b| {
-                a.merge(&b);
-                a
-            });
-        let mut limbs = spread.to_limbs();
-        self.all_ranks_sum(&mut limbs);
+        let spread = sums_of(results, 1, |(_, m), s| {
+            let u = m.mean();
+            let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
+            s[0].add(m.spread + m.mass * dot(&d, &d));
+        });
+        let spread = self.global_values(&spread)[0];
         let tally = Counters {
             collisions: counts[0] as u64,
             events: counts[1] as u64,
@@ -74,7 +54,7 @@ impl<const D: usize> SpatialDsmc<D> {
             virial: values[D + 2],
             tc_elastic: counts[2] as u64,
         };
-        (tally, ExactSum::from_limbs(&limbs).value())
+        (tally, spread)
     }
 
     /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
@@ -84,36 +64,17 @@ impl<const D: usize> SpatialDsmc<D> {
     /// per sample is a pass over its particles and two all-reduces.
     pub fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
         let clock = Instant::now();
+        // A copy (one per species): the sums below borrow the engine mutably.
         let masses = self.species.masses.clone();
-        let masses = &masses;
         let equal_masses = masses.iter().all(|&m| m == masses[0]);
-        let simulators = std::mem::take(&mut self.simulators);
-        let sums = |n: usize, terms: &(dyn Fn(&Simulator<D>, &mut [ExactSum]) + Sync)| {
-            simulators
-                .par_iter()
-                .fold(
-                    || vec![ExactSum::default(); n],
-                    |mut sums, p| {
-                        terms(p, &mut sums);
-                        sums
-                    },
-                )
-                .reduce(
-                    || vec![ExactSum::default(); n],
-                    |mut a, b| {
-                        a.iter_mut().zip(&b).for_each(|(x, y)| x.merge(y));
-                        a
-                    },
-                )
-        };
-        let first = sums(D + 1, &|p, s| {
+        let first = sums_of(&self.simulators, D + 1, |p, s| {
             let m = masses[p.species as usize];
             s[0].add(m);
             (0..D).for_each(|k| s[1 + k].add(m * p.velocity[k]));
         });
         let first = self.global_values(&first);
         let mean: Vector<D> = std::array::from_fn(|k| first[1 + k] / first[0]);
-        let second = sums(3, &|p, s| {
+        let second = sums_of(&self.simulators, 3, |p, s| {
             let m = masses[p.species as usize];
             let c: Vector<D> = std::array::from_fn(|k| p.velocity[k] - mean[k]);
             let c2 = dot(&c, &c);
@@ -122,16 +83,11 @@ impl<const D: usize> SpatialDsmc<D> {
             s[1].add(x);
             s[2].add(x * x);
         });
-        self.simulators = simulators;
         let [spread, c2, c4] = self.global_values(&second)[..] else {
             unreachable!("three sums")
         };
         let n = self.total as f64;
-        let a2 = if c2 == 0.0 {
-            0.0
-        } else {
-            D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
-        };
+        let a2 = crate::observe::sonine_a2_of_sums::<D>(c2, c4, n);
         self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         Some(VelocityStatistics {
             temperature: spread / (self.total * D) as f64,
@@ -212,15 +168,5 @@ pub(super) fn spread_about_mean<const D: usize>(
         mass,
         momentum,
         spread,
-    }
-}
-
-/// x / mass (zero for no mass), as [`Moments::mean`].
-#[inline]
-pub(super) fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
-    if mass > 0.0 {
-        std::array::from_fn(|k| x[k] / mass)
-    } else {
-        [0.0; D]
     }
 }
