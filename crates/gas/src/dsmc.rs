@@ -26,6 +26,7 @@ mod cell_sort;
 mod domain;
 mod homogeneous;
 pub mod kernel;
+mod reduce;
 mod spatial;
 mod species;
 

@@ -176,7 +176,15 @@ pub(crate) fn start<const D: usize>(
             Box::new(engine)
         }
         EngineSpec::HomogeneousDsmc(scheme) => Box::new(
-            HomogeneousDsmc::new(system, s.packing_fraction, law, s.seed, scheme).map_err(fail)?,
+            HomogeneousDsmc::distributed(
+                system,
+                s.packing_fraction,
+                law,
+                s.seed,
+                scheme,
+                comm.clone(),
+            )
+            .map_err(ranks_or_system)?,
         ),
         EngineSpec::SpatialDsmc(options) => Box::new(
             SpatialDsmc::distributed(
@@ -213,6 +221,17 @@ pub(crate) fn restore<const D: usize>(
     sections: &Sections,
     comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
+    if let (EngineSpec::HomogeneousDsmc(_), true) = (plan.engine, comm.size() > 1) {
+        let state: gas::dsmc::HomogeneousSnapshot<D> = sections.engine()?;
+        HomogeneousDsmc::check_state(plan, &state)
+            .map_err(|e| sections.error(format!("engine state: {e}")))?;
+        state
+            .check(true)
+            .map_err(|e| sections.error(format!("engine state: {e}")))?;
+        let engine = HomogeneousDsmc::restore_distributed(state, law, comm.clone())
+            .map_err(|e| sections.error(format!("engine state: {e}")))?;
+        return Ok(Box::new(engine));
+    }
     if let (EngineSpec::SpatialDsmc(_), true) = (plan.engine, comm.size() > 1) {
         let state: gas::dsmc::SpatialSnapshot<D> = sections.engine()?;
         SpatialDsmc::check_state(plan, &state)
@@ -244,8 +263,8 @@ fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(
     Ok(Box::new(engine))
 }
 
-/// An error of the spatial engine spread over ranks: too many ranks for its planes of
-/// cells (naming `run.ranks`, the launch's count), else an error of `[system]`.
+/// An error of an engine spread over ranks: too many ranks for its planes of cells or
+/// blocks (naming `run.ranks`, the launch's count), else an error of `[system]`.
 fn ranks_or_system(e: gas::Error) -> Error {
     match &e {
         gas::Error::OutOfRange { name, .. } if name == "ranks" => Error::input("run.ranks", e),

@@ -86,8 +86,12 @@ pub fn abort_others(code: i32) {
     let _ = code;
 }
 
+/// Which engines spread over ranks, for error messages.
+pub(crate) const SPREADING: &str = "only run.engine = \"dsmc\" with dsmc_scheme = \"spatial\" \
+     or \"blocks\" spreads over ranks";
+
 /// Checks the plan against the ranks the run is launched on: `run.ranks` must match, and
-/// only the spatial DSMC engine spreads over ranks.
+/// only the spatial DSMC engine and the homogeneous one's block scheme spread over ranks.
 pub fn check_ranks(plan: &Plan, size: usize) -> Result<()> {
     if let Some(wanted) = plan.description.run.ranks {
         if wanted != size {
@@ -105,13 +109,10 @@ pub fn check_ranks(plan: &Plan, size: usize) -> Result<()> {
             ));
         }
     }
-    if size > 1 && !matches!(plan.engine, crate::validate::EngineSpec::SpatialDsmc(_)) {
+    if size > 1 && !crate::validate::spreads_over_ranks(&plan.engine) {
         return Err(Error::input(
             "run.engine",
-            format!(
-                "launched on {size} ranks: only run.engine = \"dsmc\" with dsmc_scheme = \
-                 \"spatial\" spreads over ranks; run this engine in one process"
-            ),
+            format!("launched on {size} ranks: {SPREADING}; run this engine in one process"),
         ));
     }
     Ok(())

@@ -78,6 +78,15 @@ pub enum EngineSpec {
     SoftSphere(SoftSphereOptions, ViscoelasticMaterial),
 }
 
+/// Whether the engine spreads over ranks: the spatial DSMC, and the homogeneous one's
+/// block scheme (the exact scheme is one serial process).
+pub fn spreads_over_ranks(engine: &EngineSpec) -> bool {
+    matches!(
+        engine,
+        EngineSpec::SpatialDsmc(_) | EngineSpec::HomogeneousDsmc(Scheme::Blocks { .. })
+    )
+}
+
 /// A checked run: the description (normalized) and its typed reading.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plan {
@@ -157,10 +166,10 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         if !(1..=1_000_000).contains(&ranks) {
             return Err(Error::out_of_range("run.ranks", ranks, "1 <= ranks <= 1e6"));
         }
-        if ranks > 1 && !matches!(engine, EngineSpec::SpatialDsmc(_)) {
+        if ranks > 1 && !spreads_over_ranks(&engine) {
             return Err(Error::input(
                 "run.ranks",
-                "several ranks only for run.engine = \"dsmc\" with dsmc_scheme = \"spatial\"",
+                format!("several ranks: {}", crate::parallel::SPREADING),
             ));
         }
     }

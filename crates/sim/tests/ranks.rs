@@ -1,7 +1,7 @@
 //! A spatial DSMC run of the driver spread over ranks (threads of this process standing for
 //! MPI ranks, `sim::parallel::InProcess`) gives the single process's records bit for bit:
 //! time series, velocity histograms, modes and S(k), summary; its check-point continues on
-//! another number of ranks. Runs that cannot spread are refused naming the key. (The MPI
+//! another number of ranks. So does a homogeneous DSMC run of the block scheme. Runs that cannot spread are refused naming the key. (The MPI
 //! build is checked through mpirun in crates/cli/tests/mpi.rs.)
 
 use sim::parallel::{Communicator, InProcess, Local};
@@ -35,16 +35,45 @@ fn comm(c: InProcess) -> Arc<dyn Communicator> {
     Arc::new(c)
 }
 
+/// The homogeneous engine's block scheme (blocks of 150 in a mixture of 3000 particles: 20
+/// blocks), with velocity histograms.
+fn blocks(extra: &str) -> RunDescription {
+    homogeneous(&format!(
+        "dsmc_scheme = \"blocks\"\nblock_size = 150\n{extra}"
+    ))
+}
+
+/// The mixture of [`blocks`] in the homogeneous engine, its scheme from `scheme`.
+fn homogeneous(scheme: &str) -> RunDescription {
+    let text = format!(
+        "[system]\ndimension = 3\npacking_fraction = 0.1\nseed = 9\n\
+         particles = 3000\nspecies = [{{ diameter = 1.0, mass = 1.0, fraction = 0.6 }}, \
+         {{ diameter = 1.6, mass = 3.0, fraction = 0.4 }}]\n\
+         [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
+         [run]\nengine = \"dsmc\"\n{scheme}\
+         collisions_per_particle = 40\nsamples = 8\nhistogram_at = [0.0, 20.0]\n"
+    );
+    RunDescription::from_toml(&text, Path::new("blocks.toml")).unwrap()
+}
+
 #[test]
 fn a_run_on_1_2_4_ranks_records_the_same() {
-    let d = description("");
-    let mut single = Simulation::new_on(&d, Arc::new(Local)).unwrap();
+    assert_same_on_ranks(&description(""));
+}
+
+#[test]
+fn a_blocks_run_on_1_2_4_ranks_records_the_same() {
+    assert_same_on_ranks(&blocks(""));
+}
+
+fn assert_same_on_ranks(d: &RunDescription) {
+    let mut single = Simulation::new_on(d, Arc::new(Local)).unwrap();
     single.run(&mut (), None).unwrap();
     let want = records(&single);
     assert!(single.rank_reports().is_none());
     for ranks in [1, 2, 4] {
         let got = InProcess::run(ranks, |c| {
-            let mut s = Simulation::new_on(&d, comm(c)).unwrap();
+            let mut s = Simulation::new_on(d, comm(c)).unwrap();
             s.run(&mut (), None).unwrap();
             (records(&s), s.rank_reports())
         });
@@ -68,14 +97,18 @@ fn a_run_on_1_2_4_ranks_records_the_same() {
 /// one, and ends as the uninterrupted run.
 #[test]
 fn a_checkpoint_from_2_ranks_resumes_on_3_and_on_1() {
-    let d = description("");
+    assert_resumes(&description(""), "spatial");
+    assert_resumes(&blocks(""), "blocks");
+}
+
+fn assert_resumes(d: &RunDescription, name: &str) {
     let mut single = Simulation::new_on(&d, Arc::new(Local)).unwrap();
     single.run(&mut (), None).unwrap();
     let want = records(&single);
-    let dir = std::env::temp_dir().join(format!("haff-ranks-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("haff-ranks-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     InProcess::run(2, |c| {
-        let mut s = Simulation::new_on(&d, comm(c)).unwrap();
+        let mut s = Simulation::new_on(d, comm(c)).unwrap();
         s.set_checkpoints(&dir, Some(3));
         s.run(&mut (), Some(4)).unwrap();
     });
@@ -91,7 +124,8 @@ fn a_checkpoint_from_2_ranks_resumes_on_3_and_on_1() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// `run.ranks` must match the launch; only spatial DSMC spreads; no more ranks than planes.
+/// `run.ranks` must match the launch; only spatial DSMC and the block scheme spread; no
+/// more ranks than planes of cells or blocks.
 #[test]
 fn runs_that_cannot_spread_are_refused() {
     let message = |e: sim::Error| {
@@ -127,6 +161,24 @@ fn runs_that_cannot_spread_are_refused() {
     });
     assert!(
         errors[0].contains("run.ranks") && errors[0].contains("at most"),
+        "{}",
+        errors[0]
+    );
+    let few_blocks = homogeneous("dsmc_scheme = \"blocks\"\nblock_size = 1500\n");
+    let errors = InProcess::run(3, |c| {
+        message(Simulation::new_on(&few_blocks, comm(c)).err().unwrap())
+    });
+    assert!(
+        errors[0].contains("run.ranks") && errors[0].contains("at most the 2 blocks"),
+        "{}",
+        errors[0]
+    );
+    let exact = homogeneous("dsmc_scheme = \"exact\"\n");
+    let errors = InProcess::run(2, |c| {
+        message(Simulation::new_on(&exact, comm(c)).err().unwrap())
+    });
+    assert!(
+        errors[0].contains("run.engine") && errors[0].contains("\"blocks\""),
         "{}",
         errors[0]
     );

@@ -15,7 +15,7 @@
 //! process's, bit for bit.
 
 use super::kernel::Simulator;
-use crate::parallel::Communicator;
+use crate::parallel::{Communicator, RankReport};
 use std::time::Instant;
 
 /// Steps between re-balancings of the slabs (an all-reduce of one count per plane).
@@ -120,6 +120,50 @@ pub(crate) struct Traffic {
     pub step_seconds: f64,
     /// Seconds gathering the state for samples and check-points.
     pub gather_seconds: f64,
+}
+
+impl Traffic {
+    /// Every rank's report (collective): this rank holds `particles` and `groups` collision
+    /// groups (cells, blocks). None on one rank.
+    pub fn reports(
+        &self,
+        comm: &dyn Communicator,
+        particles: usize,
+        groups: u64,
+    ) -> Option<Vec<RankReport>> {
+        if comm.size() == 1 {
+            return None;
+        }
+        let mine = [
+            particles as f64,
+            groups as f64,
+            self.steps as f64,
+            self.migrants_sent as f64,
+            self.bytes_sent as f64,
+            self.bytes_received as f64,
+            self.step_seconds,
+            self.communication_seconds,
+            self.gather_seconds,
+        ];
+        let all = comm.all_gather(mine.to_vec());
+        Some(
+            all.iter()
+                .enumerate()
+                .map(|(rank, v)| RankReport {
+                    rank,
+                    particles: v[0] as usize,
+                    cells: v[1] as u64,
+                    steps: v[2] as u64,
+                    migrants_sent: v[3] as u64,
+                    bytes_sent: v[4] as u64,
+                    bytes_received: v[5] as u64,
+                    step_seconds: v[6],
+                    communication_seconds: v[7],
+                    gather_seconds: v[8],
+                })
+                .collect(),
+        )
+    }
 }
 
 /// f64 values per particle in messages: position, velocity, species, global place.

@@ -1,27 +1,27 @@
 //! The homogeneous DSMC engine: velocities only, exact serial or blocked parallel. The
 //! exact scheme runs the process with the speed-class majorants of [`classes`] (about 1.5
 //! candidates per collision instead of the kernel's 4); the blocks keep the kernel's single
-//! majorant, which is faster there (see [`block_step`]).
+//! majorant, which is faster there (see [`blocks`]). The block scheme spreads over ranks,
+//! each holding a run of whole blocks.
 
+mod blocks;
 mod classes;
 
+use super::domain::Traffic;
 use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
+use super::reduce;
 use super::species::Species;
-use super::{
-    check_input, frequency_estimate, mean_velocity, positive, HomogeneousSnapshot, Scheme,
-    StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
-};
-use crate::engine::Counters;
+use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
+use crate::engine::{Counters, VelocityStatistics};
 use crate::error::{Error, Result};
+use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
-use crate::system::{dot, System, Vector};
+use crate::system::{System, Vector};
 use crate::theory;
+use blocks::{run_blocks, Blocks};
 use classes::{class_width, Classes};
-use rayon::prelude::*;
 use restitution::Restitution;
-
-/// Particles per lane of the block re-mixing: a lane moves to another block as a whole.
-const LANE: usize = 16;
+use std::sync::Arc;
 
 /// The particle records, with a second buffer for the block re-mixing.
 enum Store<const D: usize> {
@@ -56,6 +56,42 @@ struct Core<const D: usize> {
     /// of the bound (the sort is then the identity on records saved sorted).
     classes: Option<Classes>,
     class: Vec<u8>,
+    /// The ranks the run is spread over ([`Local`]: this process alone; only the block
+    /// scheme spreads), the particles of all ranks, and this rank's communication.
+    comm: Arc<dyn Communicator>,
+    total: usize,
+    traffic: Traffic,
+}
+
+/// A record of the homogeneous engine as it travels between ranks: its velocity, then its
+/// species for mixtures (`VALUES` f64 values).
+pub(crate) trait HomogeneousRecord<const D: usize>: Record<D> {
+    const VALUES: usize = D + Self::MIXED as usize;
+    fn from_parts(velocity: Vector<D>, species: u32) -> Self;
+
+    fn encode(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(self.velocity());
+        if Self::MIXED {
+            out.push(self.species() as f64);
+        }
+    }
+
+    fn decode(row: &[f64]) -> Self {
+        let species = if Self::MIXED { row[D] as u32 } else { 0 };
+        Self::from_parts(std::array::from_fn(|k| row[k]), species)
+    }
+}
+
+impl<const D: usize> HomogeneousRecord<D> for Vector<D> {
+    fn from_parts(velocity: Vector<D>, _species: u32) -> Self {
+        velocity
+    }
+}
+
+impl<const D: usize> HomogeneousRecord<D> for Tagged<D> {
+    fn from_parts(velocity: Vector<D>, species: u32) -> Self {
+        Tagged { velocity, species }
+    }
 }
 
 /// DSMC of a spatially homogeneous granular gas (see the [module](super) documentation).
@@ -81,8 +117,48 @@ impl<const D: usize> HomogeneousDsmc<D> {
         seed: u64,
         scheme: Scheme,
     ) -> Result<Self> {
+        Self::distributed(system, phi, law, seed, scheme, Arc::new(Local))
+    }
+
+    /// The engine of [`HomogeneousDsmc::new`] spread over the ranks of `comm` (every rank
+    /// calls this with the same arguments): the block scheme only, each rank holding a run
+    /// of whole blocks. Its run is the single process's, bit for bit, on any number of
+    /// ranks. Fails (`ranks`) for the exact scheme on several ranks and for more ranks than
+    /// blocks.
+    pub fn distributed(
+        system: System<D>,
+        phi: f64,
+        law: Box<dyn Restitution>,
+        seed: u64,
+        scheme: Scheme,
+        comm: Arc<dyn Communicator>,
+    ) -> Result<Self> {
         check_input(&system, phi)?;
         check_scheme(&scheme)?;
+        let n = system.velocities.len();
+        let ranks = comm.size();
+        let share = match scheme {
+            Scheme::Blocks { block_size, .. } => {
+                let layout = Blocks::new(n, block_size);
+                if ranks > layout.count {
+                    return Err(Error::out_of_range(
+                        "ranks",
+                        ranks,
+                        format!("at most the {} blocks of the gas", layout.count),
+                    ));
+                }
+                let share = layout.share(comm.rank(), ranks);
+                Some((layout.start(share.first), layout.start(share.end)))
+            }
+            Scheme::Exact if ranks > 1 => {
+                return Err(Error::out_of_range(
+                    "ranks",
+                    ranks,
+                    "1: the exact scheme is one serial process (the block scheme spreads)",
+                ))
+            }
+            Scheme::Exact => None,
+        };
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
         let reference = mean_velocity(&system.velocities, &system.masses);
         let n = system.velocities.len();
@@ -102,8 +178,11 @@ impl<const D: usize> HomogeneousDsmc<D> {
             temperature: 0.0,
             classes: None,
             class: Vec::new(),
+            comm,
+            total: n,
+            traffic: Traffic::default(),
         };
-        let store = make_store(&core.species, system.velocities, &index);
+        let mut store = make_store(&core.species, system.velocities, &index);
         let (bound, moments) = match &store {
             Store::Uniform(now, _) => (
                 kernel::speed_bound(now, &reference),
@@ -116,6 +195,13 @@ impl<const D: usize> HomogeneousDsmc<D> {
         };
         core.speed_bound = bound;
         core.temperature = moments.spread / (n * D) as f64;
+        if let (Some((first, end)), true) = (share, ranks > 1) {
+            // Every rank built the whole gas (the same numbers); keep this rank's blocks.
+            match &mut store {
+                Store::Uniform(now, _) => keep(now, first, end),
+                Store::Mixed(now, _) => keep(now, first, end),
+            }
+        }
         Ok(HomogeneousDsmc {
             core,
             store,
@@ -125,6 +211,16 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     /// Continues the run of `snapshot` bit for bit with the law it used.
     pub fn restore(snapshot: HomogeneousSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        Self::restore_distributed(snapshot, law, Arc::new(Local))
+    }
+
+    /// [`HomogeneousDsmc::restore`] over the ranks of `comm` (every rank reads the same
+    /// snapshot, from any number of ranks, and keeps its blocks).
+    pub fn restore_distributed(
+        snapshot: HomogeneousSnapshot<D>,
+        law: Box<dyn Restitution>,
+        comm: Arc<dyn Communicator>,
+    ) -> Result<Self> {
         if matches!(snapshot.options, Scheme::Blocks { .. }) {
             snapshot.check_step_temperature()?;
         }
@@ -142,7 +238,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             draws,
             temperature,
         } = snapshot;
-        let mut engine = Self::new(system, packing_fraction, law, seed, options)?;
+        let mut engine = Self::distributed(system, packing_fraction, law, seed, options, comm)?;
         // The exact scheme's majorant (finite: `Snapshot::check`) must bound every speed (it
         // only ever grows to the largest one seen): a smaller one would accept with
         // probabilities above 1.
@@ -205,11 +301,14 @@ impl<const D: usize> HomogeneousDsmc<D> {
         self.core.steps
     }
 
+    /// The particles of all ranks.
     pub fn len(&self) -> usize {
-        match &self.store {
-            Store::Uniform(now, _) => now.len(),
-            Store::Mixed(now, _) => now.len(),
-        }
+        self.core.total
+    }
+
+    /// The ranks the engine is spread over.
+    pub fn ranks(&self) -> usize {
+        self.core.comm.size()
     }
 
     pub fn is_empty(&self) -> bool {
@@ -235,31 +334,58 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     /// The current state: velocities, radii and masses in the engine's current order (the
     /// block scheme permutes particles every step), positions all zero, `length` the side of
-    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`.
+    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`. On several ranks,
+    /// collective: the blocks of all ranks in order.
     pub fn system(&mut self) -> &System<D> {
-        let species = &self.core.species;
+        let core = &mut self.core;
         let s = &mut self.system;
-        s.length = self.core.volume.powf(1.0 / D as f64);
+        s.length = core.volume.powf(1.0 / D as f64);
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();
         match &self.store {
-            Store::Uniform(now, _) => fill(s, now, species),
-            Store::Mixed(now, _) => fill(s, now, species),
+            Store::Uniform(now, _) => fill(s, &gathered(now, core), &core.species),
+            Store::Mixed(now, _) => fill(s, &gathered(now, core), &core.species),
         }
         s.positions.clear();
         s.positions.resize(s.velocities.len(), [0.0; D]);
         &self.system
     }
 
-    /// None: the homogeneous engine runs in one process.
-    pub fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
-        None
+    /// Every rank's particles, blocks and communication so far (collective); None on one
+    /// rank.
+    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
+        let core = &self.core;
+        let blocks = match core.scheme {
+            Scheme::Blocks { block_size, .. } => {
+                let share =
+                    Blocks::new(core.total, block_size).share(core.comm.rank(), core.comm.size());
+                share.end - share.first
+            }
+            Scheme::Exact => 0,
+        };
+        let particles = match &self.store {
+            Store::Uniform(now, _) => now.len(),
+            Store::Mixed(now, _) => now.len(),
+        };
+        core.traffic
+            .reports(core.comm.as_ref(), particles, blocks as u64)
     }
 
-    /// None: computed from the system.
-    pub fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
-        None
+    /// The temperature and Sonine a2 of all particles, and the volume, from exact sums over
+    /// the particles of all ranks (collective; the same bits on any number of ranks).
+    pub fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
+        let core = &mut self.core;
+        let (species, total, volume) = (&core.species, core.total, core.volume);
+        let (comm, traffic) = (core.comm.as_ref(), &mut core.traffic);
+        Some(match &self.store {
+            Store::Uniform(now, _) => {
+                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+            }
+            Store::Mixed(now, _) => {
+                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+            }
+        })
     }
 
     /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
@@ -349,6 +475,34 @@ fn make_store<const D: usize>(
     }
 }
 
+/// Keeps the records `first..end` of `records`.
+fn keep<R>(records: &mut Vec<R>, first: usize, end: usize) {
+    records.truncate(end);
+    records.drain(..first);
+    records.shrink_to_fit();
+}
+
+/// The records of all ranks in order (collective; this rank's own on one rank).
+fn gathered<'a, const D: usize, R: HomogeneousRecord<D>>(
+    records: &'a [R],
+    core: &mut Core<D>,
+) -> std::borrow::Cow<'a, [R]> {
+    if core.comm.size() == 1 {
+        return std::borrow::Cow::Borrowed(records);
+    }
+    let clock = std::time::Instant::now();
+    let mut mine = Vec::with_capacity(R::VALUES * records.len());
+    records.iter().for_each(|r| r.encode(&mut mine));
+    let all = core.comm.all_gather(mine);
+    let gathered = all
+        .iter()
+        .flat_map(|v| v.chunks_exact(R::VALUES))
+        .map(R::decode)
+        .collect();
+    core.traffic.gather_seconds += clock.elapsed().as_secs_f64();
+    std::borrow::Cow::Owned(gathered)
+}
+
 fn fill<const D: usize, R: Record<D>>(s: &mut System<D>, records: &[R], species: &Species) {
     for r in records {
         s.velocities.push(*r.velocity());
@@ -357,7 +511,7 @@ fn fill<const D: usize, R: Record<D>>(s: &mut System<D>, records: &[R], species:
     }
 }
 
-fn run_records<const D: usize, R: Record<D>>(
+fn run_records<const D: usize, R: HomogeneousRecord<D>>(
     core: &mut Core<D>,
     now: &mut Vec<R>,
     spare: &mut Vec<R>,
@@ -433,232 +587,4 @@ fn run_exact<const D: usize, R: Record<D>>(
             core.classes = None;
         }
     }
-}
-
-/// How N particles split into blocks: `count` blocks, the first `longer` of them with
-/// `size + 1` particles, the rest with `size`.
-#[derive(Debug, Clone, Copy)]
-struct Blocks {
-    count: usize,
-    size: usize,
-    longer: usize,
-}
-
-impl Blocks {
-    fn new(n: usize, block_size: usize) -> Self {
-        let count = ((n as f64 / block_size as f64).round() as usize).clamp(1, n / 2);
-        Blocks {
-            count,
-            size: n / count,
-            longer: n % count,
-        }
-    }
-
-    fn start(&self, b: usize) -> usize {
-        b * self.size + b.min(self.longer)
-    }
-
-    fn len(&self, b: usize) -> usize {
-        self.size + (b < self.longer) as usize
-    }
-
-    /// Whole lanes every block has.
-    fn lanes(&self) -> usize {
-        self.size / LANE
-    }
-
-    fn split<'a, T>(&self, mut data: &'a mut [T]) -> Vec<&'a mut [T]> {
-        let mut parts = Vec::with_capacity(self.count);
-        for b in 0..self.count {
-            let (head, tail) = data.split_at_mut(self.len(b));
-            parts.push(head);
-            data = tail;
-        }
-        parts
-    }
-}
-
-/// The block scheme: steps until the time reaches `end` or the collisions `target`.
-#[allow(clippy::too_many_arguments)]
-fn run_blocks<const D: usize, R: Record<D>>(
-    core: &mut Core<D>,
-    now: &mut Vec<R>,
-    spare: &mut Vec<R>,
-    block_size: usize,
-    step: StepSize,
-    end: f64,
-    target: u64,
-    pause: u64,
-) {
-    let n = now.len();
-    let layout = Blocks::new(n, block_size);
-    while core.tally.collisions < target.min(pause) && core.time < end {
-        let omega =
-            frequency_estimate::<D>(&core.species, n as f64 - 1.0, core.volume, core.temperature);
-        if !positive(omega) {
-            // At rest: no collision ever.
-            if end.is_finite() {
-                core.time = end;
-            }
-            return;
-        }
-        let mut dt = match step {
-            StepSize::Auto => DEFAULT_BLOCK_COLLISIONS_PER_STEP / omega,
-            StepSize::CollisionsPerParticle(x) => x / omega,
-            StepSize::Fixed(dt) => dt,
-        };
-        if target != u64::MAX {
-            // Expected collisions in dt: N omega dt / 2.
-            let remaining = (target - core.tally.collisions) as f64;
-            dt = dt.min(2.0 * remaining / (n as f64 * omega));
-        }
-        let last = dt >= end - core.time;
-        if last {
-            dt = end - core.time;
-        }
-        let (tally, mean, spread) = block_step(core, now, spare, &layout, dt);
-        std::mem::swap(now, spare);
-        core.tally.add(&tally);
-        core.reference = mean;
-        core.temperature = spread / (n * D) as f64;
-        core.steps += 1;
-        core.time = if last { end } else { core.time + dt };
-    }
-}
-
-/// One step: every destination block gathers its particles (lane c from block
-/// b + offset_c) and their speed bound about the reference velocity (the gas's mean at the
-/// end of the last step), runs the exact process for `dt` with the kernel's single
-/// majorant (speed classes halve the candidates here but cost twice the time: the blocks are
-/// small and re-sorted every step; docs/performance.md), shuffles itself and sums its
-/// mass, momentum and m |v - reference|^2. Returns the tally, the mean velocity and the
-/// spread (sum of m |v - <v>|^2) of the gas.
-fn block_step<const D: usize, R: Record<D>>(
-    core: &Core<D>,
-    now: &[R],
-    spare: &mut Vec<R>,
-    layout: &Blocks,
-    dt: f64,
-) -> (Counters, Vector<D>, f64) {
-    let n = now.len();
-    if spare.len() != n {
-        spare.clear();
-        spare.extend_from_slice(now);
-    }
-    let mut mixing = Stream::new(core.seed, Purpose::Mixing, core.steps, 0);
-    let offsets: Vec<usize> = (0..layout.lanes())
-        .map(|_| mixing.below(layout.count as u64) as usize)
-        .collect();
-    let collider = Collider {
-        law: core.law.as_ref(),
-        species: &core.species,
-    };
-    let (seed, steps, species) = (core.seed, core.steps, &core.species);
-    let reference = core.reference;
-    let base_rate =
-        theory::cross_section_factor::<D>() * core.species.max_weight * (n as f64 - 1.0)
-            / core.volume;
-    let results: Vec<(Counters, Moments<D>)> = layout
-        .split(spare)
-        .into_par_iter()
-        .enumerate()
-        .map(|(b, block)| {
-            let mut bound = gather(now, layout, &offsets, b, block, &reference).sqrt();
-            let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
-            let mut tally = Counters::default();
-            // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
-            let pair_rate = base_rate / (block.len() as f64 - 1.0);
-            collider.run_for(
-                block,
-                &reference,
-                pair_rate,
-                (0.0, dt),
-                &mut bound,
-                &mut rng,
-                &mut tally,
-            );
-            kernel::shuffle(block, &mut rng);
-            (tally, kernel::sums_about(block, species, &reference))
-        })
-        .collect();
-    let mut tally = Counters::default();
-    for (t, _) in &results {
-        tally.add(t);
-    }
-    let sums: Vec<Moments<D>> = results.iter().map(|r| r.1).collect();
-    let (mean, spread) = kernel::pooled_about(&sums, &reference);
-    (tally, mean, spread)
-}
-
-/// Lanes ahead of the one being copied whose source [`gather`] asks the processor for.
-const PREFETCH_LANES: usize = 4;
-
-/// Asks the processor to bring every cache line of `records` into cache (a hint: results
-/// never depend on it).
-#[inline(always)]
-fn prefetch<R>(records: &[R]) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let base = records.as_ptr().cast::<i8>();
-        let bytes = std::mem::size_of_val(records);
-        let mut offset = 0;
-        while offset < bytes {
-            // SAFETY: prefetching is a hint that never faults; every address lies in
-            // `records`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(offset)) };
-            offset += 64;
-        }
-        if bytes > 0 {
-            // SAFETY: as above; the last byte of `records`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(bytes - 1)) };
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = records;
-}
-
-/// Copies a lane as a fixed-size array (inline moves rather than a call to memmove).
-#[inline(always)]
-fn copy_lane<R: Copy>(from: &[R], to: &mut [R]) {
-    let from: &[R; LANE] = from.try_into().expect("a lane");
-    let to: &mut [R; LANE] = to.try_into().expect("a lane");
-    *to = *from;
-}
-
-/// Fills destination block `b`: lane c (particles c LANE .. (c+1) LANE) from block
-/// (b + offsets[c]) mod count, the rest of the block (fewer than LANE + 1) from block b.
-/// Returns the largest |v - reference|^2 in the block.
-fn gather<const D: usize, R: Record<D>>(
-    now: &[R],
-    layout: &Blocks,
-    offsets: &[usize],
-    b: usize,
-    block: &mut [R],
-    reference: &Vector<D>,
-) -> f64 {
-    let mut largest: f64 = 0.0;
-    let mut note = |lane: &[R]| {
-        for r in lane {
-            let d: Vector<D> = std::array::from_fn(|k| r.velocity()[k] - reference[k]);
-            largest = largest.max(dot(&d, &d));
-        }
-    };
-    let source_of = |c: usize| layout.start((b + offsets[c]) % layout.count) + c * LANE;
-    for c in 0..offsets.len() {
-        // The lanes come from all over the records: ask for one a few lanes ahead.
-        if c + PREFETCH_LANES < offsets.len() {
-            let ahead = source_of(c + PREFETCH_LANES);
-            prefetch(&now[ahead..ahead + LANE]);
-        }
-        let source = source_of(c);
-        let lane = &mut block[c * LANE..(c + 1) * LANE];
-        copy_lane(&now[source..source + LANE], lane);
-        note(lane);
-    }
-    let done = offsets.len() * LANE;
-    let (own, len) = (layout.start(b), block.len());
-    block[done..].copy_from_slice(&now[own + done..own + len]);
-    note(&block[done..]);
-    largest
 }

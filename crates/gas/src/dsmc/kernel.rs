@@ -416,20 +416,6 @@ pub(crate) fn sums_about<const D: usize, R: Record<D>>(
     sums
 }
 
-/// The mean velocity u of the union of `parts` (each from [`sums_about`] with the same
-/// `center`) and its spread about u: sum of m |v - center|^2 - M |u - center|^2.
-pub(crate) fn pooled_about<const D: usize>(
-    parts: &[Moments<D>],
-    center: &Vector<D>,
-) -> (Vector<D>, f64) {
-    let mass: f64 = parts.iter().map(|p| p.mass).sum();
-    let momentum: Vector<D> = std::array::from_fn(|k| parts.iter().map(|p| p.momentum[k]).sum());
-    let mean = scaled(&momentum, mass);
-    let d: Vector<D> = std::array::from_fn(|k| mean[k] - center[k]);
-    let about_center: f64 = parts.iter().map(|p| p.spread).sum();
-    (mean, about_center - mass * dot(&d, &d))
-}
-
 /// x / mass (zero for no mass).
 pub(crate) fn scaled<const D: usize>(x: &Vector<D>, mass: f64) -> Vector<D> {
     if mass > 0.0 {

@@ -15,40 +15,9 @@ impl<const D: usize> SpatialDsmc<D> {
     /// Every rank's particles, cells and communication so far (collective: every rank
     /// calls it); None on one rank.
     pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
-        if self.comm.size() == 1 {
-            return None;
-        }
-        let t = &self.traffic;
         let (_, cells) = self.slabs.keys(self.comm.rank());
-        let mine = [
-            self.simulators.len() as f64,
-            cells as f64,
-            t.steps as f64,
-            t.migrants_sent as f64,
-            t.bytes_sent as f64,
-            t.bytes_received as f64,
-            t.step_seconds,
-            t.communication_seconds,
-            t.gather_seconds,
-        ];
-        let all = self.comm.all_gather(mine.to_vec());
-        Some(
-            all.iter()
-                .enumerate()
-                .map(|(rank, v)| RankReport {
-                    rank,
-                    particles: v[0] as usize,
-                    cells: v[1] as u64,
-                    steps: v[2] as u64,
-                    migrants_sent: v[3] as u64,
-                    bytes_sent: v[4] as u64,
-                    bytes_received: v[5] as u64,
-                    step_seconds: v[6],
-                    communication_seconds: v[7],
-                    gather_seconds: v[8],
-                })
-                .collect(),
-        )
+        self.traffic
+            .reports(self.comm.as_ref(), self.simulators.len(), cells)
     }
 
     /// The particles of all ranks in the global order (collective).
