@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Weak and strong scaling of spatial DSMC from 1 to 2 MPI ranks, interleaved.
+"""Weak and strong scaling of DSMC (spatial, or the homogeneous block scheme) from 1 to 2 MPI ranks, interleaved.
 
 Runs `mpirun -n R haff run` (the binary built with `--features mpi`, one rayon thread per
 rank, each rank bound to a core) on a freely cooling 3D gas, in rounds that take every
@@ -9,6 +9,7 @@ run without building it) and, for 2 ranks, the per-rank communication (summary.j
 
     cargo build --release --features mpi --target-dir target/mpi -p haff-cli
     bench/mpi/scaling.py --repeats 5
+    bench/mpi/scaling.py --scheme blocks --repeats 5
 
 Weak scaling: N per rank fixed (efficiency t(1 rank, n) / t(2 ranks, 2n)); strong: N
 fixed (efficiency t(1 rank, N) / (2 t(2 ranks, N))).
@@ -34,17 +35,17 @@ law = "constant"
 restitution = 0.9
 [run]
 engine = "dsmc"
-dsmc_scheme = "spatial"
+dsmc_scheme = "{scheme}"
 collisions_per_particle = {collisions}
 samples = 2
 spacing = "linear"
 """
 
 
-def run(binary, ranks, threads, particles, collisions, scratch):
+def run(binary, scheme, ranks, threads, particles, collisions, scratch):
     """One run; returns its summary.json."""
     file = scratch / f"gas_{particles}.toml"
-    file.write_text(GAS.format(particles=particles, collisions=collisions))
+    file.write_text(GAS.format(particles=particles, collisions=collisions, scheme=scheme))
     out = scratch / f"out_{ranks}_{threads}_{particles}"
     env = dict(
         os.environ,
@@ -69,6 +70,8 @@ def main():
     parser.add_argument("--collisions", type=float, default=20.0,
                         help="collisions per particle of every run")
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--scheme", choices=["spatial", "blocks"], default="spatial",
+                        help="dsmc_scheme: spatial (slabs of cells) or blocks (homogeneous)")
     args = parser.parse_args()
     n, half = args.particles, args.particles // 2
     configs = {
@@ -82,13 +85,14 @@ def main():
     with tempfile.TemporaryDirectory() as scratch:
         for _ in range(args.repeats):
             for name, (ranks, threads, particles) in configs.items():
-                summary = run(args.binary, ranks, threads, particles, args.collisions,
-                              Path(scratch))
+                summary = run(args.binary, args.scheme, ranks, threads, particles,
+                              args.collisions, Path(scratch))
                 times[name].append(summary["run_seconds"])
                 if ranks == 2:
                     parallel.append(summary["parallel"])
     median = {name: statistics.median(t) for name, t in times.items()}
-    print(f"N = {n}, {args.collisions} collisions per particle, medians of {args.repeats}")
+    print(f"{args.scheme}: N = {n}, {args.collisions} collisions per particle, "
+          f"medians of {args.repeats}")
     for name, t in median.items():
         spread = f"{min(times[name]):.3f} .. {max(times[name]):.3f}"
         print(f"  {name:24s} {t:8.3f} s  ({spread})")
@@ -107,7 +111,7 @@ def main():
           f"{p['communication_seconds_per_step']:.3e} s communicating "
           f"({100 * p['communication_fraction']:.1f} %), load imbalance {p['load_imbalance']:.4f}")
     for r in p["per_rank"]:
-        print(f"  rank {r['rank']}: {r['particles']} particles, {r['cells']} cells, "
+        print(f"  rank {r['rank']}: {r['particles']} particles, {r['cells']} {'blocks' if args.scheme == 'blocks' else 'cells'}, "
               f"{r['migrants_sent'] / steps:.0f} migrants and {r['bytes_sent'] / steps:.0f} "
               f"bytes sent per step, {r['communication_seconds'] / steps:.3e} s of "
               f"{r['step_seconds'] / steps:.3e} s per step communicating")

@@ -1,5 +1,6 @@
-//! `mpirun -n R haff run FILE`: the spatial DSMC run on 1, 2 and 4 MPI ranks writes the
-//! same files, byte for byte, as the run in one process (4 ranks oversubscribe a 2-core
+//! `mpirun -n R haff run FILE`: the spatial DSMC run, and the homogeneous one of the block
+//! scheme, on 1, 2 and 4 MPI ranks write the same files, byte for byte, as the run in one
+//! process (4 ranks oversubscribe a 2-core
 //! machine, which only slows them). Built with the feature `mpi` (`scripts/test` builds and
 //! runs it: `cargo test --release -p haff-cli --features mpi --test mpi`); without it, the
 //! binary refuses a launch on several ranks and a run file asking for ranks.
@@ -13,6 +14,15 @@ const GAS: &str = "[system]\ndimension = 3\nparticles = 6000\npacking_fraction =
                    [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
                    [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n\
                    collisions_per_particle = 30\nsamples = 10\nhistogram_at = [0.0, 30.0]\n";
+
+/// A homogeneous mixture in blocks of 200 (20 blocks).
+#[cfg(feature = "mpi")]
+const BLOCKS: &str = "[system]\ndimension = 3\nparticles = 4000\npacking_fraction = 0.1\n\
+                      seed = 5\nspecies = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                      { diameter = 1.4, mass = 2.0, fraction = 0.5 }]\n\
+                      [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
+                      [run]\nengine = \"dsmc\"\ndsmc_scheme = \"blocks\"\nblock_size = 200\n\
+                      collisions_per_particle = 30\nsamples = 10\nhistogram_at = [0.0, 30.0]\n";
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("haff-mpi-{name}-{}", std::process::id()));
@@ -55,13 +65,13 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A scratch directory with the run file of [`GAS`] and its run in one process (in
+/// A scratch directory with the run file `gas` and its run in one process (in
 /// `single`): (directory, file, single).
 #[cfg(feature = "mpi")]
-fn with_single_run(name: &str) -> (PathBuf, PathBuf, PathBuf) {
+fn with_single_run(name: &str, gas: &str) -> (PathBuf, PathBuf, PathBuf) {
     let dir = scratch(name);
     let file = dir.join("gas.toml");
-    std::fs::write(&file, GAS).unwrap();
+    std::fs::write(&file, gas).unwrap();
     let single = dir.join("single");
     let o = run(0, &file, &single);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -71,7 +81,18 @@ fn with_single_run(name: &str) -> (PathBuf, PathBuf, PathBuf) {
 #[cfg(feature = "mpi")]
 #[test]
 fn one_two_and_four_ranks_write_the_same_files() {
-    let (dir, file, single) = with_single_run("same");
+    assert_same_files("same", GAS, 6000);
+}
+
+#[cfg(feature = "mpi")]
+#[test]
+fn blocks_on_one_two_and_four_ranks_write_the_same_files() {
+    assert_same_files("blocks", BLOCKS, 4000);
+}
+
+#[cfg(feature = "mpi")]
+fn assert_same_files(name: &str, gas: &str, particles: u64) {
+    let (dir, file, single) = with_single_run(name, gas);
     let files = ["timeseries.csv", "velocity_histograms.csv"];
     for ranks in [1, 2, 4] {
         let out = dir.join(format!("ranks{ranks}"));
@@ -90,13 +111,13 @@ fn one_two_and_four_ranks_write_the_same_files() {
         if ranks > 1 {
             let p = &summary["parallel"];
             assert_eq!(p["ranks"], ranks);
-            let particles: u64 = p["per_rank"]
+            let total: u64 = p["per_rank"]
                 .as_array()
                 .unwrap()
                 .iter()
                 .map(|r| r["particles"].as_u64().unwrap())
                 .sum();
-            assert_eq!(particles, 6000);
+            assert_eq!(total, particles);
             assert!(
                 stderr(&o).contains(&format!("{ranks} ranks")),
                 "{}",
@@ -114,7 +135,7 @@ fn one_two_and_four_ranks_write_the_same_files() {
 #[cfg(feature = "mpi")]
 #[test]
 fn a_checkpoint_from_4_ranks_resumes_on_2() {
-    let (dir, file, single) = with_single_run("resume");
+    let (dir, file, single) = with_single_run("resume", GAS);
     let out = dir.join("cut");
     let o = launch(
         4,
