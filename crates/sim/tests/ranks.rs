@@ -102,7 +102,7 @@ fn a_checkpoint_from_2_ranks_resumes_on_3_and_on_1() {
 }
 
 fn assert_resumes(d: &RunDescription, name: &str) {
-    let mut single = Simulation::new_on(&d, Arc::new(Local)).unwrap();
+    let mut single = Simulation::new_on(d, Arc::new(Local)).unwrap();
     single.run(&mut (), None).unwrap();
     let want = records(&single);
     let dir = std::env::temp_dir().join(format!("haff-ranks-{name}-{}", std::process::id()));
