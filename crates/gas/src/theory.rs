@@ -23,9 +23,11 @@
 //! 57), so the cooling per collision by about (1 + a2/4).
 
 pub mod hydrodynamics;
+pub mod mixture;
 pub mod sonine;
 
 pub use hydrodynamics::{dilute_elastic_viscosity, long_wavelength_structure_factor, HcsTransport};
+pub use mixture::{MixtureHcs, MixtureTheory};
 pub use sonine::{second_sonine, SonineHierarchy};
 use std::f64::consts::PI;
 
