@@ -158,6 +158,11 @@ pub struct Snapshot<const D: usize, O> {
     /// [`Scheme::Exact`], the temperature at the last recompute of the speed bound, which
     /// sets the width of the speed classes.
     pub temperature: f64,
+    /// Collisions suffered by the particles of each species (a collision counts for both
+    /// of its particles), in the engine's species order (that of its `species_collisions`); empty
+    /// for one species (and in check-points written before it was counted).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub species_collisions: Vec<u64>,
 }
 
 impl<const D: usize, O> Snapshot<D, O> {
@@ -166,6 +171,14 @@ impl<const D: usize, O> Snapshot<D, O> {
     /// ([`System::check`], positions in the box if `in_box`). The engine's constructor
     /// checks the rest (packing fraction, options, radii and masses).
     pub fn check(&self, in_box: bool) -> Result<()> {
+        let species = self.system.radii.len().min(MAX_SPECIES);
+        if self.species_collisions.len() > species {
+            return Err(Error::out_of_range(
+                "species_collisions",
+                self.species_collisions.len(),
+                "one count per species",
+            ));
+        }
         for (name, x) in [
             ("time", self.time),
             ("temperature", self.temperature),
@@ -394,6 +407,9 @@ macro_rules! dsmc_engine {
             }
             fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
                 $engine::velocity_statistics(self)
+            }
+            fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
+                $engine::species_collisions(self)
             }
         }
 

@@ -48,6 +48,15 @@ pub struct VelocityStatistics {
     pub volume: f64,
 }
 
+/// The collisions suffered by the particles of one species (told by its radius and mass),
+/// a collision counting once for each of its two particles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpeciesCollisions {
+    pub radius: f64,
+    pub mass: f64,
+    pub collisions: u64,
+}
+
 /// An engine over N particles in D dimensions.
 pub trait Engine<const D: usize> {
     /// Runs until the time reaches `t` (no effect if it already has).
@@ -100,6 +109,13 @@ pub trait Engine<const D: usize> {
     /// Collisions of each particle modulo 2^32, in the order of [`Engine::system`], if the
     /// engine counts them per particle (the event-driven engine does).
     fn collision_counts(&self) -> Option<Vec<u32>> {
+        None
+    }
+
+    /// The collisions of each species' particles so far, if the engine counts them by
+    /// species (DSMC; the event-driven engine counts per particle instead:
+    /// [`Engine::collision_counts`]).
+    fn species_collisions(&self) -> Option<Vec<SpeciesCollisions>> {
         None
     }
 

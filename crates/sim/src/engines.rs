@@ -33,6 +33,9 @@ pub(crate) struct Records {
     /// The observers of `[output]` (absent in check-points of runs without them).
     #[serde(default)]
     pub space: crate::space::SpaceRecords,
+    /// The per-species series of a mixture (`system.species`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub species: Option<crate::species::SpeciesSeries>,
 }
 
 /// [`Records`], borrowed for writing.
@@ -43,6 +46,8 @@ pub(crate) struct RecordsRef<'a> {
     pub timeseries: &'a TimeSeries,
     pub histograms: &'a VelocityHistograms,
     pub space: &'a crate::space::SpaceRecords,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub species: Option<&'a crate::species::SpeciesSeries>,
 }
 
 /// An engine the driver runs: the engine interface and a check-point writer. Engines are

@@ -2,16 +2,34 @@
 
 use crate::error::Result;
 use crate::observer::Sample;
+use crate::species::SpeciesSample;
 use crate::validate::{LawSpec, Plan};
 use gas::system::ball_volume;
 use gas::theory::{collision_frequency, haff_temperature, haff_time, van_noije_ernst_a2};
 
-/// `temperature.png`: T(t) and, for a monodisperse gas with a constant eps < 1, Haff's law
+/// `temperature.png`: T(t) (for a mixture, each species' T_i(t) too) and, for a monodisperse gas with a constant eps < 1, Haff's law
 /// T0 / (1 + t/tau)^2 with the Enskog collision frequency at T0 and (2D, 3D) the cooling
 /// rate of the homogeneous cooling state, (1 + 3 a2/16) times the Maxwellian one (Haff 1983;
 /// Brilliantov & Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; see [`gas::theory`]).
-pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> Result<()> {
+pub fn temperature(
+    path: &std::path::Path,
+    plan: &Plan,
+    samples: &[Sample],
+    species: Option<&[SpeciesSample]>,
+) -> Result<()> {
     let points: Vec<(f64, f64)> = samples.iter().map(|s| (s.time, s.temperature)).collect();
+    let list = plan.description.system.species.as_deref().unwrap_or(&[]);
+    let lines: Vec<(String, Vec<(f64, f64)>)> = list
+        .iter()
+        .enumerate()
+        .map(|(k, x)| {
+            let rows = species.unwrap_or(&[]).iter().filter(|r| r.species == k);
+            (
+                format!("species {k} (d = {}, m = {})", x.diameter, x.mass),
+                rows.map(|r| (r.time, r.temperature)).collect(),
+            )
+        })
+        .collect();
     let s = &plan.description.system;
     let tau = match (&plan.law, &s.species, samples.first()) {
         (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 => {
@@ -46,10 +64,11 @@ pub fn temperature(path: &std::path::Path, plan: &Plan, samples: &[Sample]) -> R
             crate::plot::temperature(
                 path,
                 &points,
+                &lines,
                 Some(("Haff's law (Enskog rate, HCS a2)", &haff)),
             )
         }
-        None => crate::plot::temperature(path, &points, None),
+        None => crate::plot::temperature(path, &points, &lines, None),
     }
 }
 

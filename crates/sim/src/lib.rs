@@ -36,6 +36,7 @@ pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;
 pub mod space;
+pub mod species;
 pub mod validate;
 pub mod vtk;
 

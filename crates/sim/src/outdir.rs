@@ -18,8 +18,9 @@ pub const MANIFEST: &str = "haff-run.json";
 
 /// The files a haff run may write into its directory (besides `ed_mc_<law>.csv` of
 /// `haff rods chain` and the `.partial` files of interrupted writes).
-const OUTPUTS: [&str; 7] = [
+const OUTPUTS: [&str; 8] = [
     "timeseries.csv",
+    "species.csv",
     "velocity_histograms.csv",
     "temperature.png",
     "cooling.png",

@@ -467,23 +467,40 @@ pub fn lines(path: &Path, axes: Axes, series: &[(String, Vec<(f64, f64)>)]) -> R
 pub fn temperature(
     path: &Path,
     samples: &[(f64, f64)],
+    species: &[(String, Vec<(f64, f64)>)],
     reference: Option<(&str, &dyn Fn(f64) -> f64)>,
 ) -> Result<()> {
-    let points: Vec<(f64, f64)> = samples
-        .iter()
-        .copied()
-        .filter(|(t, y)| *t > 0.0 && *y > 0.0)
-        .collect();
+    let positive = |points: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .copied()
+            .filter(|(t, y)| *t > 0.0 && *y > 0.0)
+            .collect()
+    };
+    let points = positive(samples);
     let mut figure = Figure::new("granular temperature", "time t", "temperature T").log(true, true);
-    if let (Some((name, f)), Some(first), Some(last)) = (reference, points.first(), points.last()) {
-        let (t0, t1) = (first.0, last.0);
-        let curve = (0..200)
-            .map(|k| t0 * (t1 / t0).powf(k as f64 / 199.0))
-            .map(|t| (t, f(t)))
-            .collect();
-        figure = figure.line("simulation", points).theory(name, curve);
+    let curve = match (reference, points.first(), points.last()) {
+        (Some((name, f)), Some(first), Some(last)) => {
+            let (t0, t1) = (first.0, last.0);
+            let curve = (0..200)
+                .map(|k| t0 * (t1 / t0).powf(k as f64 / 199.0))
+                .map(|t| (t, f(t)))
+                .collect();
+            Some((name, curve))
+        }
+        _ => None,
+    };
+    let label = if species.is_empty() {
+        "simulation"
     } else {
-        figure = figure.line("simulation", points);
+        "mixture"
+    };
+    figure = figure.line(label, points);
+    for (name, points) in species {
+        figure = figure.line(name, positive(points));
+    }
+    if let Some((name, curve)) = curve {
+        figure = figure.theory(name, curve);
     }
     figure.write_png(path)
 }

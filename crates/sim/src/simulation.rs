@@ -15,6 +15,7 @@ use crate::output::write_json_file;
 use crate::parallel::{self, Communicator};
 use crate::schedule::{sample_targets, schedule, Target};
 use crate::space::{SpaceObserver, SpaceRecords};
+use crate::species::{SpeciesSample, SpeciesSeries};
 use crate::validate::{validate, Plan, Stop};
 use gas::Counters;
 use std::path::{Path, PathBuf};
@@ -160,6 +161,8 @@ struct Run<const D: usize> {
     histograms: VelocityHistograms,
     /// The observers of `[output]`.
     space: SpaceObserver,
+    /// Per-species observables of a mixture (`system.species`).
+    species: Option<SpeciesSeries>,
 }
 
 impl Simulation {
@@ -187,6 +190,7 @@ impl Simulation {
             timeseries,
             histograms,
             SpaceObserver::new(&plan, SpaceRecords::default()),
+            species_series(&plan),
         )));
         Ok(Simulation {
             plan,
@@ -258,6 +262,7 @@ impl Simulation {
             records.timeseries,
             records.histograms,
             SpaceObserver::new(&plan, records.space.clone()),
+            records.species,
         )
         .map_err(|e| sections.error(e)));
         Ok(Simulation {
@@ -348,6 +353,12 @@ impl Simulation {
     /// The samples taken so far.
     pub fn samples(&self) -> &[Sample] {
         each!(&self.run, r => &r.timeseries.samples)
+    }
+
+    /// The per-species rows taken so far (`species.csv`); None for a run without
+    /// `system.species`.
+    pub fn species_samples(&self) -> Option<&[SpeciesSample]> {
+        each!(&self.run, r => r.species.as_ref().map(|s| s.samples.as_slice()))
     }
 
     /// The velocity histograms taken so far.
@@ -468,8 +479,16 @@ impl Simulation {
                 r.histograms.write(&dir.join("velocity_histograms.csv"))?;
             }
             r.space.write(dir)?;
+            if let Some(species) = &r.species {
+                species.write(&dir.join("species.csv"))?;
+            }
         });
-        crate::figures::temperature(&dir.join("temperature.png"), &self.plan, self.samples())?;
+        crate::figures::temperature(
+            &dir.join("temperature.png"),
+            &self.plan,
+            self.samples(),
+            self.species_samples(),
+        )?;
         let counters = self.counters();
         let wall = self.wall_seconds;
         let mut summary = serde_json::json!({
@@ -484,6 +503,9 @@ impl Simulation {
             "final": self.samples().last(),
             "complete": self.is_complete(),
         });
+        if let Some(rows) = self.species_samples() {
+            summary["species"] = crate::species::summary(&self.plan, rows);
+        }
         if let Some(contacts) = self.contact_report() {
             summary["contacts"] = serde_json::json!(contacts);
         }
@@ -508,6 +530,7 @@ impl<const D: usize> Run<D> {
         timeseries: TimeSeries,
         histograms: VelocityHistograms,
         space: SpaceObserver,
+        species: Option<SpeciesSeries>,
     ) -> Self {
         let run = &plan.description.run;
         let schedule = schedule(
@@ -521,6 +544,7 @@ impl<const D: usize> Run<D> {
             timeseries,
             histograms,
             space,
+            species,
         }
     }
 
@@ -533,8 +557,21 @@ impl<const D: usize> Run<D> {
         timeseries: TimeSeries,
         histograms: VelocityHistograms,
         space: SpaceObserver,
+        species: Option<SpeciesSeries>,
     ) -> std::result::Result<Self, String> {
-        let mut run = Run::new(plan, engine, timeseries, histograms, space);
+        let wanted = species_series(plan);
+        let species = match (species, wanted) {
+            (Some(records), Some(fresh)) if records.kinds == fresh.kinds => Some(records),
+            (None, None) => None,
+            _ => {
+                return Err(
+                    "the per-species records do not match system.species (or the check-point \
+                     was written before species.csv existed)"
+                        .into(),
+                )
+            }
+        };
+        let mut run = Run::new(plan, engine, timeseries, histograms, space, species);
         let samples = &run.timeseries.samples;
         run.next = match samples.len() {
             0 => 0,
@@ -551,6 +588,9 @@ impl<const D: usize> Run<D> {
         };
         run.check_samples(plan.stop)?;
         run.space.check_records(run.timeseries.samples.len())?;
+        if let Some(species) = &run.species {
+            species.check_records(run.timeseries.samples.len())?;
+        }
         let (time, counters) = (run.engine.time(), run.engine.counters());
         let (last_time, last_events) = samples.last().map_or((0.0, 0), |s| (s.time, s.events));
         let particles = plan.description.system.particles as f64;
@@ -637,6 +677,9 @@ impl<const D: usize> Run<D> {
                 }
                 self.timeseries.observe(&target, self.engine.as_mut());
                 self.histograms.observe(&target, self.engine.as_mut());
+                if let Some(species) = &mut self.species {
+                    species.observe(&target, self.engine.as_mut());
+                }
                 if let Some(sample) = target.sample {
                     self.space.observe(sample, self.engine.as_mut())?;
                 }
@@ -743,7 +786,16 @@ impl<const D: usize> Run<D> {
             timeseries: &self.timeseries,
             histograms: &self.histograms,
             space: &self.space.records,
+            species: self.species.as_ref(),
         };
         self.engine.write_checkpoint(file, records, root)
     }
+}
+
+/// The per-species series of a run with `system.species`.
+fn species_series(plan: &Plan) -> Option<SpeciesSeries> {
+    let list = plan.description.system.species.as_ref()?;
+    Some(SpeciesSeries::new(
+        list.iter().map(|x| (0.5 * x.diameter, x.mass)).collect(),
+    ))
 }

@@ -253,6 +253,20 @@ fn check_system(description: &RunDescription) -> Result<()> {
                 in_scale(&format!("system.species[{k}].diameter"), x.diameter)?;
                 in_scale(&format!("system.species[{k}].mass"), x.mass)?;
                 positive(&format!("system.species[{k}].fraction"), x.fraction)?;
+                // Particles are told apart by diameter and mass (species.csv, the DSMC
+                // tables): two entries alike would be one species counted twice.
+                if let Some(j) = entries[..k]
+                    .iter()
+                    .position(|y| y.diameter == x.diameter && y.mass == x.mass)
+                {
+                    return Err(Error::input(
+                        format!("system.species[{k}]"),
+                        format!(
+                            "the diameter and mass of system.species[{j}]: species must differ \
+                             in diameter or mass (merge the two entries)"
+                        ),
+                    ));
+                }
             }
             gas::init::species_counts(s.particles, &species(entries))
                 .map_err(|e| Error::input("system.species", e))?;

@@ -8,11 +8,11 @@ mod blocks;
 mod classes;
 
 use super::domain::Traffic;
-use super::kernel::{self, Collider, Moments, Record, Tagged, Window};
+use super::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally, Tagged, Window};
 use super::reduce;
-use super::species::Species;
+use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
-use crate::engine::{Counters, VelocityStatistics};
+use crate::engine::{Counters, SpeciesCollisions, VelocityStatistics};
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
@@ -43,6 +43,8 @@ struct Core<const D: usize> {
     time: f64,
     steps: u64,
     tally: Counters,
+    /// Collisions of each species' particles (mixtures; empty for one species).
+    species_collisions: Vec<u64>,
     /// The velocity speed bounds are measured from: the mean velocity when the exact
     /// scheme last recomputed its bound, or at the end of the last block step.
     /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
@@ -173,6 +175,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             time: 0.0,
             steps: 0,
             tally: Counters::default(),
+            species_collisions: Vec::new(),
             speed_bound: 0.0,
             stream: Stream::new(seed, Purpose::Exact, 0, 0),
             temperature: 0.0,
@@ -237,6 +240,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             speed_bound,
             draws,
             temperature,
+            species_collisions,
         } = snapshot;
         let mut engine = Self::distributed(system, packing_fraction, law, seed, options, comm)?;
         // The exact scheme's majorant (finite: `Snapshot::check`) must bound every speed (it
@@ -263,6 +267,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         core.speed_bound = speed_bound;
         core.stream = Stream::at(seed, Purpose::Exact, 0, 0, draws);
         core.temperature = temperature;
+        core.species_collisions = species_collisions;
         Ok(engine)
     }
 
@@ -273,6 +278,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             (c.time, c.steps, c.tally, c.seed, c.scheme, c.phi);
         let (reference, speed_bound, draws, temperature) =
             (c.reference, c.speed_bound, c.stream.draws(), c.temperature);
+        let species_collisions = c.species_collisions.clone();
         HomogeneousSnapshot {
             system: self.system().clone(),
             packing_fraction: phi,
@@ -285,6 +291,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             speed_bound,
             draws,
             temperature,
+            species_collisions,
         }
     }
 
@@ -294,6 +301,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     pub fn counters(&self) -> Counters {
         self.core.tally
+    }
+
+    /// The collisions of each species' particles so far (each collision counts for both).
+    pub fn species_collisions(&self) -> Option<Vec<SpeciesCollisions>> {
+        Some(by_species(
+            &self.core.species,
+            &self.core.species_collisions,
+            &self.core.tally,
+        ))
     }
 
     /// Steps of [`Scheme::Blocks`] so far (0 for the exact scheme).
@@ -568,6 +584,8 @@ fn run_exact<const D: usize, R: Record<D>>(
                 core.speed_bound,
             )
         });
+        let mut tally = SpeciesTally::new(core.species.len());
+        tally.counters = core.tally;
         core.time = collider.run_classes(
             records,
             &mut core.class,
@@ -576,8 +594,10 @@ fn run_exact<const D: usize, R: Record<D>>(
             pair_rate,
             window,
             &mut core.stream,
-            &mut core.tally,
+            &mut tally,
         );
+        core.tally = tally.counters;
+        add_counts(&mut core.species_collisions, &tally.collisions);
         core.speed_bound = classes.bound();
         if core.tally.collisions == next_recompute {
             let moments = Moments::of(records, &core.species);

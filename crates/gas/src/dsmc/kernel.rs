@@ -95,6 +95,63 @@ pub(crate) struct Simulator<const D: usize> {
 
 tagged_record!(Simulator);
 
+/// Where the kernel counts what the collisions did.
+pub(crate) trait Tally {
+    fn counters(&mut self) -> &mut Counters;
+    /// A collision of a particle of species `a` with one of species `b` (mixtures).
+    #[inline(always)]
+    fn pair(&mut self, _a: usize, _b: usize) {}
+}
+
+impl Tally for Counters {
+    #[inline(always)]
+    fn counters(&mut self) -> &mut Counters {
+        self
+    }
+}
+
+/// [`Counters`] and the collisions suffered by the particles of each species (a collision
+/// counts once for each of its two particles), allocated at the first collision of a
+/// mixture.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct SpeciesTally {
+    pub counters: Counters,
+    pub collisions: Vec<u64>,
+    species: usize,
+}
+
+impl SpeciesTally {
+    pub fn new(species: usize) -> Self {
+        SpeciesTally {
+            species,
+            ..Default::default()
+        }
+    }
+}
+
+impl Tally for SpeciesTally {
+    #[inline(always)]
+    fn counters(&mut self) -> &mut Counters {
+        &mut self.counters
+    }
+    #[inline(always)]
+    fn pair(&mut self, a: usize, b: usize) {
+        if self.collisions.is_empty() {
+            self.collisions.resize(self.species, 0);
+        }
+        self.collisions[a] += 1;
+        self.collisions[b] += 1;
+    }
+}
+
+/// Adds the per-species counts `more` to `total` (grown to their length).
+pub(crate) fn add_counts(total: &mut Vec<u64>, more: &[u64]) {
+    if total.len() < more.len() {
+        total.resize(more.len(), 0);
+    }
+    total.iter_mut().zip(more).for_each(|(t, m)| *t += m);
+}
+
 /// The law and the species: everything a collision needs besides the two particles.
 pub(crate) struct Collider<'a> {
     pub law: &'a dyn Restitution,
@@ -130,7 +187,7 @@ impl Collider<'_> {
         window: Window,
         bound: &mut f64,
         rng: &mut Stream,
-        tally: &mut Counters,
+        tally: &mut impl Tally,
     ) -> f64 {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
@@ -159,7 +216,7 @@ impl Collider<'_> {
                 }
             }
         };
-        tally.events += candidates;
+        tally.counters().events += candidates;
         reached
     }
 
@@ -180,7 +237,7 @@ impl Collider<'_> {
         (start, end): (f64, f64),
         bound: &mut f64,
         rng: &mut Stream,
-        tally: &mut Counters,
+        tally: &mut impl Tally,
     ) {
         let n = group.len();
         let pairs = n as f64 * (n as f64 - 1.0) / 2.0;
@@ -191,7 +248,7 @@ impl Collider<'_> {
         let mut from = start;
         let mut left = poisson(rate * (end - from), rng);
         let mut since = 0u64;
-        tally.events += left;
+        tally.counters().events += left;
         while left > 0 {
             left -= 1;
             since += 1;
@@ -203,7 +260,7 @@ impl Collider<'_> {
                 *bound = fastest.sqrt();
                 let raised = pairs * pair_rate * 2.0 * *bound;
                 let extra = poisson((raised - rate) * (end - at), rng);
-                tally.events += extra;
+                tally.counters().events += extra;
                 left += extra;
                 (from, since, rate) = (at, 0, raised);
             }
@@ -220,7 +277,7 @@ impl Collider<'_> {
         reference: &Vector<D>,
         bound: f64,
         rng: &mut Stream,
-        tally: &mut Counters,
+        tally: &mut impl Tally,
     ) -> Option<f64> {
         let (i, j) = rng.pair(group.len() as u32);
         let (mut a, mut b) = (group[i], group[j]);
@@ -253,7 +310,7 @@ impl Collider<'_> {
         g2: f64,
         reference: &Vector<D>,
         rng: &mut Stream,
-        tally: &mut Counters,
+        tally: &mut impl Tally,
     ) -> f64 {
         let e = impact_direction(g, g2.sqrt(), rng);
         let approach = dot(g, &e).max(0.0);
@@ -269,9 +326,13 @@ impl Collider<'_> {
         for k in 0..D {
             vb[k] += kick_b * e[k];
         }
-        tally.collisions += 1;
-        tally.energy_lost += 0.5 * pair.reduced * (1.0 - eps * eps) * approach * approach;
-        tally.virial += kick * pair.reduced * pair.sigma;
+        let counters = tally.counters();
+        counters.collisions += 1;
+        counters.energy_lost += 0.5 * pair.reduced * (1.0 - eps * eps) * approach * approach;
+        counters.virial += kick * pair.reduced * pair.sigma;
+        if R::MIXED {
+            tally.pair(a.species(), b.species());
+        }
         let da: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - reference[k]);
         let db: Vector<D> = std::array::from_fn(|k| b.velocity()[k] - reference[k]);
         dot(&da, &da).max(dot(&db, &db))

@@ -3,7 +3,7 @@
 //! particles are spread over threads and ranks.
 
 use super::domain::Traffic;
-use super::kernel::{scaled, Moments, Record};
+use super::kernel::{scaled, Moments, Record, SpeciesTally};
 use super::species::Species;
 use crate::engine::{Counters, VelocityStatistics};
 use crate::exact_sum::{sums_of, ExactSum, LIMBS};
@@ -19,6 +19,8 @@ pub(crate) struct StepSums<const D: usize> {
     /// The sum of the groups' `Moments::spread` (when asked for; else 0): meaningful when
     /// all groups measured it about the same center.
     pub spread: f64,
+    /// Collisions suffered by the particles of each species (empty for one species).
+    pub species_collisions: Vec<u64>,
 }
 
 impl<const D: usize> StepSums<D> {
@@ -29,10 +31,12 @@ impl<const D: usize> StepSums<D> {
 }
 
 /// The counters, mass and momentum (and, if `with_spread`, the spreads) of the groups of a
-/// step, `results`, summed over all ranks exactly: one all-reduce of [`crate::parallel::
-/// reduction_bytes`] (with the spread) per rank.
+/// step, `results`, summed over all ranks exactly, with the collisions of each of the
+/// `species` (if more than one): one all-reduce of [`crate::parallel::reduction_bytes`]
+/// (with the spread; 8 B more per species of a mixture) per rank.
 pub(crate) fn step_sums<const D: usize>(
-    results: &[(Counters, Moments<D>)],
+    results: &[(SpeciesTally, Moments<D>)],
+    species: usize,
     with_spread: bool,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
@@ -40,6 +44,7 @@ pub(crate) fn step_sums<const D: usize>(
     // Mass, momentum, energy lost, virial, spread; then collisions, events, TC-elastic.
     let count = D + 3 + with_spread as usize;
     let sums = sums_of(results, count, |(t, m), s| {
+        let t = &t.counters;
         s[0].add(m.mass);
         (0..D).for_each(|k| s[1 + k].add(m.momentum[k]));
         s[D + 1].add(t.energy_lost);
@@ -48,7 +53,8 @@ pub(crate) fn step_sums<const D: usize>(
             s[D + 3].add(m.spread);
         }
     });
-    let counter = |f: fn(&Counters) -> u64| results.iter().map(|(t, _)| f(t) as i64).sum();
+    let counter =
+        |f: fn(&Counters) -> u64| results.iter().map(|(t, _)| f(&t.counters) as i64).sum();
     let counters: [i64; 3] = [
         counter(|t| t.collisions),
         counter(|t| t.events),
@@ -56,6 +62,14 @@ pub(crate) fn step_sums<const D: usize>(
     ];
     let mut packed: Vec<i64> = sums.iter().flat_map(|s| s.to_limbs()).collect();
     packed.extend_from_slice(&counters);
+    let by_species = if species > 1 { species } else { 0 };
+    let start = packed.len();
+    packed.resize(start + by_species, 0);
+    for (t, _) in results {
+        for (total, c) in packed[start..].iter_mut().zip(&t.collisions) {
+            *total += *c as i64;
+        }
+    }
     all_ranks_sum(&mut packed, comm, traffic);
     let values: Vec<f64> = packed
         .chunks_exact(LIMBS + 1)
@@ -74,6 +88,7 @@ pub(crate) fn step_sums<const D: usize>(
         mass: values[0],
         momentum: std::array::from_fn(|k| values[1 + k]),
         spread: if with_spread { values[D + 3] } else { 0.0 },
+        species_collisions: packed[start..].iter().map(|&c| c as u64).collect(),
     }
 }
 

@@ -3,7 +3,7 @@
 
 use super::cell_sort::CellSorter;
 use super::domain::{Slabs, Traffic};
-use super::kernel::{self, scaled, Collider, Moments, Simulator};
+use super::kernel::{self, scaled, Collider, Moments, Simulator, SpeciesTally};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::Counters;
@@ -84,6 +84,8 @@ pub struct SpatialDsmc<const D: usize> {
     time: f64,
     steps: u64,
     tally: Counters,
+    /// Collisions of each species' particles (mixtures; empty for one species).
+    species_collisions: Vec<u64>,
     temperature: f64,
     system: System<D>,
     /// Scratch of the sort into cells.
@@ -234,6 +236,7 @@ impl<const D: usize> SpatialDsmc<D> {
             time: 0.0,
             steps: 0,
             tally: Counters::default(),
+            species_collisions: Vec::new(),
             temperature,
             system: System {
                 length,
@@ -275,6 +278,7 @@ impl<const D: usize> SpatialDsmc<D> {
         engine.time = snapshot.time;
         engine.steps = snapshot.steps;
         engine.tally = snapshot.counters;
+        engine.species_collisions = snapshot.species_collisions;
         engine.temperature = snapshot.temperature;
         Ok(engine)
     }
@@ -302,6 +306,7 @@ impl<const D: usize> SpatialDsmc<D> {
             speed_bound: 0.0,
             draws: 0,
             temperature,
+            species_collisions: self.species_collisions.clone(),
         }
     }
 
@@ -311,6 +316,15 @@ impl<const D: usize> SpatialDsmc<D> {
 
     pub fn counters(&self) -> Counters {
         self.tally
+    }
+
+    /// The collisions of each species' particles so far (each collision counts for both).
+    pub fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
+        Some(super::species::by_species(
+            &self.species,
+            &self.species_collisions,
+            &self.tally,
+        ))
     }
 
     pub fn steps(&self) -> u64 {
@@ -465,10 +479,10 @@ impl<const D: usize> SpatialDsmc<D> {
         let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
             / width.powi(D as i32);
         let (seed, step, species) = (self.seed, self.steps, &self.species);
-        let results: Vec<(Counters, Moments<D>)> = groups
+        let results: Vec<(SpeciesTally, Moments<D>)> = groups
             .into_par_iter()
             .map(|cell| {
-                let mut tally = Counters::default();
+                let mut tally = SpeciesTally::new(species.len());
                 let (mass, momentum) = mass_and_momentum(cell, species);
                 if cell.len() < 2 {
                     return (tally, spread_about_mean(cell, species, mass, momentum));
@@ -485,15 +499,16 @@ impl<const D: usize> SpatialDsmc<D> {
                     &mut rng,
                     &mut tally,
                 );
-                if tally.collisions == 0 {
+                if tally.counters.collisions == 0 {
                     return (tally, spread_about_mean(cell, species, mass, momentum));
                 }
                 let (mass, momentum) = mass_and_momentum(cell, species);
                 (tally, spread_about_mean(cell, species, mass, momentum))
             })
             .collect();
-        let (tally, spread) = self.sum_over_cells(&results);
+        let (tally, spread, species_collisions) = self.sum_over_cells(&results);
         self.tally.add(&tally);
+        kernel::add_counts(&mut self.species_collisions, &species_collisions);
         self.temperature = spread / (self.total * D) as f64;
         self.steps += 1;
         self.traffic.steps += 1;

@@ -159,3 +159,23 @@ fn pair_weights<const D: usize>(radii: &[f64], counts: &[usize], phi: f64) -> Ve
         })
         .collect()
 }
+
+/// The collisions of each species' particles: `counted` (mixtures) or, for one species,
+/// twice the collisions of `tally`.
+pub(crate) fn by_species(
+    species: &Species,
+    counted: &[u64],
+    tally: &crate::engine::Counters,
+) -> Vec<crate::engine::SpeciesCollisions> {
+    (0..species.len())
+        .map(|s| crate::engine::SpeciesCollisions {
+            radius: species.radii[s],
+            mass: species.masses[s],
+            collisions: if species.len() == 1 {
+                2 * tally.collisions
+            } else {
+                counted.get(s).copied().unwrap_or(0)
+            },
+        })
+        .collect()
+}

@@ -6,10 +6,9 @@
 
 use super::{Core, HomogeneousRecord};
 use crate::dsmc::domain::Traffic;
-use crate::dsmc::kernel::{self, Collider, Moments, Record};
+use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally};
 use crate::dsmc::reduce;
 use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP};
-use crate::engine::Counters;
 use crate::parallel::Communicator;
 use crate::rng::{Purpose, Stream};
 use crate::system::{dot, Vector};
@@ -128,6 +127,7 @@ pub(super) fn run_blocks<const D: usize, R: HomogeneousRecord<D>>(
         let sums = block_step(core, now, spare, &layout, dt);
         std::mem::swap(now, spare);
         core.tally.add(&sums.tally);
+        add_counts(&mut core.species_collisions, &sums.species_collisions);
         // The spread about the mean u from the spread about the reference r:
         // sum m |v - r|^2 - M |u - r|^2.
         let mean = sums.mean();
@@ -186,7 +186,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
     let base_rate =
         theory::cross_section_factor::<D>() * core.species.max_weight * (core.total as f64 - 1.0)
             / core.volume;
-    let results: Vec<(Counters, Moments<D>)> = layout
+    let results: Vec<(SpeciesTally, Moments<D>)> = layout
         .split(spare, share)
         .into_par_iter()
         .enumerate()
@@ -202,7 +202,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
                 gather(now, layout, &offsets, b, block, &reference).sqrt()
             };
             let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
-            let mut tally = Counters::default();
+            let mut tally = SpeciesTally::new(species.len());
             // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
             let pair_rate = base_rate / (block.len() as f64 - 1.0);
             collider.run_for(
@@ -218,7 +218,8 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             (tally, kernel::sums_about(block, species, &reference))
         })
         .collect();
-    reduce::step_sums(&results, true, core.comm.as_ref(), &mut core.traffic)
+    let kinds = core.species.len();
+    reduce::step_sums(&results, kinds, true, core.comm.as_ref(), &mut core.traffic)
 }
 
 /// Moves the lanes of this rank's blocks (`now`, the blocks `share`) to the destination

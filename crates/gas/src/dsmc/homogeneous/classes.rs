@@ -49,9 +49,8 @@
 //! **Round-off.** Bounds are compared in floating point exactly as the kernel compares its
 //! 2 s: an acceptance probability can exceed 1 only by round-off of |g| (~1e-16).
 
-use crate::dsmc::kernel::{Collider, Record, Window};
+use crate::dsmc::kernel::{Collider, Record, Tally, Window};
 use crate::dsmc::positive;
-use crate::engine::Counters;
 use crate::rng::Stream;
 use crate::system::{dot, Vector};
 use rand::RngCore;
@@ -348,7 +347,7 @@ impl Collider<'_> {
         pair_rate: f64,
         window: Window,
         rng: &mut Stream,
-        tally: &mut Counters,
+        tally: &mut impl Tally,
     ) -> f64 {
         let n = group.len();
         let unit = pair_rate * (n as f64 - 1.0) * classes.width;
@@ -389,7 +388,7 @@ impl Collider<'_> {
                 break time;
             }
         };
-        tally.events += candidates;
+        tally.counters().events += candidates;
         reached
     }
 }

@@ -1,7 +1,7 @@
 //! The spatial engine's sums over cells and particles: exact ([`super::super::reduce`]),
 //! so the same bits however cells and particles are spread over threads and ranks.
 
-use super::super::kernel::{scaled, Moments, Record, Simulator};
+use super::super::kernel::{scaled, Moments, Record, Simulator, SpeciesTally};
 use super::super::reduce;
 use super::super::species::Species;
 use super::SpatialDsmc;
@@ -16,9 +16,13 @@ impl<const D: usize> SpatialDsmc<D> {
     /// about their own means (parallel-axis theorem: sum of spread_c + M_c |u_c - u|^2, no
     /// cancellation however large the mean velocity), so it takes two sums: mass and
     /// momentum first.
-    pub(super) fn sum_over_cells(&mut self, results: &[(Counters, Moments<D>)]) -> (Counters, f64) {
+    pub(super) fn sum_over_cells(
+        &mut self,
+        results: &[(SpeciesTally, Moments<D>)],
+    ) -> (Counters, f64, Vec<u64>) {
         let comm = self.comm.as_ref();
-        let totals = reduce::step_sums(results, false, comm, &mut self.traffic);
+        let kinds = self.species.len();
+        let totals = reduce::step_sums(results, kinds, false, comm, &mut self.traffic);
         let mean = totals.mean();
         let spread = sums_of(results, 1, |(_, m), s| {
             let u = m.mean();
@@ -26,7 +30,7 @@ impl<const D: usize> SpatialDsmc<D> {
             s[0].add(m.spread + m.mass * dot(&d, &d));
         });
         let spread = reduce::global_values(&spread, comm, &mut self.traffic)[0];
-        (totals.tally, spread)
+        (totals.tally, spread, totals.species_collisions)
     }
 
     /// The temperature and Sonine a2 of all particles and the box volume, from exact sums

@@ -1,0 +1,225 @@
+//! Per-species observables of a mixture (`system.species`): at every sample, each species'
+//! temperature T_i = m_i <c^2>_i / D, Sonine a2_i and collision frequency, written to
+//! `species.csv`. c is the velocity relative to the mixture's mean velocity (zero in a
+//! freely cooling gas started at rest, where T_i = m_i <v^2>_i / D).
+
+use crate::error::Result;
+use crate::observer::Observer;
+use crate::output::{number, write_csv_file};
+use crate::schedule::Target;
+use crate::validate::{LawSpec, Plan};
+use gas::Engine;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// One row of `species.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeciesSample {
+    pub time: f64,
+    pub collisions_per_particle: f64,
+    /// The species' index in `system.species`.
+    pub species: usize,
+    pub temperature: f64,
+    /// a2_i = D/(D + 2) <c^4>_i / <c^2>_i^2 - 1.
+    pub a2: f64,
+    /// Collisions per particle of the species per unit time over the interval since the
+    /// previous sample (a collision counts for both of its particles); None at the first
+    /// sample and for engines that do not count collisions by particle or species.
+    pub collision_frequency: Option<f64>,
+}
+
+/// The header of `species.csv`.
+pub const SPECIES_HEADER: [&str; 6] = [
+    "time",
+    "collisions_per_particle",
+    "species",
+    "temperature",
+    "a2",
+    "collision_frequency",
+];
+
+/// The per-species time series of a mixture.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpeciesSeries {
+    /// (radius, mass) of each listed species: how particles are told apart.
+    pub kinds: Vec<(f64, f64)>,
+    /// Rows in sample order, each sample's species in order.
+    pub samples: Vec<SpeciesSample>,
+    /// The time and each species' collisions at the last sample (the collision
+    /// frequency's interval starts there).
+    pub last: Option<(f64, Vec<u64>)>,
+}
+
+impl SpeciesSeries {
+    /// The series of the listed species `kinds` ((radius, mass) each).
+    pub fn new(kinds: Vec<(f64, f64)>) -> Self {
+        SpeciesSeries {
+            kinds,
+            ..Default::default()
+        }
+    }
+
+    /// The index of the species of a particle of `radius` and `mass`.
+    fn kind_of(&self, radius: f64, mass: f64) -> Option<usize> {
+        self.kinds
+            .iter()
+            .position(|&(r, m)| r == radius && m == mass)
+    }
+
+    /// Checks the records of a check-point against `samples` samples of the time series.
+    pub fn check_records(&self, samples: usize) -> std::result::Result<(), String> {
+        if self.samples.len() != samples * self.kinds.len() {
+            return Err(format!(
+                "{} per-species rows for {samples} samples of {} species",
+                self.samples.len(),
+                self.kinds.len()
+            ));
+        }
+        Ok(())
+    }
+
+    /// Writes `species.csv`.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let rows = self.samples.iter().map(|s| {
+            vec![
+                number(s.time),
+                number(s.collisions_per_particle),
+                s.species.to_string(),
+                number(s.temperature),
+                number(s.a2),
+                s.collision_frequency.map(number).unwrap_or_default(),
+            ]
+        });
+        write_csv_file(path, &SPECIES_HEADER, rows)
+    }
+
+    /// The collisions of each listed species' particles so far, if the engine counts them.
+    fn collisions<const D: usize>(&self, engine: &mut dyn Engine<D>) -> Option<Vec<u64>> {
+        let mut totals = vec![0u64; self.kinds.len()];
+        if let Some(counted) = engine.species_collisions() {
+            for c in counted {
+                totals[self.kind_of(c.radius, c.mass)?] += c.collisions;
+            }
+            return Some(totals);
+        }
+        // Per particle (event-driven, modulo 2^32 each: exact while no particle collides
+        // 2^32 times between samples).
+        let counts = engine.collision_counts()?;
+        let system = engine.system();
+        for (i, c) in counts.iter().enumerate() {
+            totals[self.kind_of(system.radii[i], system.masses[i])?] += u64::from(*c);
+        }
+        Some(totals)
+    }
+}
+
+impl<const D: usize> Observer<D> for SpeciesSeries {
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) {
+        if target.sample.is_none() {
+            return;
+        }
+        let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
+        let collisions = self.collisions(engine);
+        let system = engine.system();
+        let kinds = self.kinds.len();
+        let total_mass: f64 = system.masses.iter().sum();
+        let mean: [f64; D] = std::array::from_fn(|k| {
+            system
+                .velocities
+                .iter()
+                .zip(&system.masses)
+                .map(|(v, m)| m * v[k])
+                .sum::<f64>()
+                / total_mass
+        });
+        // Per species: particles, sum m c^2, sum c^2, sum c^4.
+        let mut sums = vec![(0usize, 0.0, 0.0, 0.0); kinds];
+        for ((v, &r), &m) in system
+            .velocities
+            .iter()
+            .zip(&system.radii)
+            .zip(&system.masses)
+        {
+            let Some(s) = self.kind_of(r, m) else {
+                continue;
+            };
+            let c2: f64 = (0..D).map(|k| (v[k] - mean[k]).powi(2)).sum();
+            let e = &mut sums[s];
+            *e = (e.0 + 1, e.1 + m * c2, e.2 + c2, e.3 + c2 * c2);
+        }
+        let frequencies: Vec<Option<f64>> = match (&collisions, &self.last) {
+            (Some(now), Some((then, before))) if time > *then => (0..kinds)
+                .map(|s| {
+                    let n = sums[s].0 as f64;
+                    Some(now[s].saturating_sub(before[s]) as f64 / (n * (time - then)))
+                })
+                .collect(),
+            _ => vec![None; kinds],
+        };
+        for (s, &(n, mc2, c2, c4)) in sums.iter().enumerate() {
+            self.samples.push(SpeciesSample {
+                time,
+                collisions_per_particle,
+                species: s,
+                temperature: mc2 / (n * D) as f64,
+                a2: gas::observe::sonine_a2_of_sums::<D>(c2, c4, n as f64),
+                collision_frequency: frequencies[s],
+            });
+        }
+        self.last = collisions.map(|c| (time, c));
+    }
+}
+
+/// The `species` entry of `summary.json`: the last sample's rows, each species' T_i / T
+/// there (T = sum x_i T_i), and for a constant restitution the HCS ratios of kinetic theory
+/// in the Maxwellian approximation ([`gas::theory::MixtureTheory`]).
+pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
+    let Some(list) = plan.description.system.species.as_ref() else {
+        return serde_json::Value::Null;
+    };
+    let kinds = list.len();
+    let total: f64 = list.iter().map(|x| x.fraction).sum();
+    let fractions: Vec<f64> = list.iter().map(|x| x.fraction / total).collect();
+    let last = &rows[rows.len().saturating_sub(kinds)..];
+    let mixture_temperature: f64 = last
+        .iter()
+        .map(|r| fractions[r.species] * r.temperature)
+        .sum();
+    let ratios: Vec<f64> = last
+        .iter()
+        .map(|r| r.temperature / mixture_temperature)
+        .collect();
+    let mut out = serde_json::json!({
+        "final": last,
+        "temperature_ratios": ratios,
+    });
+    if let LawSpec::Constant(eps) = plan.law {
+        let masses: Vec<f64> = list.iter().map(|x| x.mass).collect();
+        let diameters: Vec<f64> = list.iter().map(|x| x.diameter).collect();
+        let alpha = vec![vec![eps; kinds]; kinds];
+        let phi = plan.description.system.packing_fraction;
+        let theory = match plan.description.system.dimension {
+            1 => hcs_ratios::<1>(&masses, &diameters, &fractions, &alpha, phi),
+            2 => hcs_ratios::<2>(&masses, &diameters, &fractions, &alpha, phi),
+            _ => hcs_ratios::<3>(&masses, &diameters, &fractions, &alpha, phi),
+        };
+        if let Some(theory) = theory {
+            out["hcs_temperature_ratios_maxwellian"] = serde_json::json!(theory);
+        }
+    }
+    out
+}
+
+/// T_i / T in the HCS of kinetic theory (Maxwellian approximation).
+fn hcs_ratios<const D: usize>(
+    masses: &[f64],
+    diameters: &[f64],
+    fractions: &[f64],
+    alpha: &[Vec<f64>],
+    phi: f64,
+) -> Option<Vec<f64>> {
+    let theory = gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi);
+    Some(theory.ok()?.hcs(1.0).ok()?.temperature_ratios)
+}
