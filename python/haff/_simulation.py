@@ -194,6 +194,15 @@ class Simulation:
         pressure, events; bath_temperature with a stochastic law)."""
         return self._sim.timeseries()
 
+    @property
+    def species_timeseries(self) -> Optional[Dict[str, np.ndarray]]:
+        """The per-species samples of a mixture (``system.species``): column name -> array,
+        with the columns of ``species.csv`` (time, collisions_per_particle, species,
+        temperature, a2, collision_frequency; one row per species and sample, NaN where the
+        collision frequency is not measured: the first sample, soft-sphere runs). None for
+        a run without ``system.species``."""
+        return self._sim.species_timeseries()
+
     def timeseries_frame(self):
         """The time series as a pandas DataFrame (needs pandas)."""
         try:

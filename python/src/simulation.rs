@@ -11,6 +11,7 @@ use pyo3::types::PyDict;
 use sim::observer::TIMESERIES_HEADER;
 use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::space::{MODES_HEADER, STRUCTURE_HEADER};
+use sim::species::SPECIES_HEADER;
 use sim::{Point, Progress, Simulation};
 use std::path::PathBuf;
 use std::sync::{Mutex, MutexGuard};
@@ -207,6 +208,39 @@ impl PySimulation {
             out.set_item("bath_temperature", PyArray1::from_vec(py, baths))?;
         }
         Ok(out)
+    }
+
+    /// The per-species rows (the columns of `species.csv`; NaN where the collision
+    /// frequency is not measured); None for a run without `system.species`.
+    fn species_timeseries<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let simulation = self.get();
+        let Some(rows) = simulation.species_samples() else {
+            return Ok(None);
+        };
+        let column = |f: fn(&sim::species::SpeciesSample) -> f64| -> Vec<f64> {
+            rows.iter().map(f).collect()
+        };
+        let out = PyDict::new(py);
+        let floats: [(&str, Vec<f64>); 5] = [
+            ("time", column(|s| s.time)),
+            (
+                "collisions_per_particle",
+                column(|s| s.collisions_per_particle),
+            ),
+            ("temperature", column(|s| s.temperature)),
+            ("a2", column(|s| s.a2)),
+            (
+                "collision_frequency",
+                column(|s| s.collision_frequency.unwrap_or(f64::NAN)),
+            ),
+        ];
+        for (name, values) in floats {
+            debug_assert!(SPECIES_HEADER.contains(&name));
+            out.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        let species: Vec<i64> = rows.iter().map(|s| s.species as i64).collect();
+        out.set_item("species", PyArray1::from_vec(py, species))?;
+        Ok(Some(out))
     }
 
     /// The velocity histograms taken at `run.histogram_at`: (target, time,

@@ -117,6 +117,35 @@ def test_timeseries_frame():
     assert len(frame) == 6
 
 
+def test_species_timeseries_equals_species_csv(tmp_path, cli):
+    """A mixture's per-species rows equal species.csv bit for bit (empty CSV fields are
+    NaN), the mixture temperature is the fraction-weighted mean of the species', and a run
+    without system.species has none."""
+    config = {
+        "system": {"dimension": 2, "particles": 600, "packing_fraction": 0.1, "seed": 4,
+                   "species": [{"diameter": 1.0, "mass": 1.0, "fraction": 0.5},
+                               {"diameter": 1.5, "mass": 3.0, "fraction": 0.5}]},
+        "collision": {"law": "constant", "restitution": 0.8},
+        "run": {"collisions_per_particle": 20.0, "samples": 5},
+    }
+    file = tmp_path / "mix.toml"
+    file.write_text(toml_of(config))
+    cli("run", str(file), "--out", str(tmp_path / "cli"))
+    sim = haff.Simulation(config).run(progress=False)
+    rows = sim.species_timeseries
+    columns = csv_columns(tmp_path / "cli" / "species.csv")
+    assert list(columns) == ["time", "collisions_per_particle", "species", "temperature",
+                             "a2", "collision_frequency"]
+    for name, values in columns.items():
+        want = np.array([float(x) if x != "" else np.nan for x in values])
+        np.testing.assert_array_equal(rows[name], want, err_msg=name)
+    assert np.isnan(rows["collision_frequency"][:2]).all()
+    assert (rows["collision_frequency"][2:] > 0).all()
+    mixture = 0.5 * rows["temperature"][0::2] + 0.5 * rows["temperature"][1::2]
+    np.testing.assert_allclose(mixture, sim.timeseries["temperature"], rtol=1e-12)
+    assert haff.Simulation(CONFIGS["dsmc-blocks"]).species_timeseries is None
+
+
 @pytest.mark.parametrize("name", ["event-driven", "viscoelastic-2d-by-time"])
 def test_advance_in_parts_equals_one_run(name):
     whole = haff.Simulation(CONFIGS[name]).run(progress=False)

@@ -22,6 +22,7 @@
 //! omega by (1 - a2/16) and zeta by (1 + 3 a2/16) (van Noije & Ernst 1998, Granular Matter 1,
 //! 57), so the cooling per collision by about (1 + a2/4).
 
+pub mod gauss;
 pub mod hydrodynamics;
 pub mod mixture;
 pub mod sonine;

@@ -237,3 +237,51 @@ fn bad_input_is_named() {
     ))
     .contains("packing_fraction"));
 }
+
+/// One species (and identical twins) in the first Sonine approximation: a2 of van Noije &
+/// Ernst (`theory::van_noije_ernst_a2`, the same linearization, closed form) to 1e-10, the
+/// cooling rate (1 + 3 a2/16) and the collision frequency (1 - a2/16) times the
+/// Maxwellian ones (van Noije & Ernst 1998; Brilliantov & Pöschel 2004, Ch. 7): checks of
+/// the quadrature of the collision integrals. Elastic mixtures stay Maxwellian.
+#[test]
+fn sonine_one_species_is_van_noije_ernst() {
+    fn check<const D: usize>(alpha: f64) {
+        let want = theory::van_noije_ernst_a2::<D>(alpha);
+        let pure = MixtureTheory::<D>::new(&[1.5], &[1.0], &[1.0], &[vec![alpha]], 0.1).unwrap();
+        let (sonine, maxwell) = (pure.hcs_sonine(2.0).unwrap(), pure.hcs(2.0).unwrap());
+        let a2 = sonine.a2[0];
+        assert!(
+            (a2 - want).abs() < 1e-10,
+            "{D}D alpha {alpha}: a2 {a2} vs {want}"
+        );
+        let zeta = maxwell.cooling_rate * (1.0 + 3.0 * a2 / 16.0);
+        assert!(
+            (sonine.cooling_rate / zeta - 1.0).abs() < 1e-10,
+            "{D}D zeta"
+        );
+        let nu = maxwell.collision_frequencies[0] * (1.0 - a2 / 16.0);
+        assert!(
+            (sonine.collision_frequencies[0] / nu - 1.0).abs() < 1e-10,
+            "{D}D nu"
+        );
+        let twins = binary::<D>([1.5, 1.5], [1.0, 1.0], 0.3, [[alpha; 2]; 2], 0.1);
+        let hcs = twins.hcs_sonine(2.0).unwrap();
+        for i in 0..2 {
+            assert!((hcs.temperature_ratios[i] - 1.0).abs() < 1e-10);
+            assert!(
+                (hcs.a2[i] - want).abs() < 1e-10,
+                "{D}D twins a2 {}",
+                hcs.a2[i]
+            );
+        }
+    }
+    for alpha in [0.3, 0.7, 0.9] {
+        check::<2>(alpha);
+        check::<3>(alpha);
+    }
+    let elastic = binary::<3>([1.0, 4.0], [1.0, 2.0], 0.3, [[1.0; 2]; 2], 0.2);
+    let hcs = elastic.hcs_sonine(1.0).unwrap();
+    for i in 0..2 {
+        assert!((hcs.temperature_ratios[i] - 1.0).abs() < 1e-10 && hcs.a2[i].abs() < 1e-10);
+    }
+}

@@ -24,6 +24,8 @@
 //! with S_D = 2, 2 pi, 4 pi. One species: nu = omega of [`super::collision_frequency`] and
 //! zeta = (1 - alpha^2) omega / D, the module's Haff law.
 
+mod sonine;
+
 use super::{close_packing, mixture_contact_value, sphere_surface};
 use crate::error::{Error, Result};
 use crate::system::ball_volume;
@@ -42,11 +44,13 @@ pub struct MixtureTheory<const D: usize> {
     contact: Vec<Vec<f64>>,
 }
 
-/// The HCS of a mixture: the temperature ratios T_i / T (T = sum x_i T_i) and, at T, the
-/// common cooling rate and each species' collision frequency.
+/// The HCS of a mixture: the temperature ratios T_i / T (T = sum x_i T_i), each species'
+/// Sonine coefficient a2_i (zero in the Maxwellian approximation) and, at T, the common
+/// cooling rate and each species' collision frequency.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MixtureHcs {
     pub temperature_ratios: Vec<f64>,
+    pub a2: Vec<f64>,
     pub cooling_rate: f64,
     pub collision_frequencies: Vec<f64>,
 }
@@ -210,76 +214,91 @@ impl<const D: usize> MixtureTheory<D> {
             .collect()
     }
 
-    /// The homogeneous cooling state at mixture temperature `temperature`: the ratios
-    /// T_i / T at which all species cool at one rate (Newton's method on ln T_i, to 1e-13
-    /// in the rates), that rate, and the collision frequencies.
+    /// The homogeneous cooling state at mixture temperature `temperature` in the
+    /// Maxwellian approximation: the ratios T_i / T at which all species cool at one rate
+    /// (Newton's method on ln T_i, to 1e-13 in the rates over a collision frequency), that
+    /// rate, and the collision frequencies.
     pub fn hcs(&self, temperature: f64) -> Result<MixtureHcs> {
-        let s = self.species();
         // Unknowns: ln T_i for i >= 1 with T_0 = 1; residuals (zeta_i - zeta_0) / nu_0
         // (zero rates in the elastic limit: not a ratio of rates).
-        let temperatures = |y: &[f64]| -> Vec<f64> {
-            std::iter::once(1.0)
-                .chain(y.iter().map(|v| v.exp()))
-                .collect()
-        };
-        let residual = |y: &[f64]| -> Vec<f64> {
-            let t = temperatures(y);
+        let residual = |y: &[f64]| -> Result<Vec<f64>> {
+            let t = with_first(y);
             let z = self.cooling_rates(&t);
             let nu = self.collision_frequencies(&t)[0];
-            z[1..].iter().map(|zi| (zi - z[0]) / nu).collect()
+            Ok(z[1..].iter().map(|zi| (zi - z[0]) / nu).collect())
         };
-        let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut y = vec![0.0; s - 1];
-        let mut r = residual(&y);
-        for _ in 0..100 {
-            if norm(&r) < 1e-13 {
-                break;
-            }
-            let h = 1e-7;
-            let columns: Vec<Vec<f64>> = (0..s - 1)
-                .map(|k| {
-                    let mut shifted = y.clone();
-                    shifted[k] += h;
-                    let rk = residual(&shifted);
-                    rk.iter().zip(&r).map(|(a, b)| (a - b) / h).collect()
-                })
-                .collect();
-            let jacobian: Vec<Vec<f64>> = (0..s - 1)
-                .map(|row| (0..s - 1).map(|col| columns[col][row]).collect())
-                .collect();
-            let step = solve(jacobian, r.iter().map(|v| -v).collect()).ok_or_else(|| {
-                Error::out_of_range("restitution", 0, "a mixture whose HCS exists")
-            })?;
-            // Backtracking: halve the step until the residual decreases.
-            let mut scale = 1.0;
-            loop {
-                let trial: Vec<f64> = y.iter().zip(&step).map(|(a, b)| a + scale * b).collect();
-                let rt = residual(&trial);
-                if norm(&rt) < norm(&r) || scale < 1e-6 {
-                    y = trial;
-                    r = rt;
-                    break;
-                }
-                scale *= 0.5;
-            }
-        }
-        if !(norm(&r) < 1e-10) {
-            return Err(Error::out_of_range(
-                "restitution",
-                norm(&r),
-                "a mixture whose HCS the solver finds",
-            ));
-        }
-        let t = temperatures(&y);
-        let mean: f64 = t.iter().zip(&self.fractions).map(|(t, x)| t * x).sum();
-        let ratios: Vec<f64> = t.iter().map(|t| t / mean).collect();
+        let y = newton(&mut vec![0.0; self.species() - 1], residual, 1e-13)?;
+        let ratios = self.ratios(&with_first(&y));
         let at: Vec<f64> = ratios.iter().map(|r| r * temperature).collect();
         Ok(MixtureHcs {
             cooling_rate: self.cooling_rates(&at)[0],
             collision_frequencies: self.collision_frequencies(&at),
+            a2: vec![0.0; self.species()],
             temperature_ratios: ratios,
         })
     }
+
+    /// T_i / T for species temperatures `t` (T = sum x_i T_i).
+    fn ratios(&self, t: &[f64]) -> Vec<f64> {
+        let mean: f64 = t.iter().zip(&self.fractions).map(|(t, x)| t * x).sum();
+        t.iter().map(|t| t / mean).collect()
+    }
+}
+
+/// Temperatures 1, e^y_1, e^y_2, ...
+fn with_first(y: &[f64]) -> Vec<f64> {
+    std::iter::once(1.0)
+        .chain(y.iter().map(|v| v.exp()))
+        .collect()
+}
+
+/// Newton's method with a finite-difference Jacobian and backtracking from `y` to
+/// |residual| < `tolerance`.
+fn newton(
+    y: &mut Vec<f64>,
+    residual: impl Fn(&[f64]) -> Result<Vec<f64>>,
+    tolerance: f64,
+) -> Result<Vec<f64>> {
+    let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let n = y.len();
+    let mut r = residual(y)?;
+    for _ in 0..100 {
+        if norm(&r) < tolerance {
+            break;
+        }
+        let h = 1e-7;
+        let mut jacobian = vec![vec![0.0; n]; n];
+        for k in 0..n {
+            let mut shifted = y.clone();
+            shifted[k] += h;
+            let rk = residual(&shifted)?;
+            for row in 0..n {
+                jacobian[row][k] = (rk[row] - r[row]) / h;
+            }
+        }
+        let step = solve(jacobian, r.iter().map(|v| -v).collect())
+            .ok_or_else(|| Error::out_of_range("restitution", 0, "a mixture whose HCS exists"))?;
+        // Backtracking: halve the step until the residual decreases.
+        let mut scale = 1.0;
+        loop {
+            let trial: Vec<f64> = y.iter().zip(&step).map(|(a, b)| a + scale * b).collect();
+            let rt = residual(&trial)?;
+            if norm(&rt) < norm(&r) || scale < 1e-6 {
+                *y = trial;
+                r = rt;
+                break;
+            }
+            scale *= 0.5;
+        }
+    }
+    if !(norm(&r) < 1e3 * tolerance) {
+        return Err(Error::out_of_range(
+            "restitution",
+            norm(&r),
+            "a mixture whose HCS the solver finds",
+        ));
+    }
+    Ok(y.clone())
 }
 
 /// x with A x = b by Gaussian elimination with partial pivoting; None if A is singular.

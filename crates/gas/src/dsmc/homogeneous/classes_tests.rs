@@ -1,6 +1,7 @@
 //! Tests of the speed-class process of `classes.rs`.
 use super::*;
 use crate::dsmc::species::Species;
+use crate::engine::Counters;
 use crate::rng::Purpose;
 use restitution::Constant;
 
