@@ -173,8 +173,10 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
 }
 
 /// The `species` entry of `summary.json`: the last sample's rows, each species' T_i / T
-/// there (T = sum x_i T_i), and for a constant restitution the HCS ratios of kinetic theory
-/// in the Maxwellian approximation ([`gas::theory::MixtureTheory`]).
+/// there (T = sum x_i T_i), and for a constant restitution the HCS of kinetic theory
+/// ([`gas::theory::MixtureTheory`]): T_i / T in the Maxwellian approximation, and T_i / T
+/// and a2_i in the first Sonine approximation (up to [`SONINE_SPECIES`] species: its
+/// quadrature grows as the square of the species).
 pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
     let Some(list) = plan.description.system.species.as_ref() else {
         return serde_json::Value::Null;
@@ -201,25 +203,41 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
         let alpha = vec![vec![eps; kinds]; kinds];
         let phi = plan.description.system.packing_fraction;
         let theory = match plan.description.system.dimension {
-            1 => hcs_ratios::<1>(&masses, &diameters, &fractions, &alpha, phi),
-            2 => hcs_ratios::<2>(&masses, &diameters, &fractions, &alpha, phi),
-            _ => hcs_ratios::<3>(&masses, &diameters, &fractions, &alpha, phi),
+            1 => hcs_theory::<1>(&masses, &diameters, &fractions, &alpha, phi),
+            2 => hcs_theory::<2>(&masses, &diameters, &fractions, &alpha, phi),
+            _ => hcs_theory::<3>(&masses, &diameters, &fractions, &alpha, phi),
         };
         if let Some(theory) = theory {
-            out["hcs_temperature_ratios_maxwellian"] = serde_json::json!(theory);
+            out["hcs_theory"] = theory;
         }
     }
     out
 }
 
-/// T_i / T in the HCS of kinetic theory (Maxwellian approximation).
-fn hcs_ratios<const D: usize>(
+/// The most species for which `summary.json` carries the Sonine theory.
+pub const SONINE_SPECIES: usize = 4;
+
+/// The HCS of kinetic theory: Maxwellian T_i / T, and Sonine T_i / T and a2_i.
+fn hcs_theory<const D: usize>(
     masses: &[f64],
     diameters: &[f64],
     fractions: &[f64],
     alpha: &[Vec<f64>],
     phi: f64,
-) -> Option<Vec<f64>> {
-    let theory = gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi);
-    Some(theory.ok()?.hcs(1.0).ok()?.temperature_ratios)
+) -> Option<serde_json::Value> {
+    let theory =
+        gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi).ok()?;
+    let maxwellian = theory.hcs(1.0).ok()?;
+    let mut out = serde_json::json!({
+        "maxwellian": { "temperature_ratios": maxwellian.temperature_ratios },
+    });
+    if masses.len() <= SONINE_SPECIES {
+        if let Ok(sonine) = theory.hcs_sonine(1.0) {
+            out["sonine"] = serde_json::json!({
+                "temperature_ratios": sonine.temperature_ratios,
+                "a2": sonine.a2,
+            });
+        }
+    }
+    Some(out)
 }

@@ -100,9 +100,8 @@ impl<const D: usize> MixtureTheory<D> {
                 format!("a {s} x {s} matrix"),
             ));
         }
-        for i in 0..s {
-            for j in 0..s {
-                let a = restitution[i][j];
+        for (i, row) in restitution.iter().enumerate() {
+            for (j, &a) in row.iter().enumerate() {
                 if !(0.0..=1.0).contains(&a) || a != restitution[j][i] {
                     return Err(Error::out_of_range(
                         "restitution",
@@ -291,7 +290,7 @@ fn newton(
             scale *= 0.5;
         }
     }
-    if !(norm(&r) < 1e3 * tolerance) {
+    if norm(&r).is_nan() || norm(&r) >= 1e3 * tolerance {
         return Err(Error::out_of_range(
             "restitution",
             norm(&r),
@@ -301,28 +300,8 @@ fn newton(
     Ok(y.clone())
 }
 
-/// x with A x = b by Gaussian elimination with partial pivoting; None if A is singular.
-fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    for col in 0..n {
-        let pivot = (col..n).max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))?;
-        if a[pivot][col] == 0.0 || !a[pivot][col].is_finite() {
-            return None;
-        }
-        a.swap(col, pivot);
-        b.swap(col, pivot);
-        for row in col + 1..n {
-            let f = a[row][col] / a[col][col];
-            for k in col..n {
-                a[row][k] -= f * a[col][k];
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for row in (0..n).rev() {
-        let tail: f64 = (row + 1..n).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - tail) / a[row][row];
-    }
-    Some(x)
+/// x with A x = b; None if A is singular.
+fn solve(a: Vec<Vec<f64>>, b: Vec<f64>) -> Option<Vec<f64>> {
+    let x = super::sonine::solve(a, b);
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }

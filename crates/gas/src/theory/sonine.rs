@@ -292,8 +292,9 @@ impl SonineHierarchy {
     }
 }
 
-/// Gaussian elimination with partial pivoting (systems of at most 11 unknowns).
-fn solve(mut m: Vec<Vec<f64>>, mut rhs: Vec<f64>) -> Vec<f64> {
+/// Gaussian elimination with partial pivoting (small systems: at most 11 unknowns here, a
+/// few per species in `mixture`); a singular system gives non-finite values.
+pub(super) fn solve(mut m: Vec<Vec<f64>>, mut rhs: Vec<f64>) -> Vec<f64> {
     let n = rhs.len();
     for col in 0..n {
         let pivot = (col..n)
