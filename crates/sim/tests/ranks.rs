@@ -23,11 +23,12 @@ fn description(extra: &str) -> RunDescription {
 /// Everything a run records, as text (bit-exact: floats in their shortest round-trip form).
 fn records(simulation: &Simulation) -> String {
     format!(
-        "{:?}\n{:?}\n{:?}\n{:?}",
+        "{:?}\n{:?}\n{:?}\n{:?}\n{:?}",
         simulation.samples(),
         simulation.histograms(),
         simulation.space_records(),
-        simulation.counters()
+        simulation.counters(),
+        simulation.species_samples()
     )
 }
 
