@@ -79,6 +79,9 @@ pub struct EventDriven<const D: usize> {
     /// The contact distance if all spheres have the same radius (no radius lookups).
     uniform_sigma: Option<f64>,
     law: Box<dyn Restitution>,
+    /// A pairwise law's table and each particle's kind in it (mixtures whose pairs collide
+    /// with different laws).
+    pairs: Option<(restitution::pairwise::Pairwise, Vec<u16>)>,
     time: f64,
     queue: Sorter,
     /// The smallest cell width asked for (see [`EventDriven::with_cell_width`]).
@@ -180,11 +183,43 @@ impl<const D: usize> EventDriven<D> {
         system.radii = Vec::new();
         system.masses = Vec::new();
         let law_is_stochastic = law.stochastic().is_some();
+        let pairs = match law.pairwise() {
+            None => None,
+            Some(_) if law_is_stochastic => {
+                return Err(Error::out_of_range(
+                    "restitution",
+                    "stochastic and pairwise",
+                    "one of them",
+                ))
+            }
+            Some(table) => {
+                let kinds = particles
+                    .iter()
+                    .map(|p| {
+                        table
+                            .kind_of(p.radius, p.mass)
+                            .map(|k| k as u16)
+                            .ok_or_else(|| {
+                                Error::out_of_range(
+                                    "restitution",
+                                    format!(
+                                        "no law for particles of radius {} and mass {}",
+                                        p.radius, p.mass
+                                    ),
+                                    "a law for every pair of species",
+                                )
+                            })
+                    })
+                    .collect::<Result<Vec<u16>>>()?;
+                Some((table.clone(), kinds))
+            }
+        };
         let mut engine = EventDriven {
             system,
             particles,
             uniform_sigma,
             law,
+            pairs,
             time: 0.0,
             queue: Sorter::new(SorterKind::default(), n),
             min_cell_width: min_width,

@@ -32,6 +32,11 @@ pub trait Restitution: Send + Sync + fmt::Debug {
     fn stochastic(&self) -> Option<&dyn crate::stochastic::StochasticRestitution> {
         None
     }
+    /// The laws per pair of particle kinds of a mixture whose pairs collide differently
+    /// ([`crate::pairwise::Pairwise`]); `None` for one law for all pairs.
+    fn pairwise(&self) -> Option<&crate::pairwise::Pairwise> {
+        None
+    }
 }
 
 impl Clone for Box<dyn Restitution> {

@@ -20,6 +20,7 @@ mod manifold;
 pub mod material;
 pub mod ode;
 pub mod pade;
+pub mod pairwise;
 pub mod series;
 pub mod stochastic;
 mod taylor;

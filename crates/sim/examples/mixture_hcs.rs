@@ -28,7 +28,12 @@ fn main() {
         let rows = s.species_samples().unwrap();
         per_seed.push(
             rows.chunks(2)
-                .map(|p| (p[0].collisions_per_particle, p[1].temperature / p[0].temperature))
+                .map(|p| {
+                    (
+                        p[0].collisions_per_particle,
+                        p[1].temperature / p[0].temperature,
+                    )
+                })
                 .collect(),
         );
     }

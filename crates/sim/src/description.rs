@@ -183,6 +183,52 @@ pub enum Distribution {
     Tabulated,
 }
 
+/// `collision.restitution`: one coefficient for every pair, or a symmetric matrix with one
+/// row per species of `system.species` (`[[a11, a12], [a12, a22]]`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum RestitutionValue {
+    One(f64),
+    PerPair(Vec<Vec<f64>>),
+}
+
+impl<'de> Deserialize<'de> for RestitutionValue {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = RestitutionValue;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(
+                    "a number 0 <= eps <= 1, or a symmetric matrix of them with one row per \
+                     species, [[a11, a12], [a12, a22]]",
+                )
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<Self::Value, E> {
+                Ok(RestitutionValue::One(v))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<Self::Value, E> {
+                Ok(RestitutionValue::One(v as f64))
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<Self::Value, E> {
+                Ok(RestitutionValue::One(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> std::result::Result<Self::Value, A::Error> {
+                let mut rows = Vec::new();
+                while let Some(row) = seq.next_element::<Vec<f64>>()? {
+                    rows.push(row);
+                }
+                Ok(RestitutionValue::PerPair(rows))
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
+}
+
 /// `[collision]`: the law and its parameters. The stochastic keys are refused for the
 /// other laws by [`crate::validate`]; keys of another deterministic law are still accepted
 /// and ignored (as they always were).
@@ -193,7 +239,7 @@ pub struct CollisionSection {
     // The four keys below are written as null when absent (summary.json has always
     // listed them).
     #[serde(default)]
-    pub restitution: Option<f64>,
+    pub restitution: Option<RestitutionValue>,
     #[serde(default)]
     pub damping_ratio: Option<f64>,
     #[serde(default)]

@@ -2,6 +2,7 @@
 
 use crate::error::{Error, Result};
 use crate::validate::{LawSpec, StochasticTable};
+use restitution::pairwise::Pairwise;
 use restitution::{Constant, Dashpot, Glauber, Restitution, Viscoelastic};
 use std::path::Path;
 
@@ -15,6 +16,21 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
     Ok(match spec {
         LawSpec::Constant(eps) => {
             Box::new(Constant::new(*eps).map_err(input("collision.restitution"))?)
+        }
+        LawSpec::ConstantPairs { kinds, matrix } => {
+            let laws = matrix
+                .iter()
+                .map(|row| {
+                    row.iter()
+                        .map(|&eps| -> Result<Box<dyn Restitution>> {
+                            Ok(Box::new(
+                                Constant::new(eps).map_err(input("collision.restitution"))?,
+                            ))
+                        })
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()?;
+            Box::new(Pairwise::new(kinds.clone(), laws).map_err(input("collision.restitution"))?)
         }
         LawSpec::Dashpot {
             damping_ratio,

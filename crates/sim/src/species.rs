@@ -173,7 +173,8 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
 }
 
 /// The `species` entry of `summary.json`: the last sample's rows, each species' T_i / T
-/// there (T = sum x_i T_i), and for a constant restitution the HCS of kinetic theory
+/// there (T = sum x_i T_i), and for a constant restitution (one, or one per pair) the HCS
+/// of kinetic theory
 /// ([`gas::theory::MixtureTheory`]): T_i / T in the Maxwellian approximation, and T_i / T
 /// and a2_i in the first Sonine approximation (up to [`SONINE_SPECIES`] species: its
 /// quadrature grows as the square of the species).
@@ -197,10 +198,14 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
         "final": last,
         "temperature_ratios": ratios,
     });
-    if let LawSpec::Constant(eps) = plan.law {
+    let alpha = match &plan.law {
+        LawSpec::Constant(eps) => Some(vec![vec![*eps; kinds]; kinds]),
+        LawSpec::ConstantPairs { matrix, .. } => Some(matrix.clone()),
+        _ => None,
+    };
+    if let Some(alpha) = alpha {
         let masses: Vec<f64> = list.iter().map(|x| x.mass).collect();
         let diameters: Vec<f64> = list.iter().map(|x| x.diameter).collect();
-        let alpha = vec![vec![eps; kinds]; kinds];
         let phi = plan.description.system.packing_fraction;
         let theory = match plan.description.system.dimension {
             1 => hcs_theory::<1>(&masses, &diameters, &fractions, &alpha, phi),

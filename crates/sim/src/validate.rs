@@ -8,7 +8,8 @@
 mod material;
 
 use crate::description::{
-    species, Distribution, DsmcScheme, EngineKind, LawKind, RunDescription, RunSection, Spacing,
+    species, Distribution, DsmcScheme, EngineKind, LawKind, RestitutionValue, RunDescription,
+    RunSection, Spacing,
 };
 use crate::error::{positive, Error, Result};
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
@@ -47,6 +48,12 @@ impl Stop {
 #[derive(Debug, Clone, PartialEq)]
 pub enum LawSpec {
     Constant(f64),
+    /// A constant restitution per pair of species: kinds (radius, mass) in the order of
+    /// `system.species` and the symmetric matrix.
+    ConstantPairs {
+        kinds: Vec<(f64, f64)>,
+        matrix: Vec<Vec<f64>>,
+    },
     Dashpot {
         damping_ratio: f64,
         criterion: Criterion,
@@ -339,18 +346,43 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
     }
     Ok(match c.law {
         LawKind::Constant => {
-            let eps = need("collision.restitution", c.restitution)?;
             let tc = c.tc.is_some_and(|t| t > 0.0);
-            if eps == 0.0 && description.run.engine == EngineKind::EventDriven && !tc {
-                return Err(Error::out_of_range(
-                    "collision.restitution",
-                    eps,
-                    "0 < restitution <= 1 in an event-driven run (at 0 the spheres stick: \
-                     they collide again at once, forever, and time stops); or set \
-                     collision.tc, the TC model, or use engine = \"dsmc\"",
-                ));
+            let sticking = |key: &str, eps: f64| {
+                if eps == 0.0 && description.run.engine == EngineKind::EventDriven && !tc {
+                    return Err(Error::out_of_range(
+                        key,
+                        eps,
+                        "0 < restitution <= 1 in an event-driven run (at 0 the spheres stick: \
+                         they collide again at once, forever, and time stops); or set \
+                         collision.tc, the TC model, or use engine = \"dsmc\"",
+                    ));
+                }
+                Ok(())
+            };
+            match &c.restitution {
+                None => {
+                    return Err(Error::input(
+                        "collision.restitution",
+                        "missing for this law",
+                    ))
+                }
+                Some(RestitutionValue::One(eps)) => {
+                    sticking("collision.restitution", *eps)?;
+                    LawSpec::Constant(*eps)
+                }
+                Some(RestitutionValue::PerPair(matrix)) => {
+                    let kinds = restitution_matrix(description, matrix)?;
+                    for (i, row) in matrix.iter().enumerate() {
+                        for (j, &eps) in row.iter().enumerate() {
+                            sticking(&format!("collision.restitution[{i}][{j}]"), eps)?;
+                        }
+                    }
+                    LawSpec::ConstantPairs {
+                        kinds,
+                        matrix: matrix.clone(),
+                    }
+                }
             }
-            LawSpec::Constant(eps)
         }
         LawKind::Dashpot => LawSpec::Dashpot {
             damping_ratio: need("collision.damping_ratio", c.damping_ratio)?,
@@ -740,4 +772,44 @@ impl Plan {
         };
         (2.0 * s.particles as f64 * f64::from(s.dimension) * s.temperature / lightest).sqrt()
     }
+}
+
+/// Checks a matrix `collision.restitution` against `system.species`: one row and column
+/// per species, values in [0, 1], symmetric; returns the kinds (radius, mass).
+fn restitution_matrix(
+    description: &RunDescription,
+    matrix: &[Vec<f64>],
+) -> Result<Vec<(f64, f64)>> {
+    let Some(species) = &description.system.species else {
+        return Err(Error::input(
+            "collision.restitution",
+            "a matrix needs system.species (one row per species); give one number otherwise",
+        ));
+    };
+    let s = species.len();
+    if matrix.len() != s || matrix.iter().any(|row| row.len() != s) {
+        return Err(Error::input(
+            "collision.restitution",
+            format!("a {s} x {s} matrix: one row and column per species of system.species"),
+        ));
+    }
+    for (i, row) in matrix.iter().enumerate() {
+        for (j, &eps) in row.iter().enumerate() {
+            let key = format!("collision.restitution[{i}][{j}]");
+            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
+                return Err(Error::out_of_range(&key, eps, "0 <= eps <= 1"));
+            }
+            if eps != matrix[j][i] {
+                return Err(Error::out_of_range(
+                    &key,
+                    eps,
+                    &format!(
+                        "collision.restitution[{j}][{i}] = {} (symmetric)",
+                        matrix[j][i]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(species.iter().map(|x| (0.5 * x.diameter, x.mass)).collect())
 }

@@ -9,12 +9,12 @@ use sim::species::SpeciesSample;
 use sim::{RunDescription, Simulation};
 use std::path::Path;
 
-/// A binary mixture run: engine lines, restitution, particles, collisions per particle,
-/// samples, seed, and the two species (diameter, mass, fraction).
+/// A binary mixture run: engine lines, restitution (TOML: a number or a matrix), particles,
+/// collisions per particle, samples, seed, and the two species (diameter, mass, fraction).
 #[allow(clippy::too_many_arguments)]
 fn mixture(
     engine: &str,
-    restitution: f64,
+    restitution: impl std::fmt::Display,
     dimension: u32,
     particles: usize,
     phi: f64,
@@ -138,14 +138,26 @@ fn elastic_frequencies_are_kinetic_theory() {
 struct Case {
     dimension: u32,
     species: [(f64, f64, f64); 2],
-    alpha: f64,
+    alpha: [[f64; 2]; 2],
+}
+
+impl Case {
+    /// `collision.restitution` in TOML.
+    fn restitution(&self) -> String {
+        let a = self.alpha;
+        if a[0][0] == a[0][1] && a[0][0] == a[1][1] {
+            format!("{}", a[0][0])
+        } else {
+            format!("[[{}, {}], [{}, {}]]", a[0][0], a[0][1], a[1][0], a[1][1])
+        }
+    }
 }
 
 /// The Maxwellian and Sonine HCS ratios T_1/T_0 and a2 of both species for a case.
 fn theory_of(case: &Case, phi: f64) -> (f64, f64, [f64; 2]) {
     let [(d0, m0, x0), (d1, m1, x1)] = case.species;
     let (m, d, x) = ([m0, m1], [d0, d1], [x0 / (x0 + x1), x1 / (x0 + x1)]);
-    let alpha = vec![vec![case.alpha; 2]; 2];
+    let alpha: Vec<Vec<f64>> = case.alpha.iter().map(|r| r.to_vec()).collect();
     let (maxwell, sonine) = match case.dimension {
         2 => {
             let t = MixtureTheory::<2>::new(&m, &d, &x, &alpha, phi).unwrap();
@@ -171,7 +183,7 @@ fn measured(engine: &str, case: &Case, particles: usize, phi: f64, seeds: u64) -
         .map(|seed| {
             let s = mixture(
                 engine,
-                case.alpha,
+                case.restitution(),
                 case.dimension,
                 particles,
                 phi,
@@ -217,27 +229,32 @@ fn cooling_mixtures_follow_the_sonine_theory() {
         Case {
             dimension: 3,
             species: [(1.0, 1.0, 0.5), (1.0, 4.0, 0.5)],
-            alpha: 0.8,
+            alpha: [[0.8; 2]; 2],
         },
         Case {
             dimension: 3,
             species: [(1.0, 1.0, 0.3), (1.5, 2.0, 0.7)],
-            alpha: 0.9,
+            alpha: [[0.9; 2]; 2],
         },
         Case {
             dimension: 3,
             species: [(1.0, 1.0, 0.8), (1.0, 10.0, 0.2)],
-            alpha: 0.7,
+            alpha: [[0.7; 2]; 2],
         },
         Case {
             dimension: 3,
             species: [(1.0, 1.0, 0.5), (1.0, 4.0, 0.5)],
-            alpha: 0.5,
+            alpha: [[0.5; 2]; 2],
         },
         Case {
             dimension: 2,
             species: [(1.0, 1.0, 0.5), (1.2, 3.0, 0.5)],
-            alpha: 0.8,
+            alpha: [[0.8; 2]; 2],
+        },
+        Case {
+            dimension: 3,
+            species: [(1.0, 1.0, 0.5), (1.0, 4.0, 0.5)],
+            alpha: [[0.9, 0.6], [0.6, 0.75]],
         },
     ];
     println!("| engine | D | phi | (sigma, m, x) of species 0 and 1 | alpha | T1/T0 measured | Maxwellian | Sonine | a2_0 measured / Sonine | a2_1 measured / Sonine |");
@@ -247,7 +264,7 @@ fn cooling_mixtures_follow_the_sonine_theory() {
         let [(ratio, error), (a0, e0), (a1, e1)] = measured(engine, case, particles, phi, seeds);
         println!(
             "| {name} | {} | {phi} | {:?} | {} | {ratio:.4} ± {error:.4} | {maxwell:.4} | {sonine:.4} | {a0:.4} ± {e0:.4} / {:.4} | {a1:.4} ± {e1:.4} / {:.4} |",
-            case.dimension, case.species, case.alpha, a2[0], a2[1]
+            case.dimension, case.species, case.restitution(), a2[0], a2[1]
         );
         if (maxwell - sonine).abs() > 4.0 * error {
             assert!(
@@ -272,8 +289,62 @@ fn cooling_mixtures_follow_the_sonine_theory() {
     let dilute = Case {
         dimension: 3,
         species: [(1.0, 1.0, 0.5), (1.0, 4.0, 0.5)],
-        alpha: 0.9,
+        alpha: [[0.9; 2]; 2],
     };
     check(BLOCKS, "DSMC", &dilute, 200_000, 0.05, 5);
     check(EVENT_DRIVEN, "eMD", &dilute, 2_000, 0.05, 8);
+}
+
+/// A matrix `collision.restitution` is checked against `system.species`, naming the entry:
+/// its shape, the range of each value, symmetry; a matrix without species is refused.
+#[test]
+fn restitution_matrices_are_checked() {
+    let file = |restitution: &str, species: bool| {
+        let list = if species {
+            "species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+             { diameter = 1.0, mass = 2.0, fraction = 0.5 }]\n"
+        } else {
+            ""
+        };
+        format!(
+            "[system]\nparticles = 100\npacking_fraction = 0.1\n{list}[collision]\n\
+             law = \"constant\"\nrestitution = {restitution}\n[run]\nengine = \"dsmc\"\n\
+             collisions_per_particle = 1\nsamples = 2\n"
+        )
+    };
+    let error = |text: String| {
+        let e = Simulation::from_toml(&text, Path::new("m.toml"))
+            .err()
+            .unwrap();
+        assert!(e.is_input(), "{e}");
+        e.to_string()
+    };
+    let cases = [
+        (
+            "[[0.9, 0.6], [0.5, 0.8]]",
+            true,
+            "collision.restitution[0][1]",
+            "symmetric",
+        ),
+        ("[[0.9, 0.6]]", true, "collision.restitution", "2 x 2"),
+        (
+            "[[0.9, 1.5], [1.5, 0.8]]",
+            true,
+            "collision.restitution[0][1]",
+            "0 <= eps <= 1",
+        ),
+        (
+            "[[0.9, 0.6], [0.6, 0.8]]",
+            false,
+            "collision.restitution",
+            "system.species",
+        ),
+        ("\"x\"", true, "collision.restitution", "matrix"),
+    ];
+    for (value, species, key, allowed) in cases {
+        let e = error(file(value, species));
+        assert!(e.contains(key) && e.contains(allowed), "{value}: {e}");
+    }
+    let ok = Simulation::from_toml(&file("[[0.9, 0.6], [0.6, 0.8]]", true), Path::new("m.toml"));
+    assert!(ok.is_ok());
 }

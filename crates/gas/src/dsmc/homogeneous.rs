@@ -34,6 +34,8 @@ enum Store<const D: usize> {
 struct Core<const D: usize> {
     species: Species,
     law: Box<dyn Restitution>,
+    /// The law of each pair of species (pairwise laws; [`super::species::engine_laws`]).
+    pairs: Option<Vec<Box<dyn Restitution>>>,
     scheme: Scheme,
     phi: f64,
     seed: u64,
@@ -162,12 +164,14 @@ impl<const D: usize> HomogeneousDsmc<D> {
             Scheme::Exact => None,
         };
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
+        let (law, pairs) = super::species::engine_laws(law, &species)?;
         let reference = mean_velocity(&system.velocities, &system.masses);
         let n = system.velocities.len();
         let mut core = Core {
             volume: species.sphere_volume / phi,
             species,
             law,
+            pairs,
             scheme,
             phi,
             seed,
@@ -573,6 +577,7 @@ fn run_exact<const D: usize, R: Record<D>>(
         let collider = Collider {
             law: core.law.as_ref(),
             species: &core.species,
+            pairs: core.pairs.as_deref(),
         };
         let classes = core.classes.get_or_insert_with(|| {
             let width = class_width(core.temperature, core.species.min_mass, core.speed_bound);

@@ -156,6 +156,9 @@ pub(crate) fn add_counts(total: &mut Vec<u64>, more: &[u64]) {
 pub(crate) struct Collider<'a> {
     pub law: &'a dyn Restitution,
     pub species: &'a Species,
+    /// A law per pair of species (row-major, in the order of `species`) for a mixture with
+    /// a pairwise law ([`super::species::engine_laws`]); else `law` for every pair.
+    pub pairs: Option<&'a [Box<dyn Restitution>]>,
 }
 
 /// A window of the exact process: from `start` to `end` (may be infinite), at most
@@ -314,7 +317,10 @@ impl Collider<'_> {
     ) -> f64 {
         let e = impact_direction(g, g2.sqrt(), rng);
         let approach = dot(g, &e).max(0.0);
-        let eps = self.law.eps(approach);
+        let eps = match self.pairs {
+            Some(laws) => laws[a.species() * self.species.len() + b.species()].eps(approach),
+            None => self.law.eps(approach),
+        };
         let pair = self.species.pair(a.species(), b.species());
         let kick = (1.0 + eps) * approach;
         let (kick_a, kick_b) = (kick * pair.share_a, kick * pair.share_b);

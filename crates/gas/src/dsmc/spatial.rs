@@ -74,6 +74,8 @@ pub struct SpatialDsmc<const D: usize> {
     simulators: Vec<Simulator<D>>,
     species: Species,
     law: Box<dyn Restitution>,
+    /// The law of each pair of species (pairwise laws; [`super::species::engine_laws`]).
+    pairs: Option<Vec<Box<dyn Restitution>>>,
     options: SpatialOptions,
     phi: f64,
     seed: u64,
@@ -150,6 +152,7 @@ impl<const D: usize> SpatialDsmc<D> {
         }
         options.step.check()?;
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
+        let (law, pairs) = super::species::engine_laws(law, &species)?;
         let box_volume = length.powi(D as i32);
         let weight = phi * box_volume / species.sphere_volume;
         let density = n as f64 * weight / box_volume;
@@ -227,6 +230,7 @@ impl<const D: usize> SpatialDsmc<D> {
             simulators,
             species,
             law,
+            pairs,
             options,
             phi,
             seed,
@@ -475,6 +479,7 @@ impl<const D: usize> SpatialDsmc<D> {
         let collider = Collider {
             law: self.law.as_ref(),
             species: &self.species,
+            pairs: self.pairs.as_deref(),
         };
         let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
             / width.powi(D as i32);

@@ -179,3 +179,45 @@ pub(crate) fn by_species(
         })
         .collect()
 }
+
+/// The laws of an engine with `species`: for a pairwise law
+/// ([`restitution::Restitution::pairwise`]), the law of each pair of species in their
+/// order (or, for one species, its law with itself as the law); otherwise `law` alone.
+/// Fails (`restitution`) if the pairwise law names no law for a species.
+#[allow(clippy::type_complexity)]
+pub(crate) fn engine_laws(
+    law: Box<dyn restitution::Restitution>,
+    species: &Species,
+) -> crate::error::Result<(
+    Box<dyn restitution::Restitution>,
+    Option<Vec<Box<dyn restitution::Restitution>>>,
+)> {
+    let Some(pairwise) = law.pairwise() else {
+        return Ok((law, None));
+    };
+    let kinds: Vec<usize> = (0..species.len())
+        .map(|s| {
+            pairwise
+                .kind_of(species.radii[s], species.masses[s])
+                .ok_or_else(|| {
+                    crate::error::Error::out_of_range(
+                        "restitution",
+                        format!(
+                            "no law for particles of radius {} and mass {}",
+                            species.radii[s], species.masses[s]
+                        ),
+                        "a law for every pair of species",
+                    )
+                })
+        })
+        .collect::<crate::error::Result<_>>()?;
+    if kinds.len() == 1 {
+        return Ok((pairwise.boxed(kinds[0], kinds[0]), None));
+    }
+    let table = kinds
+        .iter()
+        .flat_map(|&a| kinds.iter().map(move |&b| (a, b)))
+        .map(|(a, b)| pairwise.boxed(a, b))
+        .collect();
+    Ok((law, Some(table)))
+}

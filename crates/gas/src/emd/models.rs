@@ -161,7 +161,13 @@ impl<const D: usize> EventDriven<D> {
                 (reduced * (approach + separation), e_tr - e_after)
             }
             None => {
-                let eps = self.law.eps(approach.max(0.0));
+                let speed = approach.max(0.0);
+                let eps = match &self.pairs {
+                    Some((table, kinds)) => {
+                        table.law(kinds[i] as usize, kinds[j] as usize).eps(speed)
+                    }
+                    None => self.law.eps(speed),
+                };
                 ((1.0 + eps) * reduced * approach, (1.0 - eps * eps) * e_tr)
             }
         }

@@ -179,6 +179,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
     let collider = Collider {
         law: core.law.as_ref(),
         species: &core.species,
+        pairs: core.pairs.as_deref(),
     };
     let (seed, steps, species) = (core.seed, core.steps, &core.species);
     let reference = core.reference;

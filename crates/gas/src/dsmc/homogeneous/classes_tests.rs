@@ -51,6 +51,7 @@ fn class_bounds_hold_after_every_collision() {
         let collider = Collider {
             law: &law,
             species: &species,
+            pairs: None,
         };
         let mut rng = Stream::new(5, Purpose::Block, 0, 0);
         let mut tally = Counters::default();
@@ -135,6 +136,7 @@ fn colliding_pairs_follow_the_master_equation() {
     let collider = Collider {
         law: &law,
         species: &species,
+        pairs: None,
     };
     let pair_rate = 0.01;
     let mut rng = Stream::new(8, Purpose::Block, 1, 2);
@@ -198,6 +200,7 @@ fn class_process_agrees_with_the_single_majorant_process() {
     let collider = Collider {
         law: &law,
         species: &species,
+        pairs: None,
     };
     let reference = [0.0; 3];
     let pair_rate = 0.025;
