@@ -6,7 +6,7 @@
 
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
 use gas::init::{polydisperse, Species};
-use gas::{Engine, EventDriven, HomogeneousDsmc, SpatialDsmc, System};
+use gas::{EventDriven, HomogeneousDsmc, SpatialDsmc, System};
 use restitution::pairwise::Pairwise;
 use restitution::{Constant, Restitution};
 
