@@ -28,7 +28,7 @@ pub mod mixture;
 pub mod sonine;
 
 pub use hydrodynamics::{dilute_elastic_viscosity, long_wavelength_structure_factor, HcsTransport};
-pub use mixture::{MixtureHcs, MixtureTheory};
+pub use mixture::{DrivenState, MixtureHcs, MixtureTheory};
 pub use sonine::{second_sonine, SonineHierarchy};
 use std::f64::consts::PI;
 

@@ -285,3 +285,33 @@ fn sonine_one_species_is_van_noije_ernst() {
         assert!((hcs.temperature_ratios[i] - 1.0).abs() < 1e-10 && hcs.a2[i].abs() < 1e-10);
     }
 }
+
+/// White-noise driving, one species: the steady a2 of van Noije & Ernst (1998; Montanero &
+/// Santos, Granular Matter 2, 53 (2000)), a2 = 16 (1 - a)(1 - 2a^2) / (73 + 56 D
+/// - 3a (35 + 8D) + 30 (1 - a) a^2), to 1e-10: the formula is the authors' closed form, our
+/// number the quadrature of the collision integrals; and the energy balance
+/// zeta(T) T = m xi^2 with zeta = (1 + 3 a2/16) zeta_Maxwell(T).
+#[test]
+fn white_noise_one_species_is_van_noije_ernst() {
+    fn check<const D: usize>(alpha: f64) {
+        let d = D as f64;
+        let want = 16.0 * (1.0 - alpha) * (1.0 - 2.0 * alpha * alpha)
+            / (73.0 + 56.0 * d - 3.0 * alpha * (35.0 + 8.0 * d)
+                + 30.0 * (1.0 - alpha) * alpha * alpha);
+        let (m, xi2) = (1.5, 0.7);
+        let pure = MixtureTheory::<D>::new(&[m], &[1.0], &[1.0], &[vec![alpha]], 0.1).unwrap();
+        let steady = pure.white_noise(&[xi2], true).unwrap();
+        let a2 = steady.a2[0];
+        assert!((a2 - want).abs() < 1e-10, "{D}D alpha {alpha}: a2 {a2} vs {want}");
+        let t = steady.temperatures[0];
+        let zeta = pure.cooling_rates(&[t])[0] * (1.0 + 3.0 * a2 / 16.0);
+        assert!((zeta * t / (m * xi2) - 1.0).abs() < 1e-10, "{D}D balance");
+        let maxwell = pure.white_noise(&[xi2], false).unwrap();
+        let zeta = pure.cooling_rates(&maxwell.temperatures)[0];
+        assert!((zeta * maxwell.temperatures[0] / (m * xi2) - 1.0).abs() < 1e-10);
+    }
+    for alpha in [0.3, 0.7, 0.9] {
+        check::<2>(alpha);
+        check::<3>(alpha);
+    }
+}

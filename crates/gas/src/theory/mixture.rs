@@ -26,6 +26,8 @@
 
 mod sonine;
 
+pub use sonine::DrivenState;
+
 use super::{close_packing, mixture_contact_value, sphere_surface};
 use crate::error::{Error, Result};
 use crate::system::ball_volume;

@@ -134,8 +134,15 @@ impl<const D: usize> MixtureTheory<D> {
 
     /// For the species temperatures `temperatures`: the Sonine coefficients a2_i of the
     /// linearized fourth-moment equations, and with them each species' cooling rate and
-    /// collision frequency.
-    fn sonine_state(&self, temperatures: &[f64]) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    /// collision frequency. Cooling (`noise` None): d<c^4>_i/dt = -2 zeta_i <c^4>_i.
+    /// White noise of strength xi_i^2 (`noise`: velocity variance per component and unit
+    /// time): the steady d<v^4>_i/dt = L_i + 2 D (D + 2) xi_i^2 a_i = 0, the kicks adding
+    /// 2 (D + 2) xi^2 <v^2> to the fourth moment (Itô).
+    fn sonine_state(
+        &self,
+        temperatures: &[f64],
+        noise: Option<&[f64]>,
+    ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
         let s = self.species();
         let d = D as f64;
         // zeta_i = zeta0_i + sum_k Z_ik a2_k; L_i = l0_i + sum_k Lambda_ik a2_k (d<v^4>/dt);
@@ -167,12 +174,20 @@ impl<const D: usize> MixtureTheory<D> {
         let mut rhs = vec![0.0; s];
         for i in 0..s {
             let a = temperatures[i] / self.masses[i];
-            let m = 2.0 * d * (d + 2.0) * a * a;
-            for k in 0..s {
-                matrix[i][k] = big_l[i][k] + m * big_z[i][k];
+            match noise {
+                None => {
+                    let m = 2.0 * d * (d + 2.0) * a * a;
+                    for k in 0..s {
+                        matrix[i][k] = big_l[i][k] + m * big_z[i][k];
+                    }
+                    matrix[i][i] += m * zeta0[i];
+                    rhs[i] = -(l0[i] + m * zeta0[i]);
+                }
+                Some(xi2) => {
+                    matrix[i].clone_from(&big_l[i]);
+                    rhs[i] = -(l0[i] + 2.0 * d * (d + 2.0) * xi2[i] * a);
+                }
             }
-            matrix[i][i] += m * zeta0[i];
-            rhs[i] = -(l0[i] + m * zeta0[i]);
         }
         let a2 = super::solve(matrix, rhs)
             .ok_or_else(|| Error::out_of_range("restitution", 0, "a mixture whose HCS exists"))?;
@@ -193,7 +208,7 @@ impl<const D: usize> MixtureTheory<D> {
     pub fn hcs_sonine(&self, temperature: f64) -> Result<MixtureHcs> {
         let s = self.species();
         let residual = |y: &[f64]| -> Result<Vec<f64>> {
-            let (_, zeta, nu) = self.sonine_state(&super::with_first(y))?;
+            let (_, zeta, nu) = self.sonine_state(&super::with_first(y), None)?;
             Ok(zeta[1..].iter().map(|z| (z - zeta[0]) / nu[0]).collect())
         };
         // Start from the Maxwellian ratios.
@@ -202,7 +217,7 @@ impl<const D: usize> MixtureTheory<D> {
         let y = super::newton(&mut y, residual, 1e-12)?;
         let ratios = self.ratios(&super::with_first(&y));
         let at: Vec<f64> = ratios.iter().map(|r| r * temperature).collect();
-        let (a2, zeta, nu) = self.sonine_state(&at)?;
+        let (a2, zeta, nu) = self.sonine_state(&at, None)?;
         debug_assert_eq!(a2.len(), s);
         Ok(MixtureHcs {
             temperature_ratios: ratios,
@@ -211,4 +226,59 @@ impl<const D: usize> MixtureTheory<D> {
             a2,
         })
     }
+
+    /// The steady state of the mixture driven by white noise of strength `noise[i]` for
+    /// species i (velocity variance per component and unit time; the same for all species
+    /// for a random acceleration), in the first Sonine approximation (`sonine`) or the
+    /// Maxwellian one: each species' heating m_i xi_i^2 balances its collisional cooling,
+    /// zeta_i T_i = m_i xi_i^2 (Newton's method on ln T_i, to 1e-12 relative). Returns
+    /// the temperatures, a2's, rates and frequencies ([`DrivenState`]).
+    pub fn white_noise(&self, noise: &[f64], sonine: bool) -> Result<DrivenState> {
+        let s = self.species();
+        if noise.len() != s || noise.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(Error::out_of_range(
+                "strength",
+                format!("{noise:?}"),
+                "one finite strength > 0 per species",
+            ));
+        }
+        let state = |t: &[f64]| -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+            if sonine {
+                self.sonine_state(t, Some(noise))
+            } else {
+                Ok((vec![0.0; s], self.cooling_rates(t), self.collision_frequencies(t)))
+            }
+        };
+        let residual = |y: &[f64]| -> Result<Vec<f64>> {
+            let t: Vec<f64> = y.iter().map(|v| v.exp()).collect();
+            let (_, zeta, _) = state(&t)?;
+            Ok((0..s)
+                .map(|i| zeta[i] * t[i] / (self.masses[i] * noise[i]) - 1.0)
+                .collect())
+        };
+        // Start from the Maxwellian balance of one species at its own noise: zeta ~ T^(1/2).
+        let unit = self.cooling_rates(&vec![1.0; s]);
+        let mut y: Vec<f64> = (0..s)
+            .map(|i| (2.0 / 3.0) * (self.masses[i] * noise[i] / unit[i].max(1e-300)).ln())
+            .collect();
+        let y = super::newton(&mut y, residual, 1e-12)?;
+        let t: Vec<f64> = y.iter().map(|v| v.exp()).collect();
+        let (a2, zeta, nu) = state(&t)?;
+        Ok(DrivenState {
+            temperatures: t,
+            a2,
+            cooling_rates: zeta,
+            collision_frequencies: nu,
+        })
+    }
+}
+
+/// The steady state of a driven mixture: each species' temperature, a2, collisional
+/// cooling rate and collision frequency.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrivenState {
+    pub temperatures: Vec<f64>,
+    pub a2: Vec<f64>,
+    pub cooling_rates: Vec<f64>,
+    pub collision_frequencies: Vec<f64>,
 }
