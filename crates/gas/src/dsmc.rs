@@ -159,9 +159,8 @@ pub struct Snapshot<const D: usize, O> {
     /// sets the width of the speed classes.
     pub temperature: f64,
     /// Collisions suffered by the particles of each species (a collision counts for both
-    /// of its particles), in the engine's species order (that of its `species_collisions`); empty
-    /// for one species (and in check-points written before it was counted).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    /// of its particles), in the engine's species order (that of its
+    /// `species_collisions`); empty for one species.
     pub species_collisions: Vec<u64>,
 }
 

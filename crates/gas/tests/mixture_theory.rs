@@ -302,7 +302,10 @@ fn white_noise_one_species_is_van_noije_ernst() {
         let pure = MixtureTheory::<D>::new(&[m], &[1.0], &[1.0], &[vec![alpha]], 0.1).unwrap();
         let steady = pure.white_noise(&[xi2], true).unwrap();
         let a2 = steady.a2[0];
-        assert!((a2 - want).abs() < 1e-10, "{D}D alpha {alpha}: a2 {a2} vs {want}");
+        assert!(
+            (a2 - want).abs() < 1e-10,
+            "{D}D alpha {alpha}: a2 {a2} vs {want}"
+        );
         let t = steady.temperatures[0];
         let zeta = pure.cooling_rates(&[t])[0] * (1.0 + 3.0 * a2 / 16.0);
         assert!((zeta * t / (m * xi2) - 1.0).abs() < 1e-10, "{D}D balance");

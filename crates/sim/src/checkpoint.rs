@@ -1,9 +1,10 @@
 //! Check-points: one file, `DIR/checkpoint.bin`, from which a run continues bit for bit.
 //!
-//! Layout (version 3):
+//! Layout (version 4; 4 added the DSMC engines' per-species collision counts to the
+//! engine state):
 //!
 //! ```text
-//! {"format":"haff-run-checkpoint","version":3,"haff_version":"0.1.0","records_bytes":R,"engine_bytes":E,"crc32":C}\n
+//! {"format":"haff-run-checkpoint","version":4,"haff_version":"0.1.0","records_bytes":R,"engine_bytes":E,"crc32":C}\n
 //! <R bytes: the driver's records as JSON (run description, observers, interval)>\n
 //! <E bytes: the engine's complete state (gas::Checkpoint::State), postcard-encoded>
 //! ```
@@ -26,7 +27,7 @@ pub const FILE_NAME: &str = "checkpoint.bin";
 /// The file name older versions (1, 2: all JSON) wrote.
 pub const LEGACY_FILE_NAME: &str = "checkpoint.json";
 /// The version of the layout; a check-point of another version is refused, naming both.
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 /// The version of haff that writes.
 pub const HAFF_VERSION: &str = env!("CARGO_PKG_VERSION");
 /// The longest first line read before a file is declared foreign.

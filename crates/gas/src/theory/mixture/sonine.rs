@@ -246,7 +246,11 @@ impl<const D: usize> MixtureTheory<D> {
             if sonine {
                 self.sonine_state(t, Some(noise))
             } else {
-                Ok((vec![0.0; s], self.cooling_rates(t), self.collision_frequencies(t)))
+                Ok((
+                    vec![0.0; s],
+                    self.cooling_rates(t),
+                    self.collision_frequencies(t),
+                ))
             }
         };
         let residual = |y: &[f64]| -> Result<Vec<f64>> {
