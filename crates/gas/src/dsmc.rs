@@ -28,7 +28,7 @@ mod homogeneous;
 pub mod kernel;
 mod reduce;
 mod spatial;
-mod species;
+pub(crate) mod species;
 
 pub use homogeneous::HomogeneousDsmc;
 pub use spatial::{

@@ -9,6 +9,7 @@
 //! never read files; the run driver (crate `haff-sim`) builds and drives them.
 
 pub mod cells;
+pub mod driving;
 pub mod dsmc;
 pub mod emd;
 pub mod engine;

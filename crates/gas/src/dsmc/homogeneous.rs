@@ -12,6 +12,7 @@ use super::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally, T
 use super::reduce;
 use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
+use crate::driving::WhiteNoise;
 use crate::engine::{Counters, SpeciesCollisions, VelocityStatistics};
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
@@ -47,6 +48,8 @@ struct Core<const D: usize> {
     tally: Counters,
     /// Collisions of each species' particles (mixtures; empty for one species).
     species_collisions: Vec<u64>,
+    /// White-noise driving (block scheme), kicks at the end of each step.
+    driving: Option<WhiteNoise>,
     /// The velocity speed bounds are measured from: the mean velocity when the exact
     /// scheme last recomputed its bound, or at the end of the last block step.
     /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
@@ -180,6 +183,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             steps: 0,
             tally: Counters::default(),
             species_collisions: Vec::new(),
+            driving: None,
             speed_bound: 0.0,
             stream: Stream::new(seed, Purpose::Exact, 0, 0),
             temperature: 0.0,
@@ -305,6 +309,21 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     pub fn counters(&self) -> Counters {
         self.core.tally
+    }
+
+    /// Drives the gas with white noise from now on (None: freely cooling). The block
+    /// scheme only (its steps are the kick interval); fails (`driving`) for the exact
+    /// scheme. Not part of the snapshot: set it again after a restore.
+    pub fn set_driving(&mut self, driving: Option<WhiteNoise>) -> Result<()> {
+        if driving.is_some() && matches!(self.core.scheme, Scheme::Exact) {
+            return Err(Error::out_of_range(
+                "driving",
+                "the exact scheme",
+                "the block scheme (its steps are the kick interval)",
+            ));
+        }
+        self.core.driving = driving;
+        Ok(())
     }
 
     /// The collisions of each species' particles so far (each collision counts for both).

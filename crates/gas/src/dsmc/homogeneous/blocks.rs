@@ -181,7 +181,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
         species: &core.species,
         pairs: core.pairs.as_deref(),
     };
-    let (seed, steps, species) = (core.seed, core.steps, &core.species);
+    let (seed, steps, species, driving) = (core.seed, core.steps, &core.species, core.driving);
     let reference = core.reference;
     let base = layout.start(share.first);
     let base_rate =
@@ -215,6 +215,9 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
                 &mut rng,
                 &mut tally,
             );
+            if let Some(noise) = driving {
+                noise.kick(block, dt, species, &mut rng);
+            }
             kernel::shuffle(block, &mut rng);
             (tally, kernel::sums_about(block, species, &reference))
         })
