@@ -51,7 +51,8 @@ impl WhiteNoise {
             let m = species.masses[r.species()];
             let v = r.velocity_mut();
             for k in 0..D {
-                let dv = width * <StandardNormal as Distribution<f64>>::sample(&StandardNormal, rng);
+                let dv =
+                    width * <StandardNormal as Distribution<f64>>::sample(&StandardNormal, rng);
                 v[k] += dv;
                 momentum[k] += m * dv;
             }

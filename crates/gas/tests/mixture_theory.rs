@@ -287,10 +287,11 @@ fn sonine_one_species_is_van_noije_ernst() {
 }
 
 /// White-noise driving, one species: the steady a2 of van Noije & Ernst (1998; Montanero &
-/// Santos, Granular Matter 2, 53 (2000)), a2 = 16 (1 - a)(1 - 2a^2) / (73 + 56 D
-/// - 3a (35 + 8D) + 30 (1 - a) a^2), to 1e-10: the formula is the authors' closed form, our
-/// number the quadrature of the collision integrals; and the energy balance
-/// zeta(T) T = m xi^2 with zeta = (1 + 3 a2/16) zeta_Maxwell(T).
+/// Santos, Granular Matter 2, 53 (2000)),
+/// a2 = 16 (1 - a)(1 - 2a^2) / (73 + 56 D - 3a (35 + 8D) + 30 (1 - a) a^2), to 1e-10: the
+/// formula is the authors' closed form, our number the quadrature of the collision
+/// integrals; and the energy balance zeta(T) T = m xi^2 with
+/// zeta = (1 + 3 a2/16) zeta_Maxwell(T).
 #[test]
 fn white_noise_one_species_is_van_noije_ernst() {
     fn check<const D: usize>(alpha: f64) {

@@ -57,6 +57,32 @@ pub struct RunDescription {
     /// `[output]`: the observers of space (spatial engines only).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<OutputSection>,
+    /// `[driving]`: energy fed in, for a steady state instead of free cooling.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub driving: Option<DrivingSection>,
+}
+
+/// `[driving]`: white noise (`kind = "white-noise"`): every particle's velocity receives
+/// Gaussian kicks of variance `strength` per component and unit time (a random
+/// acceleration, the same for every species; `gas::driving`).
+///
+/// ```toml
+/// [driving]
+/// kind = "white-noise"
+/// strength = 1.0
+/// ```
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DrivingSection {
+    pub kind: DrivingKind,
+    pub strength: f64,
+}
+
+/// `driving.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DrivingKind {
+    WhiteNoise,
 }
 
 /// `[output]`: what a run records of space, at the samples of its schedule. Checked by

@@ -180,8 +180,8 @@ pub(crate) fn start<const D: usize>(
             }
             Box::new(engine)
         }
-        EngineSpec::HomogeneousDsmc(scheme) => Box::new(
-            HomogeneousDsmc::distributed(
+        EngineSpec::HomogeneousDsmc(scheme) => {
+            let mut engine = HomogeneousDsmc::distributed(
                 system,
                 s.packing_fraction,
                 law,
@@ -189,8 +189,12 @@ pub(crate) fn start<const D: usize>(
                 scheme,
                 comm.clone(),
             )
-            .map_err(ranks_or_system)?,
-        ),
+            .map_err(ranks_or_system)?;
+            engine
+                .set_driving(plan.driving)
+                .map_err(|e| Error::input("driving", e))?;
+            Box::new(engine)
+        }
         EngineSpec::SpatialDsmc(options) => Box::new(
             SpatialDsmc::distributed(
                 system,
@@ -226,17 +230,6 @@ pub(crate) fn restore<const D: usize>(
     sections: &Sections,
     comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
-    if let (EngineSpec::HomogeneousDsmc(_), true) = (plan.engine, comm.size() > 1) {
-        let state: gas::dsmc::HomogeneousSnapshot<D> = sections.engine()?;
-        HomogeneousDsmc::check_state(plan, &state)
-            .map_err(|e| sections.error(format!("engine state: {e}")))?;
-        state
-            .check(true)
-            .map_err(|e| sections.error(format!("engine state: {e}")))?;
-        let engine = HomogeneousDsmc::restore_distributed(state, law, comm.clone())
-            .map_err(|e| sections.error(format!("engine state: {e}")))?;
-        return Ok(Box::new(engine));
-    }
     if let (EngineSpec::SpatialDsmc(_), true) = (plan.engine, comm.size() > 1) {
         let state: gas::dsmc::SpatialSnapshot<D> = sections.engine()?;
         SpatialDsmc::check_state(plan, &state)
@@ -250,10 +243,31 @@ pub(crate) fn restore<const D: usize>(
     }
     match plan.engine {
         EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(plan, law, sections),
-        EngineSpec::HomogeneousDsmc(_) => restore_as::<D, HomogeneousDsmc<D>>(plan, law, sections),
+        EngineSpec::HomogeneousDsmc(_) => restore_homogeneous::<D>(plan, law, sections, comm),
         EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(plan, law, sections),
         EngineSpec::SoftSphere(..) => restore_as::<D, SoftSphere<D>>(plan, law, sections),
     }
+}
+
+/// The homogeneous engine of a check-point, on the ranks of `comm`, driven as the plan says.
+fn restore_homogeneous<const D: usize>(
+    plan: &Plan,
+    law: Box<dyn Restitution>,
+    sections: &Sections,
+    comm: &Arc<dyn Communicator>,
+) -> Result<Box<dyn Driven<D>>> {
+    let state: gas::dsmc::HomogeneousSnapshot<D> = sections.engine()?;
+    HomogeneousDsmc::check_state(plan, &state)
+        .map_err(|e| sections.error(format!("engine state: {e}")))?;
+    state
+        .check(true)
+        .map_err(|e| sections.error(format!("engine state: {e}")))?;
+    let mut engine = HomogeneousDsmc::restore_distributed(state, law, comm.clone())
+        .map_err(|e| sections.error(format!("engine state: {e}")))?;
+    engine
+        .set_driving(plan.driving)
+        .map_err(|e| Error::input("driving", e))?;
+    Ok(Box::new(engine))
 }
 
 fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(

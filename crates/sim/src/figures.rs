@@ -32,7 +32,7 @@ pub fn temperature(
         .collect();
     let s = &plan.description.system;
     let tau = match (&plan.law, &s.species, samples.first()) {
-        (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 => {
+        (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 && plan.driving.is_none() => {
             let (diameter, mass) = (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
             let phi = s.packing_fraction;
             let t0 = first.temperature;

@@ -503,6 +503,9 @@ impl Simulation {
             "final": self.samples().last(),
             "complete": self.is_complete(),
         });
+        if let Some(theory) = crate::species::driven_theory(&self.plan) {
+            summary["driven_theory"] = theory;
+        }
         if let Some(rows) = self.species_samples() {
             summary["species"] = crate::species::summary(&self.plan, rows);
         }

@@ -198,12 +198,8 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
         "final": last,
         "temperature_ratios": ratios,
     });
-    let alpha = match &plan.law {
-        LawSpec::Constant(eps) => Some(vec![vec![*eps; kinds]; kinds]),
-        LawSpec::ConstantPairs { matrix, .. } => Some(matrix.clone()),
-        _ => None,
-    };
-    if let Some(alpha) = alpha {
+    let alpha = restitution_matrix(plan, kinds);
+    if let (Some(alpha), None) = (alpha, plan.driving) {
         let masses: Vec<f64> = list.iter().map(|x| x.mass).collect();
         let diameters: Vec<f64> = list.iter().map(|x| x.diameter).collect();
         let phi = plan.description.system.packing_fraction;
@@ -240,6 +236,73 @@ fn hcs_theory<const D: usize>(
         if let Ok(sonine) = theory.hcs_sonine(1.0) {
             out["sonine"] = serde_json::json!({
                 "temperature_ratios": sonine.temperature_ratios,
+                "a2": sonine.a2,
+            });
+        }
+    }
+    Some(out)
+}
+
+/// The restitution of every pair of `kinds` species for a constant law (one, or one per
+/// pair).
+fn restitution_matrix(plan: &Plan, kinds: usize) -> Option<Vec<Vec<f64>>> {
+    match &plan.law {
+        LawSpec::Constant(eps) => Some(vec![vec![*eps; kinds]; kinds]),
+        LawSpec::ConstantPairs { matrix, .. } => Some(matrix.clone()),
+        _ => None,
+    }
+}
+
+/// The `driven_theory` entry of `summary.json` for a run driven by white noise with a
+/// constant restitution: each species' steady temperature (and a2) in the Maxwellian and
+/// the first Sonine approximation (`gas::theory::MixtureTheory::white_noise`; up to
+/// [`SONINE_SPECIES`] species for Sonine).
+pub fn driven_theory(plan: &Plan) -> Option<serde_json::Value> {
+    let noise = plan.driving?;
+    let s = &plan.description.system;
+    let (masses, diameters, fractions): (Vec<f64>, Vec<f64>, Vec<f64>) = match &s.species {
+        Some(list) => {
+            let total: f64 = list.iter().map(|x| x.fraction).sum();
+            (
+                list.iter().map(|x| x.mass).collect(),
+                list.iter().map(|x| x.diameter).collect(),
+                list.iter().map(|x| x.fraction / total).collect(),
+            )
+        }
+        None => (
+            vec![s.mass.unwrap_or(1.0)],
+            vec![s.diameter.unwrap_or(1.0)],
+            vec![1.0],
+        ),
+    };
+    let alpha = restitution_matrix(plan, masses.len())?;
+    let strength = vec![noise.strength; masses.len()];
+    let phi = s.packing_fraction;
+    match s.dimension {
+        1 => steady::<1>(&masses, &diameters, &fractions, &alpha, phi, &strength),
+        2 => steady::<2>(&masses, &diameters, &fractions, &alpha, phi, &strength),
+        _ => steady::<3>(&masses, &diameters, &fractions, &alpha, phi, &strength),
+    }
+}
+
+fn steady<const D: usize>(
+    masses: &[f64],
+    diameters: &[f64],
+    fractions: &[f64],
+    alpha: &[Vec<f64>],
+    phi: f64,
+    strength: &[f64],
+) -> Option<serde_json::Value> {
+    let theory =
+        gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi).ok()?;
+    let maxwellian = theory.white_noise(strength, false).ok()?;
+    let mut out = serde_json::json!({
+        "maxwellian": { "temperatures": maxwellian.temperatures },
+    });
+    if masses.len() <= SONINE_SPECIES {
+        if let Ok(sonine) = theory.white_noise(strength, true) {
+            out["sonine"] = serde_json::json!({
+                "temperatures": sonine.temperatures,
                 "a2": sonine.a2,
             });
         }

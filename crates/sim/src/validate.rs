@@ -103,6 +103,8 @@ pub struct Plan {
     pub engine: EngineSpec,
     /// Contact duration of the TC model, if on.
     pub tc: Option<f64>,
+    /// White-noise driving (`[driving]`), if on.
+    pub driving: Option<gas::driving::WhiteNoise>,
 }
 
 /// Checks every key of `description` and returns the plan of the run.
@@ -180,6 +182,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
             ));
         }
     }
+    let driving = driving_spec(description, &engine)?;
     let mut description = description.clone();
     description.normalize();
     Ok(Plan {
@@ -188,7 +191,29 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         law,
         engine,
         tc: c.tc.filter(|&tc| tc > 0.0),
+        driving,
     })
+}
+
+/// `[driving]`: a finite strength > 0, for the homogeneous DSMC's block scheme (the engine
+/// that drives so far).
+fn driving_spec(
+    description: &RunDescription,
+    engine: &EngineSpec,
+) -> Result<Option<gas::driving::WhiteNoise>> {
+    let Some(d) = &description.driving else {
+        return Ok(None);
+    };
+    let noise = gas::driving::WhiteNoise::new(d.strength)
+        .map_err(|_| Error::out_of_range("driving.strength", d.strength, "finite and > 0"))?;
+    if !matches!(engine, EngineSpec::HomogeneousDsmc(Scheme::Blocks { .. })) {
+        return Err(Error::input(
+            "driving",
+            "white-noise driving runs in run.engine = \"dsmc\" with dsmc_scheme = \"blocks\" \
+             (the kicks come at its steps)",
+        ));
+    }
+    Ok(Some(noise))
 }
 
 /// The range of a diameter, mass or temperature (any unit system): wide enough for SI and

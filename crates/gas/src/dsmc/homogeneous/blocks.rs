@@ -204,6 +204,13 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             };
             let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
             let mut tally = SpeciesTally::new(species.len());
+            // Driving: half the step's kicks before the collisions, half after (symmetric
+            // splitting: the state at the end of a step is that of continuous noise to
+            // second order in the step).
+            if let Some(noise) = driving {
+                noise.kick(block, 0.5 * dt, species, &mut rng);
+                bound = kernel::speed_bound(block, &reference);
+            }
             // Pair rate over a volume V (B - 1)/(N - 1): each particle's frequency is the gas's.
             let pair_rate = base_rate / (block.len() as f64 - 1.0);
             collider.run_for(
@@ -216,7 +223,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
                 &mut tally,
             );
             if let Some(noise) = driving {
-                noise.kick(block, dt, species, &mut rng);
+                noise.kick(block, 0.5 * dt, species, &mut rng);
             }
             kernel::shuffle(block, &mut rng);
             (tally, kernel::sums_about(block, species, &reference))
