@@ -323,3 +323,22 @@ def test_progress_callback_errors_stop_the_run():
         sim._sim.run(callback)
     assert seen[0] == (0, 9) and seen[-1] == (2, 9)
     assert len(sim.timeseries["time"]) == 2
+
+
+def test_pairwise_restitution_and_driving_from_a_dict():
+    """A restitution matrix and [driving] from a dict: the run heats up to its steady state,
+    per species; a non-symmetric matrix names its entry."""
+    config = {
+        "system": {"dimension": 3, "particles": 2000, "packing_fraction": 0.1, "seed": 3,
+                   "species": [{"diameter": 1.0, "mass": 1.0, "fraction": 0.5},
+                               {"diameter": 1.0, "mass": 4.0, "fraction": 0.5}]},
+        "collision": {"law": "constant", "restitution": [[0.9, 0.6], [0.6, 0.75]]},
+        "driving": {"kind": "white-noise", "strength": 1.0},
+        "run": {"engine": "dsmc", "collisions_per_particle": 10.0, "samples": 3},
+    }
+    sim = haff.Simulation(config).run(progress=False)
+    rows = sim.species_timeseries
+    assert (rows["temperature"][-2:] > 2.0).all()
+    config["collision"]["restitution"] = [[0.9, 0.6], [0.5, 0.75]]
+    with pytest.raises(haff.ConfigError, match=r"collision\.restitution\[0\]\[1\]"):
+        haff.Simulation(config)
