@@ -174,18 +174,16 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
 
 /// The `species` entry of `summary.json`: the last sample's rows, each species' T_i / T
 /// there (T = sum x_i T_i), and for a constant restitution (one, or one per pair) the HCS
-/// of kinetic theory
-/// ([`gas::theory::MixtureTheory`]): T_i / T in the Maxwellian approximation, and T_i / T
-/// and a2_i in the first Sonine approximation (up to [`SONINE_SPECIES`] species: its
-/// quadrature grows as the square of the species).
+/// of kinetic theory ([`gas::theory::MixtureTheory`]): T_i / T in the Maxwellian
+/// approximation, and T_i / T and a2_i in the first Sonine approximation (up to
+/// [`SONINE_SPECIES`] species: its quadrature grows as the square of the species).
 pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
     let Some(list) = plan.description.system.species.as_ref() else {
         return serde_json::Value::Null;
     };
-    let kinds = list.len();
-    let total: f64 = list.iter().map(|x| x.fraction).sum();
-    let fractions: Vec<f64> = list.iter().map(|x| x.fraction / total).collect();
-    let last = &rows[rows.len().saturating_sub(kinds)..];
+    let table = Kinds::of(plan);
+    let fractions = &table.fractions;
+    let last = &rows[rows.len().saturating_sub(list.len())..];
     let mixture_temperature: f64 = last
         .iter()
         .map(|r| fractions[r.species] * r.temperature)
@@ -198,15 +196,13 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
         "final": last,
         "temperature_ratios": ratios,
     });
-    let alpha = restitution_matrix(plan, kinds);
+    let alpha = restitution_matrix(plan, list.len());
     if let (Some(alpha), None) = (alpha, plan.driving) {
-        let masses: Vec<f64> = list.iter().map(|x| x.mass).collect();
-        let diameters: Vec<f64> = list.iter().map(|x| x.diameter).collect();
         let phi = plan.description.system.packing_fraction;
         let theory = match plan.description.system.dimension {
-            1 => hcs_theory::<1>(&masses, &diameters, &fractions, &alpha, phi),
-            2 => hcs_theory::<2>(&masses, &diameters, &fractions, &alpha, phi),
-            _ => hcs_theory::<3>(&masses, &diameters, &fractions, &alpha, phi),
+            1 => hcs_theory::<1>(&table, &alpha, phi),
+            2 => hcs_theory::<2>(&table, &alpha, phi),
+            _ => hcs_theory::<3>(&table, &alpha, phi),
         };
         if let Some(theory) = theory {
             out["hcs_theory"] = theory;
@@ -220,19 +216,16 @@ pub const SONINE_SPECIES: usize = 4;
 
 /// The HCS of kinetic theory: Maxwellian T_i / T, and Sonine T_i / T and a2_i.
 fn hcs_theory<const D: usize>(
-    masses: &[f64],
-    diameters: &[f64],
-    fractions: &[f64],
+    table: &Kinds,
     alpha: &[Vec<f64>],
     phi: f64,
 ) -> Option<serde_json::Value> {
-    let theory =
-        gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi).ok()?;
+    let theory = table.theory::<D>(alpha, phi)?;
     let maxwellian = theory.hcs(1.0).ok()?;
     let mut out = serde_json::json!({
         "maxwellian": { "temperature_ratios": maxwellian.temperature_ratios },
     });
-    if masses.len() <= SONINE_SPECIES {
+    if table.masses.len() <= SONINE_SPECIES {
         if let Ok(sonine) = theory.hcs_sonine(1.0) {
             out["sonine"] = serde_json::json!({
                 "temperature_ratios": sonine.temperature_ratios,
@@ -260,46 +253,29 @@ fn restitution_matrix(plan: &Plan, kinds: usize) -> Option<Vec<Vec<f64>>> {
 pub fn driven_theory(plan: &Plan) -> Option<serde_json::Value> {
     let noise = plan.driving?;
     let s = &plan.description.system;
-    let (masses, diameters, fractions): (Vec<f64>, Vec<f64>, Vec<f64>) = match &s.species {
-        Some(list) => {
-            let total: f64 = list.iter().map(|x| x.fraction).sum();
-            (
-                list.iter().map(|x| x.mass).collect(),
-                list.iter().map(|x| x.diameter).collect(),
-                list.iter().map(|x| x.fraction / total).collect(),
-            )
-        }
-        None => (
-            vec![s.mass.unwrap_or(1.0)],
-            vec![s.diameter.unwrap_or(1.0)],
-            vec![1.0],
-        ),
-    };
-    let alpha = restitution_matrix(plan, masses.len())?;
-    let strength = vec![noise.strength; masses.len()];
+    let table = Kinds::of(plan);
+    let alpha = restitution_matrix(plan, table.masses.len())?;
+    let strength = vec![noise.strength; table.masses.len()];
     let phi = s.packing_fraction;
     match s.dimension {
-        1 => steady::<1>(&masses, &diameters, &fractions, &alpha, phi, &strength),
-        2 => steady::<2>(&masses, &diameters, &fractions, &alpha, phi, &strength),
-        _ => steady::<3>(&masses, &diameters, &fractions, &alpha, phi, &strength),
+        1 => steady::<1>(&table, &alpha, phi, &strength),
+        2 => steady::<2>(&table, &alpha, phi, &strength),
+        _ => steady::<3>(&table, &alpha, phi, &strength),
     }
 }
 
 fn steady<const D: usize>(
-    masses: &[f64],
-    diameters: &[f64],
-    fractions: &[f64],
+    table: &Kinds,
     alpha: &[Vec<f64>],
     phi: f64,
     strength: &[f64],
 ) -> Option<serde_json::Value> {
-    let theory =
-        gas::theory::MixtureTheory::<D>::new(masses, diameters, fractions, alpha, phi).ok()?;
+    let theory = table.theory::<D>(alpha, phi)?;
     let maxwellian = theory.white_noise(strength, false).ok()?;
     let mut out = serde_json::json!({
         "maxwellian": { "temperatures": maxwellian.temperatures },
     });
-    if masses.len() <= SONINE_SPECIES {
+    if table.masses.len() <= SONINE_SPECIES {
         if let Ok(sonine) = theory.white_noise(strength, true) {
             out["sonine"] = serde_json::json!({
                 "temperatures": sonine.temperatures,
@@ -308,4 +284,49 @@ fn steady<const D: usize>(
         }
     }
     Some(out)
+}
+
+/// The species of a run for kinetic theory: `system.species` (fractions normalized), or the
+/// one species of `system.diameter` and `system.mass`.
+struct Kinds {
+    masses: Vec<f64>,
+    diameters: Vec<f64>,
+    fractions: Vec<f64>,
+}
+
+impl Kinds {
+    fn of(plan: &Plan) -> Self {
+        let s = &plan.description.system;
+        match &s.species {
+            Some(list) => {
+                let total: f64 = list.iter().map(|x| x.fraction).sum();
+                Kinds {
+                    masses: list.iter().map(|x| x.mass).collect(),
+                    diameters: list.iter().map(|x| x.diameter).collect(),
+                    fractions: list.iter().map(|x| x.fraction / total).collect(),
+                }
+            }
+            None => Kinds {
+                masses: vec![s.mass.unwrap_or(1.0)],
+                diameters: vec![s.diameter.unwrap_or(1.0)],
+                fractions: vec![1.0],
+            },
+        }
+    }
+
+    /// Their kinetic theory with restitutions `alpha` at packing fraction `phi`.
+    fn theory<const D: usize>(
+        &self,
+        alpha: &[Vec<f64>],
+        phi: f64,
+    ) -> Option<gas::theory::MixtureTheory<D>> {
+        gas::theory::MixtureTheory::<D>::new(
+            &self.masses,
+            &self.diameters,
+            &self.fractions,
+            alpha,
+            phi,
+        )
+        .ok()
+    }
 }

@@ -19,7 +19,7 @@
 
 use super::{MixtureHcs, MixtureTheory};
 use crate::error::{Error, Result};
-use crate::theory::gauss::{hermite_rule, laguerre_rule};
+use crate::theory::gauss::{hermite_rule, laguerre_rule, Rule};
 use crate::theory::sphere_surface;
 use std::f64::consts::PI;
 
@@ -35,6 +35,13 @@ struct PairIntegrals {
     rate: [f64; 3],
     energy: [f64; 3],
     fourth: [f64; 3],
+}
+
+/// The Gauss–Hermite and Gauss–Laguerre rules of [`POINTS`] points, found once (their roots
+/// are bracketed on a fine grid: not work for every pair of every Newton step).
+fn rules() -> &'static (Rule, Rule) {
+    static RULES: std::sync::OnceLock<(Rule, Rule)> = std::sync::OnceLock::new();
+    RULES.get_or_init(|| (hermite_rule(POINTS), laguerre_rule(POINTS)))
 }
 
 /// The Sonine polynomial S2(y) in D dimensions.
@@ -53,8 +60,7 @@ impl<const D: usize> MixtureTheory<D> {
         let (p, q) = (a_i / big, a_j / big);
         let mu = self.masses[j] / (self.masses[i] + self.masses[j]);
         let k = mu * (1.0 + self.restitution[i][j]);
-        let hermite = hermite_rule(POINTS);
-        let laguerre = laguerre_rule(POINTS);
+        let (hermite, laguerre) = rules();
         // Points and weights of N(0, var) averages.
         let gaussian = |var: f64| -> Vec<(f64, f64)> {
             hermite
