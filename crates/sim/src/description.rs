@@ -12,6 +12,8 @@
 //! # or, instead of diameter and mass, a mixture (number fractions, normalized):
 //! # species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 },
 //! #            { diameter = 1.4, mass = 2.744, fraction = 0.5 }]
+//! # (law = "viscoelastic": a species may name its own young, poisson,
+//! #  dissipative_constant; beta per pair from the pair's effective radius, mass, moduli)
 //! temperature = 1.0        # initial T = m <v^2> / d
 //! seed = 1
 //! [collision]
@@ -170,6 +172,24 @@ pub struct SpeciesEntry {
     pub mass: f64,
     /// Number fraction (normalized over the species).
     pub fraction: f64,
+    /// Viscoelastic material of this species (law = "viscoelastic"): Young modulus; a key
+    /// left out is taken from `[collision]`. Unlike species collide with the pair's beta
+    /// (`restitution::material::MaterialPair`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub young: Option<f64>,
+    /// Viscoelastic material of this species: Poisson ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
+    /// Viscoelastic material of this species: dissipative constant A (a time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dissipative_constant: Option<f64>,
+}
+
+impl SpeciesEntry {
+    /// Whether this species names any key of its own material.
+    pub fn has_material(&self) -> bool {
+        self.young.is_some() || self.poisson.is_some() || self.dissipative_constant.is_some()
+    }
 }
 
 /// `collision.law`.

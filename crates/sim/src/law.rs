@@ -3,7 +3,7 @@
 use crate::error::{Error, Result};
 use crate::validate::{LawSpec, StochasticTable};
 use restitution::pairwise::Pairwise;
-use restitution::{Constant, Dashpot, Glauber, Restitution, Viscoelastic};
+use restitution::{Constant, Dashpot, FormName, Glauber, Restitution, Viscoelastic};
 use std::path::Path;
 
 /// The law of `spec` for a run whose impact speeds stay below `max_speed`
@@ -40,36 +40,22 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
                 .map_err(input("collision.damping_ratio"))?,
         ),
         LawSpec::Viscoelastic { beta, form } => {
-            let form = form.build().map_err(input("collision.form"))?;
-            let law = Viscoelastic::new(*beta, form).map_err(input("collision.beta"))?;
-            let (validity, reach) = (law.form().validity(), law.vstar(max_speed));
-            // Beyond the exact law's range eps is ~1e-20 (sticking spheres), and the
-            // polynomials of a Padé form overflow f64 from v* ~ 1e50 on.
-            if reach > restitution::exact::VSTAR_MAX {
-                return Err(Error::out_of_range(
-                    "collision.beta",
-                    crate::output::number(*beta),
-                    &format!(
-                        "a beta with which no collision of this run exceeds v* = 1e6 (the range \
-                         of the exact law); here v* can reach {reach:e} (all the initial kinetic \
-                         energy in one pair): beta <= {:e}",
-                        beta * (restitution::exact::VSTAR_MAX / reach).powi(2)
-                    ),
-                ));
-            }
-            if !validity.contains(reach) {
-                return Err(Error::input(
-                    "collision.form",
-                    format!(
-                        "{} is {validity}, but a collision of this run can reach v* = {reach:.6} \
-                         (collision.beta = {beta} with all the initial kinetic energy in one \
-                         pair); allowed: a form valid there (exact, fast, or a Padé \
-                         approximant such as pade:3/6)",
-                        law.form()
-                    ),
-                ));
-            }
-            Box::new(law)
+            viscoelastic(*beta, form, max_speed, "collision.beta")?
+        }
+        LawSpec::ViscoelasticPairs { kinds, betas, form } => {
+            let laws = betas
+                .iter()
+                .enumerate()
+                .map(|(i, row)| {
+                    row.iter()
+                        .map(|&beta| {
+                            let key = format!("system.species[{i}].dissipative_constant");
+                            viscoelastic(beta, form, max_speed, &key)
+                        })
+                        .collect::<Result<Vec<_>>>()
+                })
+                .collect::<Result<Vec<_>>>()?;
+            Box::new(Pairwise::new(kinds.clone(), laws).map_err(input("system.species"))?)
         }
         LawSpec::Stochastic {
             modes,
@@ -82,6 +68,46 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
             StochasticTable::Tabulated(path) => tabulated(path, *modes, "collision.table")?,
         },
     })
+}
+
+/// The viscoelastic law of `beta` (set by `key`) in `form`, refused if a collision of the
+/// run could reach beyond the form's validity or the exact law's range.
+fn viscoelastic(
+    beta: f64,
+    form: &FormName,
+    max_speed: f64,
+    key: &str,
+) -> Result<Box<dyn Restitution>> {
+    let form = form.build().map_err(|e| Error::law("collision.form", e))?;
+    let law = Viscoelastic::new(beta, form).map_err(|e| Error::law(key, e))?;
+    let (validity, reach) = (law.form().validity(), law.vstar(max_speed));
+    // Beyond the exact law's range eps is ~1e-20 (sticking spheres), and the
+    // polynomials of a Padé form overflow f64 from v* ~ 1e50 on.
+    if reach > restitution::exact::VSTAR_MAX {
+        return Err(Error::out_of_range(
+            key,
+            crate::output::number(beta),
+            &format!(
+                "a beta with which no collision of this run exceeds v* = 1e6 (the range \
+                 of the exact law); here v* can reach {reach:e} (all the initial kinetic \
+                 energy in one pair): beta <= {:e}",
+                beta * (restitution::exact::VSTAR_MAX / reach).powi(2)
+            ),
+        ));
+    }
+    if !validity.contains(reach) {
+        return Err(Error::input(
+            "collision.form",
+            format!(
+                "{} is {validity}, but a collision of this run can reach v* = {reach:.6} \
+                 ({key} gives beta = {beta} with all the initial kinetic energy in one \
+                 pair); allowed: a form valid there (exact, fast, or a Padé \
+                 approximant such as pade:3/6)",
+                law.form()
+            ),
+        ));
+    }
+    Ok(Box::new(law))
 }
 
 /// The tabulated stochastic law from a table written by `haff rods table`, for particles

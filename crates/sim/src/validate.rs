@@ -15,7 +15,7 @@ use crate::error::{positive, Error, Result};
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
 use gas::soft::contact::ViscoelasticMaterial;
 use gas::SoftSphereOptions;
-use material::{material, viscoelastic_beta};
+use material::{material, species_betas, viscoelastic_beta};
 use restitution::{Criterion, FormName};
 use std::path::PathBuf;
 
@@ -60,6 +60,13 @@ pub enum LawSpec {
     },
     Viscoelastic {
         beta: f64,
+        form: FormName,
+    },
+    /// A viscoelastic mixture: kinds (radius, mass) in the order of `system.species` and
+    /// beta per pair from the species' materials.
+    ViscoelasticPairs {
+        kinds: Vec<(f64, f64)>,
+        betas: Vec<Vec<f64>>,
         form: FormName,
     },
     Stochastic {
@@ -369,6 +376,20 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
             ),
         ));
     }
+    if c.law != LawKind::Viscoelastic {
+        for (i, x) in description.system.species.iter().flatten().enumerate() {
+            if x.has_material() {
+                return Err(Error::input(
+                    format!("system.species[{i}].young"),
+                    format!(
+                        "a species' material (young, poisson, dissipative_constant) is for \
+                         law = \"viscoelastic\" (this run has law = \"{}\")",
+                        c.law.name()
+                    ),
+                ));
+            }
+        }
+    }
     Ok(match c.law {
         LawKind::Constant => {
             let tc = c.tc.is_some_and(|t| t > 0.0);
@@ -413,10 +434,16 @@ fn law_spec(description: &RunDescription) -> Result<LawSpec> {
             damping_ratio: need("collision.damping_ratio", c.damping_ratio)?,
             criterion: c.criterion.unwrap_or(Criterion::Improved),
         },
-        LawKind::Viscoelastic => LawSpec::Viscoelastic {
-            beta: viscoelastic_beta(description)?,
-            form: c.form.unwrap_or(FormName::Fast(Criterion::Improved)),
-        },
+        LawKind::Viscoelastic => {
+            let form = c.form.unwrap_or(FormName::Fast(Criterion::Improved));
+            match species_betas(description)? {
+                Some((kinds, betas)) => LawSpec::ViscoelasticPairs { kinds, betas, form },
+                None => LawSpec::Viscoelastic {
+                    beta: viscoelastic_beta(description)?,
+                    form,
+                },
+            }
+        }
         LawKind::Stochastic => stochastic_spec(description)?,
     })
 }
@@ -447,6 +474,20 @@ fn soft_sphere_spec(description: &RunDescription) -> Result<EngineSpec> {
         return Err(Error::input(
             "collision.tc",
             "the TC model is for run.engine = \"event-driven\" (soft spheres have no collapse)",
+        ));
+    }
+    if let Some(i) = description
+        .system
+        .species
+        .iter()
+        .flatten()
+        .position(|x| x.has_material())
+    {
+        return Err(Error::input(
+            format!("system.species[{i}].young"),
+            "run.engine = \"soft-sphere\" takes one material (collision.young, poisson, \
+             dissipative_constant); species of their own materials run with \"event-driven\" \
+             or \"dsmc\"",
         ));
     }
     let material = match (c.law, material(description)?) {

@@ -75,6 +75,21 @@ impl ViscoelasticMaterial {
     }
 }
 
+impl ViscoelasticMaterial {
+    /// β of a sphere (r1, m1) of this material against a sphere (r2, m2) of `other`: for
+    /// one material [`Self::beta`]; for unlike ones the combined modulus and the
+    /// compliance-weighted dissipative constant of [`restitution::material::MaterialPair`].
+    pub fn pair_beta(&self, other: &Self, r1: f64, r2: f64, m1: f64, m2: f64) -> f64 {
+        if self == other {
+            return self.beta(r1, r2, m1, m2);
+        }
+        let triple = |m: &Self| (m.young, m.poisson, m.dissipative_constant);
+        restitution::material::MaterialPair::new(triple(self), triple(other))
+            .expect("validated materials")
+            .beta(r1, r2, m1, m2)
+    }
+}
+
 /// The repulsive normal force of Eq. (2) at overlap `xi` > 0 and overlap rate `xi_dot`,
 /// for the pair's ρ and the material's A; and its dissipative part (zero when clamped).
 #[inline]

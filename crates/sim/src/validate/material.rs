@@ -110,21 +110,14 @@ pub(crate) fn material(description: &RunDescription) -> Result<Option<Viscoelast
         })
 }
 
-/// beta of the viscoelastic law: `collision.beta`, or from the material and the spheres
-/// of one kind, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
+/// beta of the viscoelastic law of one kind of spheres (a mixture with a material takes
+/// [`species_betas`]): `collision.beta`, or from the material and the spheres, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
 pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
     let c = &description.collision;
     match (c.beta, material(description)?) {
         (Some(beta), None) => Ok(beta),
         (None, Some(m)) => {
             let s = &description.system;
-            if s.species.is_some() {
-                return Err(Error::input(
-                    "collision.young",
-                    "a material with system.species needs a beta per pair of species, which \
-                     the viscoelastic law does not have yet; give one diameter and mass",
-                ));
-            }
             let (r, mass) = (0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
             Ok(m.beta(r, r, mass, mass))
         }
@@ -137,4 +130,93 @@ pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
             "missing: give beta, or young, poisson and dissipative_constant",
         )),
     }
+}
+
+/// A viscoelastic mixture with materials: each species' material (its own `young`,
+/// `poisson`, `dissipative_constant`, a key left out taken from `[collision]`) and beta
+/// per pair of species, from the pair's effective radius and mass and, for unlike
+/// materials, the combined modulus and compliance-weighted dissipative constant
+/// ([`ViscoelasticMaterial::pair_beta`]). `None` without species, or with one
+/// `collision.beta` for every pair and no species material.
+pub(crate) fn species_betas(
+    description: &RunDescription,
+) -> Result<Option<(Vec<(f64, f64)>, Vec<Vec<f64>>)>> {
+    let c = &description.collision;
+    let Some(species) = &description.system.species else {
+        return Ok(None);
+    };
+    let materials = match species_materials(description)? {
+        Some(m) => m,
+        None => match material(description)? {
+            Some(m) if c.beta.is_none() => vec![m; species.len()],
+            _ => return Ok(None),
+        },
+    };
+    let kinds: Vec<(f64, f64)> = species.iter().map(|x| (0.5 * x.diameter, x.mass)).collect();
+    let betas = kinds
+        .iter()
+        .zip(&materials)
+        .map(|(&(r1, m1), a)| {
+            kinds
+                .iter()
+                .zip(&materials)
+                .map(|(&(r2, m2), b)| a.pair_beta(b, r1, r2, m1, m2))
+                .collect()
+        })
+        .collect();
+    Ok(Some((kinds, betas)))
+}
+
+/// The material of each species if any species names a key of its own: a key left out is
+/// taken from `[collision]`; every species must end with all three. Errors name
+/// `system.species[i].<key>`.
+pub(crate) fn species_materials(
+    description: &RunDescription,
+) -> Result<Option<Vec<ViscoelasticMaterial>>> {
+    let c = &description.collision;
+    let Some(species) = &description.system.species else {
+        return Ok(None);
+    };
+    if !species.iter().any(|x| x.has_material()) {
+        return Ok(None);
+    }
+    if c.beta.is_some() {
+        return Err(Error::input(
+            "collision.beta",
+            "give beta or the species' materials (system.species[i].young, poisson, \
+             dissipative_constant), not both",
+        ));
+    }
+    species
+        .iter()
+        .enumerate()
+        .map(|(i, x)| {
+            let keys = [
+                ("young", x.young.or(c.young)),
+                ("poisson", x.poisson.or(c.poisson)),
+                (
+                    "dissipative_constant",
+                    x.dissipative_constant.or(c.dissipative_constant),
+                ),
+            ];
+            if let Some((key, _)) = keys.iter().find(|k| k.1.is_none()) {
+                return Err(Error::input(
+                    format!("system.species[{i}].{key}"),
+                    format!(
+                        "missing: a species' material needs young, poisson and \
+                         dissipative_constant (its own or collision.{key} for every species)"
+                    ),
+                ));
+            }
+            let [y, nu, a] = keys.map(|k| k.1.unwrap());
+            ViscoelasticMaterial::new(y, nu, a).map_err(|e| {
+                let key = ["young", "poisson", "dissipative_constant"]
+                    .into_iter()
+                    .find(|k| e.to_string().starts_with(k))
+                    .unwrap_or("young");
+                Error::input(format!("system.species[{i}].{key}"), e)
+            })
+        })
+        .collect::<Result<Vec<_>>>()
+        .map(Some)
 }
