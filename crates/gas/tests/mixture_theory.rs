@@ -1,11 +1,13 @@
 //! The kinetic theory of a mixture's HCS (`gas::theory::mixture`) against independent
 //! computations: the one-species theory of `gas::theory`, a Monte Carlo integral of the
-//! collision operator over Maxwellians at unequal temperatures, and the elastic limit.
+//! collision operator over Maxwellians at unequal temperatures (constant and viscoelastic
+//! restitution), closed forms of free cooling, and the elastic limit.
 
 use gas::theory::{self, MixtureTheory};
 use rand::{Rng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
 use rand_pcg::Pcg64;
+use restitution::{Restitution, Viscoelastic};
 
 fn binary<const D: usize>(
     masses: [f64; 2],
@@ -57,14 +59,29 @@ fn one_species_is_the_pure_theory() {
 /// agreement within 5 standard errors of the sample mean.
 #[test]
 fn rates_match_a_monte_carlo_integral_of_the_collision_operator() {
-    fn check<const D: usize>(seed: u64) {
+    fn check<const D: usize>(seed: u64, viscoelastic: bool) {
         let masses = [1.0, 3.5];
         let diameters = [1.0, 1.8];
         let alpha = [[0.9, 0.6], [0.6, 0.75]];
         let temperatures = [1.0, 2.3];
         let mixture = binary::<D>(masses, diameters, 0.4, alpha, 0.15);
         let nu = |i, j| mixture.pair_frequency(i, j, &temperatures);
-        let zeta = mixture.cooling_rates(&temperatures);
+        // Velocity-dependent: viscoelastic laws of beta 0.1, 0.4 (unlike), 0.2.
+        let laws: Vec<Viscoelastic> = [0.1, 0.4, 0.2]
+            .map(|beta| Viscoelastic::new(beta, "fast".parse().unwrap()).unwrap())
+            .into();
+        let eps = |i: usize, j: usize, g: f64| {
+            if viscoelastic {
+                laws[i + j].eps(g)
+            } else {
+                alpha[i][j]
+            }
+        };
+        let zeta = if viscoelastic {
+            mixture.cooling_rates_for(&temperatures, &eps)
+        } else {
+            mixture.cooling_rates(&temperatures)
+        };
         let mut rng = Pcg64::seed_from_u64(seed);
         let samples = 400_000;
         let surface = theory::sphere_surface::<D>();
@@ -97,7 +114,7 @@ fn rates_match_a_monte_carlo_integral_of_the_collision_operator() {
                     let g: [f64; D] = std::array::from_fn(|k| v1[k] - v2[k]);
                     let approach: f64 = (0..D).map(|k| g[k] * direction[k]).sum();
                     let (rate, de) = if approach > 0.0 {
-                        let kick = mu * (1.0 + alpha[i][j]) * approach;
+                        let kick = mu * (1.0 + eps(i, j, approach)) * approach;
                         let after: f64 =
                             (0..D).map(|k| (v1[k] - kick * direction[k]).powi(2)).sum();
                         let before: f64 = v1.iter().map(|v| v * v).sum();
@@ -132,9 +149,11 @@ fn rates_match_a_monte_carlo_integral_of_the_collision_operator() {
             );
         }
     }
-    check::<1>(1);
-    check::<2>(2);
-    check::<3>(3);
+    for viscoelastic in [false, true] {
+        check::<1>(1, viscoelastic);
+        check::<2>(2, viscoelastic);
+        check::<3>(3, viscoelastic);
+    }
 }
 
 /// A uniformly random unit vector in D dimensions.
@@ -318,4 +337,58 @@ fn white_noise_one_species_is_van_noije_ernst() {
         check::<2>(alpha);
         check::<3>(alpha);
     }
+}
+
+/// Speed-dependent restitution: a constant eps gives the constant-alpha rates; eps =
+/// 1 - c g (one species) gives zeta = (omega / D) <1 - eps^2>_3 with the moments
+/// <u>_3 = (3/2) sqrt(pi/2) and <u^2>_3 = 4 of the weight u^3 exp(-u^2/2) (closed forms).
+#[test]
+fn speed_dependent_rates_reduce_to_closed_forms() {
+    let mixture = binary::<3>([1.0, 3.5], [1.0, 1.8], 0.4, [[0.9, 0.6], [0.6, 0.75]], 0.15);
+    let t = [1.0, 2.3];
+    let alpha = [[0.9, 0.6], [0.6, 0.75]];
+    let constant = mixture.cooling_rates_for(&t, &|i, j, _| alpha[i][j]);
+    for (a, b) in constant.iter().zip(mixture.cooling_rates(&t)) {
+        assert!((a / b - 1.0).abs() < 1e-12, "{a} vs {b}");
+    }
+    let (m, sigma, phi, temperature, c) = (2.0, 1.3, 0.1, 1.7, 0.05);
+    let pure = MixtureTheory::<2>::new(&[m], &[sigma], &[1.0], &[vec![1.0]], phi).unwrap();
+    let omega = pure.collision_frequencies(&[temperature])[0];
+    // Relative velocity per component: s^2 = 2 T / m.
+    let s = (2.0 * temperature / m).sqrt();
+    let loss = 2.0 * c * s * 1.5 * (std::f64::consts::PI / 2.0).sqrt() - c * c * s * s * 4.0;
+    let zeta = pure.cooling_rates_for(&[temperature], &|_, _, g| 1.0 - c * g)[0];
+    assert!((zeta / (omega * loss / 2.0) - 1.0).abs() < 1e-9, "{zeta}");
+}
+
+/// Free cooling against closed forms. Constant alpha: Haff, T = T0 / (1 + zeta0 t / 2)^2.
+/// 1 - eps^2 = c g^(1/5) exactly: zeta ~ T^(3/5), so T = T0 (1 + (3/5) zeta0 t)^(-5/3),
+/// the late-time law of viscoelastic spheres; zeta0 = (omega / D) c s^(1/5) <u^(1/5)>_3
+/// with <u^(1/5)>_3 = 2^(1/10) Gamma(2.1) (Gamma(2.1) = 1.0464858468535, Python's
+/// math.gamma). Runge–Kutta with 50 steps per unit of ln(1 + nu0 t): 1e-8.
+#[test]
+fn free_cooling_follows_haff_and_the_viscoelastic_power_law() {
+    let (m, sigma, phi, t0) = (1.0, 1.0, 0.1, 1.0);
+    let times = [0.0, 1.0, 10.0, 100.0, 1e4];
+    let alpha = 0.8;
+    let haff = MixtureTheory::<3>::new(&[m], &[sigma], &[1.0], &[vec![alpha]], phi).unwrap();
+    let zeta0 = haff.cooling_rates(&[t0])[0];
+    let cooled = haff.free_cooling(&[t0], &|_, _, _| alpha, &times, 50).unwrap();
+    for (t, row) in times.iter().zip(&cooled) {
+        let want = t0 / (1.0 + zeta0 * t / 2.0).powi(2);
+        assert!((row[0] / want - 1.0).abs() < 1e-8, "t = {t}: {} vs {want}", row[0]);
+    }
+    let c = 0.2;
+    let eps = |_: usize, _: usize, g: f64| (1.0 - c * g.powf(0.2)).max(0.0).sqrt();
+    let omega = haff.collision_frequencies(&[t0])[0];
+    let s = (2.0 * t0 / m).sqrt();
+    let zeta0 = omega / 3.0 * c * s.powf(0.2) * 2f64.powf(0.1) * 1.046_485_846_853_5;
+    assert!((haff.cooling_rates_for(&[t0], &eps)[0] / zeta0 - 1.0).abs() < 1e-9);
+    let cooled = haff.free_cooling(&[t0], &eps, &times, 50).unwrap();
+    for (t, row) in times.iter().zip(&cooled) {
+        let want = t0 * (1.0 + 0.6 * zeta0 * t).powf(-5.0 / 3.0);
+        assert!((row[0] / want - 1.0).abs() < 1e-8, "t = {t}: {} vs {want}", row[0]);
+    }
+    assert!(haff.free_cooling(&[t0], &eps, &[2.0, 1.0], 50).is_err());
+    assert!(haff.free_cooling(&[-1.0], &eps, &[1.0], 50).is_err());
 }

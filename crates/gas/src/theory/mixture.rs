@@ -24,6 +24,7 @@
 //! with S_D = 2, 2 pi, 4 pi. One species: nu = omega of [`super::collision_frequency`] and
 //! zeta = (1 - alpha^2) omega / D, the module's Haff law.
 
+mod laws;
 mod sonine;
 
 pub use sonine::DrivenState;
