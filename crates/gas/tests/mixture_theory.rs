@@ -373,10 +373,16 @@ fn free_cooling_follows_haff_and_the_viscoelastic_power_law() {
     let alpha = 0.8;
     let haff = MixtureTheory::<3>::new(&[m], &[sigma], &[1.0], &[vec![alpha]], phi).unwrap();
     let zeta0 = haff.cooling_rates(&[t0])[0];
-    let cooled = haff.free_cooling(&[t0], &|_, _, _| alpha, &times, 50).unwrap();
+    let cooled = haff
+        .free_cooling(&[t0], &|_, _, _| alpha, &times, 50)
+        .unwrap();
     for (t, row) in times.iter().zip(&cooled) {
         let want = t0 / (1.0 + zeta0 * t / 2.0).powi(2);
-        assert!((row[0] / want - 1.0).abs() < 1e-8, "t = {t}: {} vs {want}", row[0]);
+        assert!(
+            (row[0] / want - 1.0).abs() < 1e-8,
+            "t = {t}: {} vs {want}",
+            row[0]
+        );
     }
     let c = 0.2;
     let eps = |_: usize, _: usize, g: f64| (1.0 - c * g.powf(0.2)).max(0.0).sqrt();
@@ -387,7 +393,11 @@ fn free_cooling_follows_haff_and_the_viscoelastic_power_law() {
     let cooled = haff.free_cooling(&[t0], &eps, &times, 50).unwrap();
     for (t, row) in times.iter().zip(&cooled) {
         let want = t0 * (1.0 + 0.6 * zeta0 * t).powf(-5.0 / 3.0);
-        assert!((row[0] / want - 1.0).abs() < 1e-8, "t = {t}: {} vs {want}", row[0]);
+        assert!(
+            (row[0] / want - 1.0).abs() < 1e-8,
+            "t = {t}: {} vs {want}",
+            row[0]
+        );
     }
     assert!(haff.free_cooling(&[t0], &eps, &[2.0, 1.0], 50).is_err());
     assert!(haff.free_cooling(&[-1.0], &eps, &[1.0], 50).is_err());

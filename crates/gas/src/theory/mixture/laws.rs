@@ -59,8 +59,9 @@ impl<const D: usize> MixtureTheory<D> {
     /// The species' temperatures of a freely cooling mixture, dT_i/dt = -zeta_i T_i with
     /// the rates of [`Self::cooling_rates_for`], from `initial` at t = 0 at each of `times`
     /// (ascending, >= 0). Classical Runge–Kutta in ln(1 + nu_0 t) (nu_0: the initial mean
-    /// collision frequency) with at least `steps_per_unit` steps per unit of it: the late
-    /// power law is a straight line there.
+    /// collision frequency) with at least `steps_per_unit` steps per unit of it (the late
+    /// power law is a straight line there), and steps below the inverse relaxation rate of
+    /// the ratios.
     pub fn free_cooling(
         &self,
         initial: &[f64],
@@ -68,8 +69,7 @@ impl<const D: usize> MixtureTheory<D> {
         times: &[f64],
         steps_per_unit: usize,
     ) -> Result<Vec<Vec<f64>>> {
-        if initial.len() != self.species() || initial.iter().any(|t| !(t.is_finite() && *t > 0.0))
-        {
+        if initial.len() != self.species() || initial.iter().any(|t| !(t.is_finite() && *t > 0.0)) {
             return Err(Error::out_of_range(
                 "initial",
                 initial.len(),
@@ -99,13 +99,20 @@ impl<const D: usize> MixtureTheory<D> {
         let mut out = Vec::with_capacity(times.len());
         for &time in times {
             let target = (nu0 * time).ln_1p();
-            let steps = ((target - sigma) * steps_per_unit as f64).ceil().max(0.0) as usize;
-            let h = if steps > 0 {
-                (target - sigma) / steps as f64
-            } else {
-                0.0
-            };
-            for _ in 0..steps {
+            while sigma < target {
+                // The ratios relax at the collision frequency nu, a rate nu (1 + nu0 t) / nu0
+                // in sigma that grows as t^(1/6) on the late power law: steps below its
+                // inverse keep the classical Runge–Kutta stable.
+                let t: Vec<f64> = y.iter().map(|v| v.exp()).collect();
+                let stiffness = self
+                    .collision_frequencies(&t)
+                    .iter()
+                    .fold(0.0, |a: f64, b| a.max(*b))
+                    * sigma.exp()
+                    / nu0;
+                let h = (1.0 / steps_per_unit as f64)
+                    .min(1.0 / stiffness)
+                    .min(target - sigma);
                 let add = |y: &[f64], k: &[f64], f: f64| -> Vec<f64> {
                     y.iter().zip(k).map(|(a, b)| a + f * b).collect()
                 };
@@ -116,9 +123,12 @@ impl<const D: usize> MixtureTheory<D> {
                 for (n, v) in y.iter_mut().enumerate() {
                     *v += h / 6.0 * (k1[n] + 2.0 * k2[n] + 2.0 * k3[n] + k4[n]);
                 }
-                sigma += h;
+                sigma = if target - sigma <= h {
+                    target
+                } else {
+                    sigma + h
+                };
             }
-            sigma = target;
             out.push(y.iter().map(|v| v.exp()).collect());
         }
         Ok(out)
