@@ -76,7 +76,7 @@ impl<const D: usize> MixtureTheory<D> {
                 format!("{} temperatures, finite and > 0", self.species()),
             ));
         }
-        if times.windows(2).any(|w| w[1] < w[0]) || times.iter().any(|t| !(*t >= 0.0)) {
+        if times.windows(2).any(|w| w[1] < w[0]) || times.iter().any(|t| t.is_nan() || *t < 0.0) {
             return Err(Error::out_of_range("times", times.len(), "ascending, >= 0"));
         }
         let nu0: f64 = self
