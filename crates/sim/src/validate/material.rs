@@ -132,6 +132,9 @@ pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
     }
 }
 
+/// Kinds (radius, mass) in the order of `system.species`, and beta per pair of them.
+pub(crate) type PairBetas = (Vec<(f64, f64)>, Vec<Vec<f64>>);
+
 /// A viscoelastic mixture with materials: each species' material (its own `young`,
 /// `poisson`, `dissipative_constant`, a key left out taken from `[collision]`) and beta
 /// per pair of species, from the pair's effective radius and mass and, for unlike
@@ -140,7 +143,7 @@ pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
 /// `collision.beta` for every pair and no species material.
 pub(crate) fn species_betas(
     description: &RunDescription,
-) -> Result<Option<(Vec<(f64, f64)>, Vec<Vec<f64>>)>> {
+) -> Result<Option<PairBetas>> {
     let c = &description.collision;
     let Some(species) = &description.system.species else {
         return Ok(None);
