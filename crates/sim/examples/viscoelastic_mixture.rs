@@ -8,7 +8,6 @@
 
 use gas::theory::MixtureTheory;
 
-use restitution::Restitution;
 use sim::plot::Figure;
 use sim::{RunDescription, Simulation};
 use std::path::Path;
