@@ -15,6 +15,7 @@ use crate::sorter::{Sorter, SorterKind};
 use crate::system::{dot, wrap, System, Vector};
 use restitution::Restitution;
 
+mod driving;
 mod models;
 mod predict;
 mod state;
@@ -100,6 +101,8 @@ pub struct EventDriven<const D: usize> {
     /// their number (see [`COLLAPSE_COLLISIONS_PER_PARTICLE`]).
     stall: (f64, u64),
     collapsed: Option<f64>,
+    /// Driving applied at discrete times ([`EventDriven::set_driving`]).
+    kicks: Option<driving::Kicks>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -231,6 +234,7 @@ impl<const D: usize> EventDriven<D> {
             baths: law_is_stochastic.then(|| Baths::new(vec![0.0; n], 0)),
             stall: (0.0, 0),
             collapsed: None,
+            kicks: None,
         };
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
@@ -377,10 +381,20 @@ impl<const D: usize> EventDriven<D> {
 
     /// Processes the next event; false if there is none (all particles at rest).
     pub fn step(&mut self) -> bool {
-        let Some((i, t)) = self.queue.peek() else {
+        if self.collapsed.is_some() {
+            return false;
+        }
+        let next_event = self.queue.peek();
+        if let Some(kick) = self.next_kick() {
+            if next_event.is_none_or(|(_, t)| kick <= t) {
+                self.kick();
+                return true;
+            }
+        }
+        let Some((i, t)) = next_event else {
             return false;
         };
-        if !t.is_finite() || self.collapsed.is_some() {
+        if !t.is_finite() {
             return false;
         }
         self.time = t;
@@ -471,6 +485,15 @@ impl<const D: usize> EventDriven<D> {
         self.collapsed
     }
 
+    /// The time of the next event or application of the driving, whichever first.
+    fn upcoming(&mut self) -> Option<f64> {
+        let event = self.queue.peek().map(|(_, t)| t);
+        match (event, self.next_kick()) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+
     /// Runs until `collisions` more collisions have happened (or nothing moves).
     pub fn run_collisions(&mut self, collisions: u64) {
         let target = self.tally.collisions + collisions;
@@ -480,7 +503,7 @@ impl<const D: usize> EventDriven<D> {
     /// Runs until the time reaches `t` (events at later times stay pending), or stops at
     /// inelastic collapse (see [`EventDriven::collapsed`]).
     pub fn run_until(&mut self, t: f64) {
-        while let Some((_, next)) = self.queue.peek() {
+        while let Some(next) = self.upcoming() {
             if next > t || !self.step() {
                 break;
             }
@@ -495,8 +518,8 @@ impl<const D: usize> EventDriven<D> {
     /// collision and going on changes nothing (see [`crate::Engine::run_paused`]).
     pub fn run_bounded(&mut self, end: f64, collisions: u64) {
         while self.tally.collisions < collisions {
-            match self.queue.peek() {
-                Some((_, next)) if next <= end => {
+            match self.upcoming() {
+                Some(next) if next <= end => {
                     if !self.step() {
                         return;
                     }

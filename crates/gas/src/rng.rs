@@ -25,6 +25,8 @@ pub(crate) enum Purpose {
     Cell = 4,
     /// The stochastic coefficient of restitution of the event-driven engine.
     Baths = 5,
+    /// The white-noise kicks of the event-driven engine at one application.
+    Driving = 6,
 }
 
 /// A counted PCG-64 stream.

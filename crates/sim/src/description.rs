@@ -64,20 +64,35 @@ pub struct RunDescription {
     pub driving: Option<DrivingSection>,
 }
 
-/// `[driving]`: white noise (`kind = "white-noise"`): every particle's velocity receives
-/// Gaussian kicks of variance `strength` per component and unit time (a random
-/// acceleration, the same for every species; `gas::driving`).
+/// `[driving]`: energy fed in for a steady state (`gas::driving`). White noise
+/// (`kind = "white-noise"`): every particle's velocity receives Gaussian kicks of variance
+/// `strength` per component and unit time (a random acceleration, the same for every
+/// species). The Gaussian thermostat (`kind = "gaussian-thermostat"`): every velocity is
+/// scaled about the mean by one factor that holds the temperature at `temperature`
+/// (default: `system.temperature`); the steady state has the HCS's shape. DSMC (blocks)
+/// applies either at every step; the event-driven engine at the times k `interval`
+/// (default: a tenth of the mean free time at the larger of the initial and the expected
+/// steady temperature), renewing every prediction.
 ///
 /// ```toml
 /// [driving]
 /// kind = "white-noise"
 /// strength = 1.0
+/// # interval = 0.01   (event-driven only)
 /// ```
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DrivingSection {
     pub kind: DrivingKind,
-    pub strength: f64,
+    /// White noise: xi^2, the velocity variance per component and unit time.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strength: Option<f64>,
+    /// Gaussian thermostat: the temperature held.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    /// Event-driven: the time between applications.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interval: Option<f64>,
 }
 
 /// `driving.kind`.
@@ -85,6 +100,7 @@ pub struct DrivingSection {
 #[serde(rename_all = "kebab-case")]
 pub enum DrivingKind {
     WhiteNoise,
+    GaussianThermostat,
 }
 
 /// `[output]`: what a run records of space, at the samples of its schedule. Checked by

@@ -178,6 +178,7 @@ pub(crate) fn start<const D: usize>(
                     .set_tc_model(tc, None)
                     .map_err(|e| Error::input("collision.tc", e))?;
             }
+            drive(&mut engine, plan)?;
             Box::new(engine)
         }
         EngineSpec::HomogeneousDsmc(scheme) => {
@@ -242,11 +243,28 @@ pub(crate) fn restore<const D: usize>(
         return Ok(Box::new(engine));
     }
     match plan.engine {
-        EngineSpec::EventDriven => restore_as::<D, EventDriven<D>>(plan, law, sections),
+        EngineSpec::EventDriven => {
+            let state: EventDrivenState<D> = sections.engine()?;
+            EventDriven::check_state(plan, &state)
+                .map_err(|e| sections.error(format!("engine state: {e}")))?;
+            let mut engine = EventDriven::restore(state, law)
+                .map_err(|e| sections.error(format!("engine state: {e}")))?;
+            drive(&mut engine, plan)?;
+            Ok(Box::new(engine))
+        }
         EngineSpec::HomogeneousDsmc(_) => restore_homogeneous::<D>(plan, law, sections, comm),
         EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(plan, law, sections),
         EngineSpec::SoftSphere(..) => restore_as::<D, SoftSphere<D>>(plan, law, sections),
     }
+}
+
+/// Drives an event-driven engine as the plan says, at its interval, with kicks drawn from
+/// the run's seed.
+fn drive<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
+    let interval = plan.driving_interval.unwrap_or(1.0);
+    engine
+        .set_driving(plan.driving, interval, plan.description.system.seed)
+        .map_err(|e| Error::input("driving.interval", e))
 }
 
 /// The homogeneous engine of a check-point, on the ranks of `comm`, driven as the plan says.
@@ -459,6 +477,10 @@ fn no_energy_gained<const D: usize>(
     system: &System<D>,
     bath_temperatures: Option<&[f64]>,
 ) -> std::result::Result<(), String> {
+    if plan.driving.is_some() {
+        // A driven gas gains energy.
+        return Ok(());
+    }
     let s = &plan.description.system;
     let n = system.len() as f64;
     let kinetic = gas::observe::kinetic_energy(system);

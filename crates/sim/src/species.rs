@@ -7,6 +7,7 @@ use crate::error::Result;
 use crate::observer::Observer;
 use crate::output::{number, write_csv_file};
 use crate::schedule::Target;
+use gas::driving::{Driving, WhiteNoise};
 use crate::validate::{LawSpec, Plan};
 use gas::Engine;
 use serde::{Deserialize, Serialize};
@@ -197,7 +198,9 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
         "temperature_ratios": ratios,
     });
     let alpha = restitution_matrix(plan, list.len());
-    if let (Some(alpha), None) = (alpha, plan.driving) {
+    // The thermostat's steady state is the HCS scaled: its theory is the HCS's.
+    let hcs = !matches!(plan.driving, Some(Driving::WhiteNoise(_)));
+    if let (Some(alpha), true) = (alpha, hcs) {
         let phi = plan.description.system.packing_fraction;
         let theory = match plan.description.system.dimension {
             1 => hcs_theory::<1>(&table, &alpha, phi),
@@ -251,7 +254,9 @@ fn restitution_matrix(plan: &Plan, kinds: usize) -> Option<Vec<Vec<f64>>> {
 /// the first Sonine approximation (`gas::theory::MixtureTheory::white_noise`; up to
 /// [`SONINE_SPECIES`] species for Sonine).
 pub fn driven_theory(plan: &Plan) -> Option<serde_json::Value> {
-    let noise = plan.driving?;
+    let Some(Driving::WhiteNoise(noise)) = plan.driving else {
+        return None;
+    };
     let s = &plan.description.system;
     let table = Kinds::of(plan);
     let alpha = restitution_matrix(plan, table.masses.len())?;
@@ -284,6 +289,72 @@ fn steady<const D: usize>(
         }
     }
     Some(out)
+}
+
+/// The event-driven engine's default time between applications of the driving: a tenth
+/// of the shortest mean free time (the largest species' collision frequency, Enskog,
+/// Maxwellian) at the larger of the initial temperature and the steady one the driving
+/// aims at: the thermostat's, or white noise's Maxwellian energy balance for a constant
+/// restitution (else the initial temperature alone). Kicks that far apart change a
+/// particle's velocity between two of its collisions by a tenth of the kick of one mean
+/// free time; `tests/driving.rs` shows the steady state converged there.
+pub(crate) fn default_driving_interval(plan: &Plan) -> f64 {
+    let s = &plan.description.system;
+    let table = Kinds::of(plan);
+    let kinds = table.masses.len();
+    let mut reference = vec![s.temperature; kinds];
+    match plan.driving {
+        Some(Driving::Thermostat(t)) => reference.iter_mut().for_each(|r| *r = r.max(t.temperature)),
+        Some(Driving::WhiteNoise(noise)) => {
+            if let Some(alpha) = restitution_matrix(plan, kinds) {
+                let steady = match s.dimension {
+                    1 => white_noise_maxwellian::<1>(&table, &alpha, s.packing_fraction, noise),
+                    2 => white_noise_maxwellian::<2>(&table, &alpha, s.packing_fraction, noise),
+                    _ => white_noise_maxwellian::<3>(&table, &alpha, s.packing_fraction, noise),
+                };
+                for (r, t) in reference.iter_mut().zip(steady.unwrap_or_default()) {
+                    *r = r.max(t);
+                }
+            }
+        }
+        None => {}
+    }
+    let elastic = vec![vec![1.0; kinds]; kinds];
+    let fastest = match s.dimension {
+        1 => fastest_frequency::<1>(&table, &elastic, s.packing_fraction, &reference),
+        2 => fastest_frequency::<2>(&table, &elastic, s.packing_fraction, &reference),
+        _ => fastest_frequency::<3>(&table, &elastic, s.packing_fraction, &reference),
+    };
+    match fastest {
+        Some(nu) if nu > 0.0 && nu.is_finite() => 0.1 / nu,
+        _ => 1.0,
+    }
+}
+
+fn white_noise_maxwellian<const D: usize>(
+    table: &Kinds,
+    alpha: &[Vec<f64>],
+    phi: f64,
+    noise: WhiteNoise,
+) -> Option<Vec<f64>> {
+    let strength = vec![noise.strength; table.masses.len()];
+    let theory = table.theory::<D>(alpha, phi)?;
+    Some(theory.white_noise(&strength, false).ok()?.temperatures)
+}
+
+fn fastest_frequency<const D: usize>(
+    table: &Kinds,
+    alpha: &[Vec<f64>],
+    phi: f64,
+    temperatures: &[f64],
+) -> Option<f64> {
+    let theory = table.theory::<D>(alpha, phi)?;
+    Some(
+        theory
+            .collision_frequencies(temperatures)
+            .into_iter()
+            .fold(0.0, f64::max),
+    )
 }
 
 /// The species of a run for kinetic theory: `system.species` (fractions normalized), or the

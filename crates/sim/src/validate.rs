@@ -5,6 +5,7 @@
 //! law itself when [`crate::law::build`] builds it, which [`crate::Simulation::new`] does
 //! before anything runs. Errors name the key and the allowed range.
 
+mod driving;
 mod material;
 
 use crate::description::{
@@ -110,8 +111,10 @@ pub struct Plan {
     pub engine: EngineSpec,
     /// Contact duration of the TC model, if on.
     pub tc: Option<f64>,
-    /// White-noise driving (`[driving]`), if on.
-    pub driving: Option<gas::driving::WhiteNoise>,
+    /// Driving (`[driving]`), if on.
+    pub driving: Option<gas::driving::Driving>,
+    /// The event-driven engine's time between applications of the driving.
+    pub driving_interval: Option<f64>,
 }
 
 /// Checks every key of `description` and returns the plan of the run.
@@ -189,38 +192,22 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
             ));
         }
     }
-    let driving = driving_spec(description, &engine)?;
+    let (driving, driving_interval) = driving::driving_spec(description, &engine, &law)?;
     let mut description = description.clone();
     description.normalize();
-    Ok(Plan {
+    let mut plan = Plan {
         description,
         stop,
         law,
         engine,
         tc: c.tc.filter(|&tc| tc > 0.0),
         driving,
-    })
-}
-
-/// `[driving]`: a finite strength > 0, for the homogeneous DSMC's block scheme (the engine
-/// that drives so far).
-fn driving_spec(
-    description: &RunDescription,
-    engine: &EngineSpec,
-) -> Result<Option<gas::driving::WhiteNoise>> {
-    let Some(d) = &description.driving else {
-        return Ok(None);
+        driving_interval,
     };
-    let noise = gas::driving::WhiteNoise::new(d.strength)
-        .map_err(|_| Error::out_of_range("driving.strength", d.strength, "finite and > 0"))?;
-    if !matches!(engine, EngineSpec::HomogeneousDsmc(Scheme::Blocks { .. })) {
-        return Err(Error::input(
-            "driving",
-            "white-noise driving runs in run.engine = \"dsmc\" with dsmc_scheme = \"blocks\" \
-             (the kicks come at its steps)",
-        ));
+    if plan.driving.is_some() && plan.driving_interval.is_none() && plan.engine == EngineSpec::EventDriven {
+        plan.driving_interval = Some(crate::species::default_driving_interval(&plan));
     }
-    Ok(Some(noise))
+    Ok(plan)
 }
 
 /// The range of a diameter, mass or temperature (any unit system): wide enough for SI and

@@ -403,7 +403,9 @@ fn white_noise_reaches_the_energy_balance() {
     }
 }
 
-/// `[driving]` is checked: a strength > 0, an engine that drives (DSMC blocks), a known kind.
+/// `[driving]` is checked: a strength > 0 (white noise) or a temperature > 0 (thermostat),
+/// each kind's keys only, an engine that drives (DSMC blocks, event-driven), an interval
+/// for the event-driven engine only, a known kind.
 #[test]
 fn driving_is_checked() {
     let file = |engine: &str, driving: &str| {
@@ -415,8 +417,33 @@ fn driving_is_checked() {
     };
     let noise = "kind = \"white-noise\"\nstrength = 1.0";
     let cases = [
-        (EVENT_DRIVEN, noise, "driving"),
         (SPATIAL, noise, "driving"),
+        (BLOCKS, "kind = \"white-noise\"", "driving.strength"),
+        (
+            BLOCKS,
+            "kind = \"white-noise\"\nstrength = 1.0\ntemperature = 2.0",
+            "driving.temperature",
+        ),
+        (
+            BLOCKS,
+            "kind = \"gaussian-thermostat\"\nstrength = 1.0",
+            "driving.strength",
+        ),
+        (
+            BLOCKS,
+            "kind = \"gaussian-thermostat\"\ntemperature = 0.0",
+            "driving.temperature",
+        ),
+        (
+            BLOCKS,
+            "kind = \"white-noise\"\nstrength = 1.0\ninterval = 0.1",
+            "driving.interval",
+        ),
+        (
+            EVENT_DRIVEN,
+            "kind = \"white-noise\"\nstrength = 1.0\ninterval = -0.1",
+            "driving.interval",
+        ),
         (
             BLOCKS,
             "kind = \"white-noise\"\nstrength = -1.0",
@@ -437,7 +464,14 @@ fn driving_is_checked() {
             "{engine} {driving}: {e}"
         );
     }
-    assert!(Simulation::from_toml(&file(BLOCKS, noise), Path::new("d.toml")).is_ok());
+    for (engine, driving) in [
+        (BLOCKS, noise),
+        (EVENT_DRIVEN, noise),
+        (EVENT_DRIVEN, "kind = \"gaussian-thermostat\"\ninterval = 0.05"),
+        (BLOCKS, "kind = \"gaussian-thermostat\""),
+    ] {
+        assert!(Simulation::from_toml(&file(engine, driving), Path::new("d.toml")).is_ok());
+    }
 }
 
 /// A driven binary mixture (docs/data/driven-mixture.toml at N = 5e4): each species' steady

@@ -12,7 +12,7 @@ use super::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally, T
 use super::reduce;
 use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
-use crate::driving::WhiteNoise;
+use crate::driving::Driving;
 use crate::engine::{Counters, SpeciesCollisions, VelocityStatistics};
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
@@ -48,8 +48,9 @@ struct Core<const D: usize> {
     tally: Counters,
     /// Collisions of each species' particles (mixtures; empty for one species).
     species_collisions: Vec<u64>,
-    /// White-noise driving (block scheme), kicks at the end of each step.
-    driving: Option<WhiteNoise>,
+    /// Driving (block scheme): white-noise kicks around each step's collisions, or the
+    /// thermostat's scaling after each step.
+    driving: Option<Driving>,
     /// The velocity speed bounds are measured from: the mean velocity when the exact
     /// scheme last recomputed its bound, or at the end of the last block step.
     /// [`Scheme::Exact`]: also the bound on |v - reference| and the stream.
@@ -311,10 +312,10 @@ impl<const D: usize> HomogeneousDsmc<D> {
         self.core.tally
     }
 
-    /// Drives the gas with white noise from now on (None: freely cooling). The block
-    /// scheme only (its steps are the kick interval); fails (`driving`) for the exact
-    /// scheme. Not part of the snapshot: set it again after a restore.
-    pub fn set_driving(&mut self, driving: Option<WhiteNoise>) -> Result<()> {
+    /// Drives the gas from now on (None: freely cooling). The block scheme only (its steps
+    /// are the kick interval); fails (`driving`) for the exact scheme. Not part of the
+    /// snapshot: set it again after a restore.
+    pub fn set_driving(&mut self, driving: Option<Driving>) -> Result<()> {
         if driving.is_some() && matches!(self.core.scheme, Scheme::Exact) {
             return Err(Error::out_of_range(
                 "driving",

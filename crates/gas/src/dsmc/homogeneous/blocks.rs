@@ -6,6 +6,7 @@
 
 use super::{Core, HomogeneousRecord};
 use crate::dsmc::domain::Traffic;
+use crate::driving::Driving;
 use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally};
 use crate::dsmc::reduce;
 use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP};
@@ -134,6 +135,19 @@ pub(super) fn run_blocks<const D: usize, R: HomogeneousRecord<D>>(
         let d: Vector<D> = std::array::from_fn(|k| mean[k] - core.reference[k]);
         core.reference = mean;
         core.temperature = (sums.spread - sums.mass * dot(&d, &d)) / (n * D) as f64;
+        if let Some(Driving::Thermostat(thermostat)) = core.driving {
+            // Every rank scales its blocks by the same factor (the temperature is the
+            // gas's, summed exactly over all blocks).
+            let factor = thermostat.factor(core.temperature);
+            let mean = core.reference;
+            now.par_iter_mut().for_each(|r| {
+                let v = r.velocity_mut();
+                for k in 0..D {
+                    v[k] = mean[k] + factor * (v[k] - mean[k]);
+                }
+            });
+            core.temperature *= factor * factor;
+        }
         core.steps += 1;
         core.time = if last { end } else { core.time + dt };
         core.traffic.steps += 1;
@@ -181,7 +195,11 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
         species: &core.species,
         pairs: core.pairs.as_deref(),
     };
-    let (seed, steps, species, driving) = (core.seed, core.steps, &core.species, core.driving);
+    let (seed, steps, species) = (core.seed, core.steps, &core.species);
+    let noise = match core.driving {
+        Some(Driving::WhiteNoise(noise)) => Some(noise),
+        _ => None,
+    };
     let reference = core.reference;
     let base = layout.start(share.first);
     let base_rate =
@@ -207,7 +225,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             // Driving: half the step's kicks before the collisions, half after (symmetric
             // splitting: the state at the end of a step is that of continuous noise to
             // second order in the step).
-            if let Some(noise) = driving {
+            if let Some(noise) = noise {
                 noise.kick(block, 0.5 * dt, species, &mut rng);
                 bound = kernel::speed_bound(block, &reference);
             }
@@ -222,7 +240,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
                 &mut rng,
                 &mut tally,
             );
-            if let Some(noise) = driving {
+            if let Some(noise) = noise {
                 noise.kick(block, 0.5 * dt, species, &mut rng);
             }
             kernel::shuffle(block, &mut rng);

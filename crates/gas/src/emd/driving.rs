@@ -1,0 +1,129 @@
+//! Driving the event-driven engine ([`crate::driving`]): white-noise kicks or the
+//! thermostat's scaling applied to every particle at the discrete times k dt of an
+//! interval dt. A velocity change invalidates every prediction, so each application brings
+//! every particle to the present and predicts every event afresh
+//! ([`EventDriven::synchronize`]): the event calendar stays exact, and between two
+//! applications the dynamics is the undriven one. Continuous driving is the limit dt -> 0;
+//! the kicks of interval k draw from their own random stream (seed, k), so the run does not
+//! depend on where it was paused or check-pointed.
+
+use super::EventDriven;
+use crate::driving::Driving;
+use crate::error::{Error, Result};
+use crate::rng::{Purpose, Stream};
+use crate::system::Vector;
+
+/// The driving of an event-driven run and the index of its next application.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Kicks {
+    driving: Driving,
+    interval: f64,
+    seed: u64,
+    /// The next application is at `next * interval`.
+    next: u64,
+}
+
+impl Kicks {
+    pub(super) fn time_of_next(&self) -> f64 {
+        self.next as f64 * self.interval
+    }
+}
+
+impl<const D: usize> EventDriven<D> {
+    /// Drives the gas from now on with `driving` applied at the times k `interval` (the
+    /// first after the current time; None: freely cooling), white-noise kicks drawn from
+    /// `seed`. Fails (`interval`) unless 0 < interval < inf. Not part of the snapshot:
+    /// set it again after a restore (the applications so far follow from the time).
+    pub fn set_driving(
+        &mut self,
+        driving: Option<Driving>,
+        interval: f64,
+        seed: u64,
+    ) -> Result<()> {
+        let Some(driving) = driving else {
+            self.kicks = None;
+            return Ok(());
+        };
+        if !(interval.is_finite() && interval > 0.0) {
+            return Err(Error::out_of_range("interval", interval, "finite and > 0"));
+        }
+        // The first k with k dt > now (an application at exactly now has been made).
+        let mut next = (self.time / interval).floor().max(0.0) as u64;
+        while next as f64 * interval <= self.time {
+            next += 1;
+        }
+        self.kicks = Some(Kicks {
+            driving,
+            interval,
+            seed,
+            next,
+        });
+        Ok(())
+    }
+
+    /// The time of the next application of the driving, if driven.
+    pub(super) fn next_kick(&self) -> Option<f64> {
+        self.kicks.as_ref().map(Kicks::time_of_next)
+    }
+
+    /// Applies the driving at its next time (which must not be later than the next
+    /// event) and predicts every event afresh.
+    pub(super) fn kick(&mut self) {
+        let Some(kicks) = self.kicks.as_mut() else {
+            return;
+        };
+        let (driving, interval, seed, k) = (kicks.driving, kicks.interval, kicks.seed, kicks.next);
+        kicks.next += 1;
+        self.time = self.time.max(k as f64 * interval);
+        match driving {
+            Driving::WhiteNoise(noise) => {
+                let mut rng = Stream::new(seed, Purpose::Driving, k, 0);
+                let masses: Vec<f64> = self.particles.iter().map(|p| p.mass).collect();
+                let kicks = noise.kicks::<D>(masses.into_iter(), interval, &mut rng);
+                for (i, dv) in kicks.iter().enumerate() {
+                    self.bring_to_now(i);
+                    let v = &mut self.particles[i].velocity;
+                    for k in 0..D {
+                        v[k] += dv[k];
+                    }
+                }
+            }
+            Driving::Thermostat(thermostat) => {
+                let (mean, temperature) = self.mean_and_temperature();
+                let factor = thermostat.factor(temperature);
+                for i in 0..self.particles.len() {
+                    self.bring_to_now(i);
+                    let v = &mut self.particles[i].velocity;
+                    for k in 0..D {
+                        v[k] = mean[k] + factor * (v[k] - mean[k]);
+                    }
+                }
+            }
+        }
+        self.synchronize();
+    }
+
+    /// The mass-weighted mean velocity and the temperature about it.
+    fn mean_and_temperature(&self) -> (Vector<D>, f64) {
+        let mut mass = 0.0;
+        let mut momentum: Vector<D> = [0.0; D];
+        for p in &self.particles {
+            mass += p.mass;
+            for k in 0..D {
+                momentum[k] += p.mass * p.velocity[k];
+            }
+        }
+        let mean: Vector<D> = std::array::from_fn(|k| momentum[k] / mass);
+        let spread: f64 = self
+            .particles
+            .iter()
+            .map(|p| {
+                p.mass
+                    * (0..D)
+                        .map(|k| (p.velocity[k] - mean[k]).powi(2))
+                        .sum::<f64>()
+            })
+            .sum();
+        (mean, spread / (self.particles.len() * D) as f64)
+    }
+}
