@@ -7,8 +7,8 @@ use crate::error::Result;
 use crate::observer::Observer;
 use crate::output::{number, write_csv_file};
 use crate::schedule::Target;
-use gas::driving::{Driving, WhiteNoise};
 use crate::validate::{LawSpec, Plan};
+use gas::driving::{Driving, WhiteNoise};
 use gas::Engine;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -304,7 +304,9 @@ pub(crate) fn default_driving_interval(plan: &Plan) -> f64 {
     let kinds = table.masses.len();
     let mut reference = vec![s.temperature; kinds];
     match plan.driving {
-        Some(Driving::Thermostat(t)) => reference.iter_mut().for_each(|r| *r = r.max(t.temperature)),
+        Some(Driving::Thermostat(t)) => {
+            reference.iter_mut().for_each(|r| *r = r.max(t.temperature))
+        }
         Some(Driving::WhiteNoise(noise)) => {
             if let Some(alpha) = restitution_matrix(plan, kinds) {
                 let steady = match s.dimension {

@@ -204,7 +204,10 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         driving,
         driving_interval,
     };
-    if plan.driving.is_some() && plan.driving_interval.is_none() && plan.engine == EngineSpec::EventDriven {
+    if plan.driving.is_some()
+        && plan.driving_interval.is_none()
+        && plan.engine == EngineSpec::EventDriven
+    {
         plan.driving_interval = Some(crate::species::default_driving_interval(&plan));
     }
     Ok(plan)

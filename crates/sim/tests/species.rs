@@ -467,7 +467,10 @@ fn driving_is_checked() {
     for (engine, driving) in [
         (BLOCKS, noise),
         (EVENT_DRIVEN, noise),
-        (EVENT_DRIVEN, "kind = \"gaussian-thermostat\"\ninterval = 0.05"),
+        (
+            EVENT_DRIVEN,
+            "kind = \"gaussian-thermostat\"\ninterval = 0.05",
+        ),
         (BLOCKS, "kind = \"gaussian-thermostat\""),
     ] {
         assert!(Simulation::from_toml(&file(engine, driving), Path::new("d.toml")).is_ok());

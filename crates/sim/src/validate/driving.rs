@@ -28,9 +28,11 @@ pub(crate) fn driving_spec(
             let strength = d
                 .strength
                 .ok_or_else(|| Error::input("driving.strength", "missing for white noise"))?;
-            Driving::WhiteNoise(WhiteNoise::new(strength).map_err(|_| {
-                Error::out_of_range("driving.strength", strength, "finite and > 0")
-            })?)
+            Driving::WhiteNoise(
+                WhiteNoise::new(strength).map_err(|_| {
+                    Error::out_of_range("driving.strength", strength, "finite and > 0")
+                })?,
+            )
         }
         DrivingKind::GaussianThermostat => {
             if d.strength.is_some() {
@@ -40,9 +42,10 @@ pub(crate) fn driving_spec(
                 ));
             }
             let t = d.temperature.unwrap_or(description.system.temperature);
-            Driving::Thermostat(Thermostat::new(t).map_err(|_| {
-                Error::out_of_range("driving.temperature", t, "finite and > 0")
-            })?)
+            Driving::Thermostat(
+                Thermostat::new(t)
+                    .map_err(|_| Error::out_of_range("driving.temperature", t, "finite and > 0"))?,
+            )
         }
     };
     if matches!(law, LawSpec::Stochastic { .. }) {

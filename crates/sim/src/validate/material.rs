@@ -141,9 +141,7 @@ pub(crate) type PairBetas = (Vec<(f64, f64)>, Vec<Vec<f64>>);
 /// materials, the combined modulus and compliance-weighted dissipative constant
 /// ([`ViscoelasticMaterial::pair_beta`]). `None` without species, or with one
 /// `collision.beta` for every pair and no species material.
-pub(crate) fn species_betas(
-    description: &RunDescription,
-) -> Result<Option<PairBetas>> {
+pub(crate) fn species_betas(description: &RunDescription) -> Result<Option<PairBetas>> {
     let c = &description.collision;
     let Some(species) = &description.system.species else {
         return Ok(None);

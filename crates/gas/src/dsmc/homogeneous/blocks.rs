@@ -5,8 +5,8 @@
 //! for bit: the same blocks, lanes and random streams, and exact sums over the blocks.
 
 use super::{Core, HomogeneousRecord};
-use crate::dsmc::domain::Traffic;
 use crate::driving::Driving;
+use crate::dsmc::domain::Traffic;
 use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally};
 use crate::dsmc::reduce;
 use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP};
