@@ -342,3 +342,28 @@ def test_pairwise_restitution_and_driving_from_a_dict():
     config["collision"]["restitution"] = [[0.9, 0.6], [0.5, 0.75]]
     with pytest.raises(haff.ConfigError, match=r"collision\.restitution\[0\]\[1\]"):
         haff.Simulation(config)
+
+
+def test_thermostat_and_species_materials_from_a_dict():
+    """The Gaussian thermostat holds the temperature in an event-driven run; species of
+    their own materials collide with the beta of their pair; a species' material with
+    another law names the key."""
+    config = {
+        "system": {"dimension": 3, "particles": 500, "packing_fraction": 0.05, "seed": 2,
+                   "species": [
+                       {"diameter": 1.0, "mass": 1.0, "fraction": 0.5,
+                        "young": 1e5, "poisson": 0.3, "dissipative_constant": 2e-3},
+                       {"diameter": 1.4, "mass": 2.744, "fraction": 0.5,
+                        "young": 1e4, "poisson": 0.4, "dissipative_constant": 1e-2}]},
+        "collision": {"law": "viscoelastic"},
+        "driving": {"kind": "gaussian-thermostat", "temperature": 1.5},
+        "run": {"engine": "event-driven", "collisions_per_particle": 5.0, "samples": 4,
+                "spacing": "linear"},
+    }
+    sim = haff.Simulation(config).run(progress=False)
+    temperature = sim.timeseries["temperature"][1:]
+    # Between applications (a tenth of a mean free time) the gas cools by a few per cent.
+    assert (temperature <= 1.5 + 1e-9).all() and (temperature > 1.4).all()
+    config["collision"] = {"law": "constant", "restitution": 0.9}
+    with pytest.raises(haff.ConfigError, match=r"system\.species\[0\]\.young"):
+        haff.Simulation(config)
