@@ -109,8 +109,8 @@ impl<const D: usize> EventDriven<D> {
         let mut momentum: Vector<D> = [0.0; D];
         for p in &self.particles {
             mass += p.mass;
-            for k in 0..D {
-                momentum[k] += p.mass * p.velocity[k];
+            for (m, v) in momentum.iter_mut().zip(&p.velocity) {
+                *m += p.mass * v;
             }
         }
         let mean: Vector<D> = std::array::from_fn(|k| momentum[k] / mass);
