@@ -199,6 +199,20 @@ impl<const D: usize> MixtureTheory<D> {
     /// Each species' cooling rate zeta_i (dT_i/dt = -zeta_i T_i by collisions), for
     /// Maxwellians at `temperatures`.
     pub fn cooling_rates(&self, temperatures: &[f64]) -> Vec<f64> {
+        self.cooling_rates_with(temperatures, |i, j| {
+            let one_plus = 1.0 + self.restitution[i][j];
+            (one_plus, one_plus * one_plus)
+        })
+    }
+
+    /// zeta_i = (2/D) sum_j nu_ij mu_ji [2 K1 - mu_ji K2 (1 + a_j / a_i)] with
+    /// (K1, K2) = `factors(i, j)`, the pair's (1 + alpha) and (1 + alpha)^2 (averaged over
+    /// the impact speeds for a speed-dependent restitution, [`Self::cooling_rates_for`]).
+    fn cooling_rates_with(
+        &self,
+        temperatures: &[f64],
+        factors: impl Fn(usize, usize) -> (f64, f64),
+    ) -> Vec<f64> {
         let s = self.species();
         (0..s)
             .map(|i| {
@@ -207,8 +221,10 @@ impl<const D: usize> MixtureTheory<D> {
                     .map(|j| {
                         let a_j = temperatures[j] / self.masses[j];
                         let mu = self.masses[j] / (self.masses[i] + self.masses[j]);
-                        let k = mu * (1.0 + self.restitution[i][j]);
-                        self.pair_frequency(i, j, temperatures) * k * (2.0 - k * (1.0 + a_j / a_i))
+                        let (k1, k2) = factors(i, j);
+                        self.pair_frequency(i, j, temperatures)
+                            * mu
+                            * (2.0 * k1 - mu * k2 * (1.0 + a_j / a_i))
                     })
                     .sum();
                 2.0 * sum / D as f64

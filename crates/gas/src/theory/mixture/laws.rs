@@ -37,23 +37,10 @@ impl<const D: usize> MixtureTheory<D> {
         temperatures: &[f64],
         eps: &impl Fn(usize, usize, f64) -> f64,
     ) -> Vec<f64> {
-        let s = self.species();
-        (0..s)
-            .map(|i| {
-                let a_i = temperatures[i] / self.masses[i];
-                let sum: f64 = (0..s)
-                    .map(|j| {
-                        let a_j = temperatures[j] / self.masses[j];
-                        let (k1, k2) = averages(|g| eps(i, j, g), (a_i + a_j).sqrt());
-                        let mu = self.masses[j] / (self.masses[i] + self.masses[j]);
-                        self.pair_frequency(i, j, temperatures)
-                            * mu
-                            * (2.0 * k1 - mu * k2 * (1.0 + a_j / a_i))
-                    })
-                    .sum();
-                2.0 * sum / D as f64
-            })
-            .collect()
+        self.cooling_rates_with(temperatures, |i, j| {
+            let s = (temperatures[i] / self.masses[i] + temperatures[j] / self.masses[j]).sqrt();
+            averages(|g| eps(i, j, g), s)
+        })
     }
 
     /// The species' temperatures of a freely cooling mixture, dT_i/dt = -zeta_i T_i with
