@@ -244,11 +244,7 @@ pub(crate) fn restore<const D: usize>(
     }
     match plan.engine {
         EngineSpec::EventDriven => {
-            let state: EventDrivenState<D> = sections.engine()?;
-            EventDriven::check_state(plan, &state)
-                .map_err(|e| sections.error(format!("engine state: {e}")))?;
-            let mut engine = EventDriven::restore(state, law)
-                .map_err(|e| sections.error(format!("engine state: {e}")))?;
+            let mut engine = restored::<D, EventDriven<D>>(plan, law, sections)?;
             drive(&mut engine, plan)?;
             Ok(Box::new(engine))
         }
@@ -293,11 +289,18 @@ fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(
     law: Box<dyn Restitution>,
     sections: &Sections,
 ) -> Result<Box<dyn Driven<D>>> {
+    Ok(Box::new(restored::<D, E>(plan, law, sections)?))
+}
+
+/// The engine of the check-point `sections`, its state checked against the run of `plan`.
+fn restored<const D: usize, E: Planned<D>>(
+    plan: &Plan,
+    law: Box<dyn Restitution>,
+    sections: &Sections,
+) -> Result<E> {
     let state: E::State = sections.engine()?;
     E::check_state(plan, &state).map_err(|e| sections.error(format!("engine state: {e}")))?;
-    let engine =
-        E::restore(state, law).map_err(|e| sections.error(format!("engine state: {e}")))?;
-    Ok(Box::new(engine))
+    E::restore(state, law).map_err(|e| sections.error(format!("engine state: {e}")))
 }
 
 /// An error of an engine spread over ranks: too many ranks for its planes of cells or
