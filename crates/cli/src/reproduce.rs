@@ -5,7 +5,7 @@
 use crate::error::{CliError, CliResult};
 use crate::progress::Steps;
 use crate::ReproduceArgs;
-use sim::reproduce::{entries, find, id_list, Context, Entry};
+use ::reproduce::{entries, find, id_list, Context, Entry};
 use std::io::Write;
 use std::time::Instant;
 
@@ -67,7 +67,7 @@ pub fn reproduce(args: &ReproduceArgs) -> CliResult {
             if args.quick { " --quick" } else { "" }
         );
         let command = format!("{command} --gallery {}", page.display());
-        sim::reproduce::gallery::write(page, &args.out, &results, &command)?;
+        ::reproduce::gallery::write(page, &args.out, &results, &command)?;
     }
     eprintln!(
         "haff reproduce: {} item(s) in {:.1} s; output in {}",

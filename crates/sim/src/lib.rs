@@ -31,7 +31,6 @@ pub mod outdir;
 pub mod output;
 pub mod parallel;
 pub mod plot;
-pub mod reproduce;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;

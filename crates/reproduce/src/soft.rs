@@ -9,14 +9,14 @@
 //! cooled by about 100 in temperature, at packing fractions 0.05, 0.2 and 0.4.
 
 use super::{logspace, mean_and_error, sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::plot::Figure;
 use gas::dsmc::{point_gas, Scheme};
 use gas::observe::temperature;
 use gas::soft::contact::{contact_duration, ViscoelasticMaterial};
 use gas::theory::collision_frequency;
 use gas::{Engine, EventDriven, HomogeneousDsmc, SoftSphere, SoftSphereOptions};
 use restitution::{Restitution, ScaledForm, Viscoelastic};
+use sim::error::Result;
+use sim::plot::Figure;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -34,7 +34,7 @@ pub fn entries() -> Vec<Entry> {
     }]
 }
 
-fn engine_error(e: impl std::fmt::Display) -> crate::error::Error {
+fn engine_error(e: impl std::fmt::Display) -> sim::error::Error {
     super::numerical("engine", e)
 }
 

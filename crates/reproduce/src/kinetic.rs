@@ -5,13 +5,13 @@
 //! Granular Gases*, Oxford 2004, Chs. 7, 8). Units: sigma = m = T0 = 1, 3D.
 
 use super::{mean_and_error, sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::plot::Figure;
 use gas::dsmc::{point_gas, Scheme};
 use gas::observe::{sonine_a2, temperature};
 use gas::theory::{collision_frequency, second_sonine, van_noije_ernst_a2, SonineHierarchy};
 use gas::{Engine, EventDriven, HomogeneousDsmc};
 use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
+use sim::error::Result;
+use sim::plot::Figure;
 
 const PAPER: &str = "Kinetic theory (Brilliantov & Pöschel 2004; van Noije & Ernst 1998)";
 
@@ -44,7 +44,7 @@ pub fn entries() -> Vec<Entry> {
     ]
 }
 
-fn engine_error(e: impl std::fmt::Display) -> crate::error::Error {
+fn engine_error(e: impl std::fmt::Display) -> sim::error::Error {
     super::numerical("engine", e)
 }
 

@@ -3,12 +3,12 @@
 //! Eqs. (10) and (12).
 
 use super::{exact_eps, linspace, local_slope, logspace, numerical, sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::plot::Figure;
 use restitution::dashpot::{dashpot, paper_eq12, DashpotCriterion};
 use restitution::exact::{self, Criterion};
 use restitution::series::{Series, TABLE_V};
 use series::coefficients::{compute, compute_naive, decimal, Settings};
+use sim::error::Result;
+use sim::plot::Figure;
 
 mod tables;
 use tables::{table3, table5, TABLE_III};
@@ -70,7 +70,7 @@ pub fn entries() -> Vec<Entry> {
     ]
 }
 
-fn law(e: restitution::Error) -> crate::Error {
+fn law(e: restitution::Error) -> sim::Error {
     numerical("restitution law", e)
 }
 

@@ -24,10 +24,10 @@ pub(super) const TABLE_III: [(f64, f64, f64); 11] = [
 /// coefficient against the computed one (20 digits).
 fn printed_vs_computed(printed: f64, computed: &series::power::Real, units: f64) -> [String; 4] {
     [
-        crate::output::number(printed),
+        sim::output::number(printed),
         decimal(computed, 20),
-        crate::output::number(printed - f64_of(computed)),
-        crate::output::number(units),
+        sim::output::number(printed - f64_of(computed)),
+        sim::output::number(units),
     ]
 }
 

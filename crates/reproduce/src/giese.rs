@@ -5,14 +5,14 @@
 //! form and the generalized one (`rods::deterministic`). See docs/giese.md.
 
 use super::{logspace, numerical, sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::output::number;
-use crate::plot::Figure;
 use rods::chain::{
     eta_within, run_two_rods, running_mean_e_tr, TwoRodRun, TwoRodSetup, RUNNING_WINDOW,
 };
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
 use rods::stochastic::{eps2_histogram, eps2_quantiles, eps2_summary, sample_eps, Resolution};
+use sim::error::Result;
+use sim::output::number;
+use sim::plot::Figure;
 use std::fmt::Write as _;
 
 mod deterministic;
@@ -65,7 +65,7 @@ pub fn entries() -> Vec<Entry> {
     ]
 }
 
-fn rods_error(e: rods::Error) -> crate::Error {
+fn rods_error(e: rods::Error) -> sim::Error {
     numerical("rods", e)
 }
 

@@ -4,8 +4,8 @@
 //! with the library crates only (the exact law, the computer-algebra coefficients, the Padé
 //! approximants, the dash-pot) and writes into [`Context::out`]:
 //!
-//! - `ID.csv` (and, for some, `ID-NAME.csv`): the data, through [`crate::output`];
-//! - `ID.png` and `ID.svg`: the figure, through [`crate::plot::Figure`] (the paper's printed
+//! - `ID.csv` (and, for some, `ID-NAME.csv`): the data, through [`sim::output`];
+//! - `ID.png` and `ID.svg`: the figure, through [`sim::plot::Figure`] (the paper's printed
 //!   values as markers, theory dashed);
 //! - `ID.md`: what the paper shows, what we get, where and why they differ, with numbers.
 //!
@@ -25,10 +25,10 @@ pub mod shear;
 pub mod soft;
 pub mod sp2008;
 
-use crate::error::{Error, Result};
-use crate::output;
-use crate::plot::Figure;
 use restitution::exact::{self, Criterion};
+use sim::error::{Error, Result};
+use sim::output;
+use sim::plot::Figure;
 use std::path::{Path, PathBuf};
 
 /// One reproducible item of a paper.

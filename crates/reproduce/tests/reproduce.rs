@@ -2,12 +2,12 @@
 //! values the library tests pin (crates/restitution/tests/laws.rs, crates/series tests,
 //! docs/errata.md).
 
-use sim::reproduce::{find, sig, Context, Outcome};
+use reproduce::{find, sig, Context, Outcome};
 use std::path::PathBuf;
 
 fn run(id: &str) -> (Outcome, String) {
     let dir: PathBuf =
-        std::env::temp_dir().join(format!("haff-sim-reproduce-{}-{id}", std::process::id()));
+        std::env::temp_dir().join(format!("haff-reproduce-{}-{id}", std::process::id()));
     let ctx = Context::new(&dir, true);
     let entry = find(id).expect("a registered id");
     let outcome = (entry.run)(&ctx).expect("the item runs");

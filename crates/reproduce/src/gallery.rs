@@ -3,7 +3,7 @@
 //! paper, what does not, and why), linking to the data and the note.
 
 use super::{Entry, Outcome};
-use crate::error::{Error, Result};
+use sim::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -65,7 +65,7 @@ pub fn write(page: &Path, out: &Path, results: &[(Entry, Outcome)], command: &st
             relative(&note_path, base)
         );
     }
-    crate::output::write_file(page, |w| w.write_all(text.as_bytes()))
+    sim::output::write_file(page, |w| w.write_all(text.as_bytes()))
 }
 
 #[cfg(test)]

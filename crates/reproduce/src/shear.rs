@@ -25,14 +25,14 @@
 //! fluctuations). Shells that grow less than e^1.5 by then are reported as not resolved.
 
 use super::{mean_and_error, sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::plot::Figure;
 use gas::dsmc::{point_gas, SpatialOptions};
 use gas::observe::temperature;
 use gas::structure::hydrodynamic_modes;
 use gas::theory::{long_wavelength_structure_factor, HcsTransport};
 use gas::{Engine, EventDriven, SpatialDsmc};
 use restitution::Constant;
+use sim::error::Result;
+use sim::plot::Figure;
 use std::fmt::Write as _;
 
 const PAPER: &str = "Shear instability (Goldhirsch & Zanetti 1993; Garzó & Dufty 1999)";
@@ -52,7 +52,7 @@ pub fn entries() -> Vec<Entry> {
     }]
 }
 
-fn engine_error(e: impl std::fmt::Display) -> crate::error::Error {
+fn engine_error(e: impl std::fmt::Display) -> sim::error::Error {
     super::numerical("engine", e)
 }
 

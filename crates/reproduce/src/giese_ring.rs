@@ -3,12 +3,12 @@
 //! replaces, on the ring of `docs/data/giese-ring.toml` (the run of `haff rods chain`).
 
 use super::{sig, Context, Entry, Outcome};
-use crate::error::Result;
-use crate::rod_ring::{RingDescription, RingRun};
+use sim::error::Result;
+use sim::rod_ring::{RingDescription, RingRun};
 
 /// The ring of docs/giese.md, and the p(eps^2) table its tabulated law reads.
-const RING: &str = include_str!("../../../../docs/data/giese-ring.toml");
-const TABLE: &str = include_str!("../../../../docs/data/giese-table-gamma0.6173.json");
+const RING: &str = include_str!("../data/giese-ring.toml");
+const TABLE: &str = include_str!("../data/giese-table-gamma0.6173.json");
 
 pub fn entries() -> Vec<Entry> {
     vec![Entry {
@@ -24,8 +24,8 @@ pub fn entries() -> Vec<Entry> {
 fn ed_mc(ctx: &Context) -> Result<Outcome> {
     let id = "giese-ed-mc";
     let table = ctx.out.join(format!("{id}-table.json"));
-    std::fs::create_dir_all(&ctx.out).map_err(|e| crate::error::Error::write(&ctx.out, e))?;
-    crate::output::write_file(&table, |w| w.write_all(TABLE.as_bytes()))?;
+    std::fs::create_dir_all(&ctx.out).map_err(|e| sim::error::Error::write(&ctx.out, e))?;
+    sim::output::write_file(&table, |w| w.write_all(TABLE.as_bytes()))?;
     let mut description: RingDescription =
         toml::from_str(RING).map_err(|e| super::numerical("docs/data/giese-ring.toml", e))?;
     description.run.table = Some(table.clone());
@@ -40,7 +40,7 @@ fn ed_mc(ctx: &Context) -> Result<Outcome> {
     let curves = run.curves();
     // E_tr over its equipartition value at each sample, per curve (sums over repeats
     // cancel in the ratio).
-    let ratio = |rows: &[crate::rod_ring::EnergyRow]| -> Vec<(f64, f64)> {
+    let ratio = |rows: &[sim::rod_ring::EnergyRow]| -> Vec<(f64, f64)> {
         rows.iter()
             .map(|r| (r.time, r.translational_energy / (share * r.total_energy)))
             .collect()
@@ -76,7 +76,7 @@ fn ed_mc(ctx: &Context) -> Result<Outcome> {
         early(&series[1].1) / early(&series[0].1),
         early(&series[2].1) / early(&series[0].1),
     );
-    let mut fig = crate::plot::Figure::new(
+    let mut fig = sim::plot::Figure::new(
         format!(
             "Giese: ring of {} rods, E_tr / equipartition (chain MD vs ED + MC)",
             description.chain.rods

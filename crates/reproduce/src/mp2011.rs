@@ -5,12 +5,12 @@ use super::{
     exact_eps, linspace, local_slope, logspace, numerical, sig, until_outside, Context, Entry,
     Outcome,
 };
-use crate::error::Result;
-use crate::plot::Figure;
 use restitution::exact::Criterion;
 use restitution::material::{speed_from_vstar, vstar, ICE_BRIDGES_BETA_CGS};
 use restitution::pade::Pade;
 use restitution::series::{Series, TABLE_V};
+use sim::error::Result;
+use sim::plot::Figure;
 
 mod table1;
 use table1::table1;
@@ -64,7 +64,7 @@ pub fn entries() -> Vec<Entry> {
     ]
 }
 
-fn law(e: restitution::Error) -> crate::Error {
+fn law(e: restitution::Error) -> sim::Error {
     numerical("restitution law", e)
 }
 

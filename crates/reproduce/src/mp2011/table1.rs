@@ -41,10 +41,10 @@ pub(super) fn table1(ctx: &Context) -> Result<Outcome> {
                     m.to_string(),
                     (m + 3).to_string(),
                     format!("{name}{i}"),
-                    crate::output::number(printed_value),
-                    crate::output::number(c[i]),
-                    crate::output::number(v[i]),
-                    crate::output::number(printed_value - c[i]),
+                    sim::output::number(printed_value),
+                    sim::output::number(c[i]),
+                    sim::output::number(v[i]),
+                    sim::output::number(printed_value - c[i]),
                 ]);
             }
         }
