@@ -404,19 +404,17 @@ impl PySimulation {
 
     /// The contacts of a soft-sphere run (the keys of `contacts` in summary.json), or None.
     fn contact_statistics<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let Some(c) = self.get().contact_report() else {
+        let report = self.get().report();
+        let Some(contacts) = report.section("contacts") else {
             return Ok(None);
         };
         let d = PyDict::new(py);
-        d.set_item("time_step", c.time_step)?;
-        d.set_item("steps", c.steps)?;
-        d.set_item("contacts_now", c.contacts_now)?;
-        d.set_item("elastic_energy", c.elastic_energy)?;
-        d.set_item("max_relative_overlap", c.max_relative_overlap)?;
-        d.set_item("contact_steps", c.contact_steps)?;
-        d.set_item("multi_contact_steps", c.multi_contact_steps)?;
-        d.set_item("multi_contact_fraction", c.multi_contact_fraction)?;
-        d.set_item("eps_error", c.eps_error)?;
+        for &(key, value) in &contacts.values {
+            match value {
+                gas::engine::ReportValue::Count(n) => d.set_item(key, n)?,
+                gas::engine::ReportValue::Real(x) => d.set_item(key, x)?,
+            }
+        }
         Ok(Some(d))
     }
 

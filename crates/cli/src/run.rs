@@ -133,16 +133,16 @@ fn go(
             p["bytes_sent_per_rank_per_step"].as_f64().unwrap_or(0.0)
         );
     }
-    if let Some(c) = simulation.contact_report() {
+    if let Some(c) = simulation.report().section("contacts") {
         eprintln!(
             "haff run: soft-sphere time step {:.3e} ({} steps), eps of isolated contacts within \
              {:.1e} of the exact law, largest overlap {:.2} % of the contact distance, \
              {:.1} % of the time in contact spent in multi-particle contacts",
-            c.time_step,
-            c.steps,
-            c.eps_error,
-            100.0 * c.max_relative_overlap,
-            100.0 * c.multi_contact_fraction
+            c.number("time_step"),
+            c.number("steps"),
+            c.number("eps_error"),
+            100.0 * c.number("max_relative_overlap"),
+            100.0 * c.number("multi_contact_fraction")
         );
     }
     Ok(())

@@ -87,7 +87,7 @@ fn damaged_check_points_are_refused() {
     let good = std::fs::read(&path).unwrap();
     let (header, records, engine) = parts(&out);
     assert_eq!(header["format"], "haff-run-checkpoint");
-    assert_eq!(header["version"], sim::checkpoint::VERSION);
+    assert_eq!(header["version"], sim::checkpoint::RUN.version);
     // One flipped bit in the engine state, in the records, a truncated or extended file.
     let mut flipped = good.clone();
     let last = flipped.len() - 9;

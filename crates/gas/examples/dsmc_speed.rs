@@ -5,6 +5,7 @@
 //! (RAYON_NUM_THREADS=k limits the threads.)
 
 use gas::dsmc::{point_gas, HomogeneousDsmc, Scheme};
+use gas::Engine;
 use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
 use std::time::Instant;
 

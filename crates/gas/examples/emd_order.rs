@@ -6,6 +6,7 @@
 //!
 //! `cargo run --release -p haff-gas --example emd_order -- [N] [PHI] [EVENTS] [REPEATS]`
 //! (defaults 100000 0.05 3000000 3; pin it with `taskset -c 1`).
+use gas::Engine;
 use gas::{init, EventDriven, System};
 
 /// Interleaves the bits of three 21-bit cell coordinates.

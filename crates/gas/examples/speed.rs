@@ -1,5 +1,6 @@
 //! Quick throughput check (the benchmark proper will be `haff bench emd`).
 use gas::init::monodisperse;
+use gas::Engine;
 use gas::EventDriven;
 use restitution::Constant;
 fn main() {

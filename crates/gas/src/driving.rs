@@ -70,6 +70,17 @@ pub enum Driving {
     Thermostat(Thermostat),
 }
 
+/// Driving as an engine is asked to apply it ([`crate::Engine::set_driving`]): the driving,
+/// and when it is applied. A stepped engine (DSMC blocks) applies it at every step of its
+/// own and refuses an `interval`; the event-driven engine applies it at the times
+/// k `interval` (required), its white-noise kicks drawn from streams of `seed`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Drive {
+    pub driving: Driving,
+    pub interval: Option<f64>,
+    pub seed: u64,
+}
+
 impl WhiteNoise {
     /// Fails, naming `strength`, unless 0 < strength < inf.
     pub fn new(strength: f64) -> Result<Self> {

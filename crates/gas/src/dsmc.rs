@@ -37,14 +37,13 @@ pub use spatial::{
 };
 pub use species::MAX_SPECIES;
 
-use crate::engine::{Checkpoint, Counters, Engine};
+use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
 use crate::serde_util;
 use crate::system::{System, Vector};
 use crate::theory;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
-use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 
 /// How long a step of a stepped scheme is.
@@ -368,64 +367,3 @@ fn frequency_estimate<const D: usize>(
 fn positive(x: f64) -> bool {
     x > 0.0
 }
-
-/// The engine interface, forwarded to the inherent methods of both DSMC engines.
-macro_rules! dsmc_engine {
-    ($engine:ident, $snapshot:ident, $weight:expr, $in_box:expr) => {
-        impl<const D: usize> Engine<D> for $engine<D> {
-            fn run_until(&mut self, t: f64) {
-                $engine::run_until(self, t)
-            }
-            fn run_collisions(&mut self, collisions: u64) {
-                $engine::run_collisions(self, collisions)
-            }
-            fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
-                $engine::run_paused(self, end, collisions, pause)
-            }
-            fn time(&self) -> f64 {
-                $engine::time(self)
-            }
-            fn counters(&self) -> Counters {
-                $engine::counters(self)
-            }
-            fn particles(&self) -> usize {
-                self.len()
-            }
-            fn system(&mut self) -> &System<D> {
-                $engine::system(self)
-            }
-            fn weight(&self) -> f64 {
-                let weight: fn(&Self) -> f64 = $weight;
-                weight(self)
-            }
-            fn memory_bytes(&self) -> usize {
-                $engine::memory_bytes(self)
-            }
-            fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
-                $engine::rank_reports(self)
-            }
-            fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
-                $engine::velocity_statistics(self)
-            }
-            fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
-                $engine::species_collisions(self)
-            }
-        }
-
-        impl<const D: usize> Checkpoint<D> for $engine<D> {
-            type State = $snapshot<D>;
-            fn save(&mut self) -> Self::State {
-                self.snapshot()
-            }
-            fn restore(state: Self::State, law: Box<dyn Restitution>) -> Result<Self> {
-                state.check($in_box)?;
-                $engine::restore(state, law)
-            }
-        }
-    };
-}
-
-// The homogeneous engine has no positions (all zero, in the box); the spatial one keeps
-// them wrapped into the box.
-dsmc_engine!(HomogeneousDsmc, HomogeneousSnapshot, |_| 1.0, true);
-dsmc_engine!(SpatialDsmc, SpatialSnapshot, SpatialDsmc::weight, true);

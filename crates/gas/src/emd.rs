@@ -270,10 +270,6 @@ impl<const D: usize> EventDriven<D> {
         }
     }
 
-    pub fn time(&self) -> f64 {
-        self.time
-    }
-
     /// Switches the sorter (the events stay the same).
     pub fn set_sorter(&mut self, kind: SorterKind) {
         let mut queue = Sorter::new(kind, self.particles.len());
@@ -281,48 +277,6 @@ impl<const D: usize> EventDriven<D> {
             queue.update(i, p.next_event());
         }
         self.queue = queue;
-    }
-
-    /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
-    /// sorter, cell lists, and the snapshot of [`EventDriven::system`] once taken).
-    pub fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let s = &self.system;
-        let snapshot = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
-        let state = self.particles.capacity() * size_of::<Particle<D>>()
-            + self.heads.capacity() * size_of::<u32>()
-            + self.occupied.capacity() * size_of::<u64>()
-            + self.tc.as_ref().map_or(0, |tc| tc.last.capacity() * 8);
-        snapshot + state + self.queue.memory_bytes()
-    }
-
-    pub fn counters(&self) -> Counters {
-        self.tally
-    }
-
-    /// Collisions per particle so far (each collision counts for two particles).
-    pub fn collisions_per_particle(&self) -> f64 {
-        2.0 * self.tally.collisions as f64 / self.particles.len() as f64
-    }
-
-    /// The state with every position at the current time (wrapped into the box).
-    pub fn system(&mut self) -> &System<D> {
-        let (time, length) = (self.time, self.system.length);
-        let s = &mut self.system;
-        s.positions.clear();
-        s.velocities.clear();
-        s.radii.clear();
-        s.masses.clear();
-        for p in &self.particles {
-            let x = p.position_at(time);
-            s.positions
-                .push(std::array::from_fn(|k| wrap(x[k], length)));
-            s.velocities.push(p.velocity);
-            s.radii.push(p.radius);
-            s.masses.push(p.mass);
-        }
-        &self.system
     }
 
     /// The contact distance of i and j.
@@ -478,38 +432,12 @@ impl<const D: usize> EventDriven<D> {
         }
     }
 
-    /// The time of inelastic collapse, if the engine stopped there: more than
-    /// [`COLLAPSE_COLLISIONS_PER_PARTICLE`] collisions per particle without time advancing
-    /// (a finite-time singularity of inelastic hard spheres; the TC model prevents it).
-    pub fn collapsed(&self) -> Option<f64> {
-        self.collapsed
-    }
-
     /// The time of the next event or application of the driving, whichever first.
     fn upcoming(&mut self) -> Option<f64> {
         let event = self.queue.peek().map(|(_, t)| t);
         match (event, self.next_kick()) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
-        }
-    }
-
-    /// Runs until `collisions` more collisions have happened (or nothing moves).
-    pub fn run_collisions(&mut self, collisions: u64) {
-        let target = self.tally.collisions + collisions;
-        while self.tally.collisions < target && self.step() {}
-    }
-
-    /// Runs until the time reaches `t` (events at later times stay pending), or stops at
-    /// inelastic collapse (see [`EventDriven::collapsed`]).
-    pub fn run_until(&mut self, t: f64) {
-        while let Some(next) = self.upcoming() {
-            if next > t || !self.step() {
-                break;
-            }
-        }
-        if self.collapsed.is_none() {
-            self.time = self.time.max(t);
         }
     }
 

@@ -5,9 +5,9 @@
 //! (e.g. soft-sphere MD) implements them, and the driver only needs to know its name in the
 //! run description and how to build it (docs/architecture.md).
 
+use crate::driving::Drive;
 use crate::system::System;
-use crate::Result;
-use restitution::Restitution;
+use crate::{Error, Result};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::fmt::Debug;
@@ -129,10 +129,22 @@ pub trait Engine<const D: usize> {
         None
     }
 
-    /// What the contacts of a force-based engine did (soft-sphere MD); None for engines
-    /// of instantaneous collisions.
-    fn contact_report(&self) -> Option<crate::soft::ContactReport> {
-        None
+    /// What the engine reports of itself beyond the common counters (soft-sphere MD: its
+    /// contacts), written into `summary.json` section by section; empty by default.
+    fn report(&self) -> Report {
+        Report::default()
+    }
+
+    /// Drives the gas from now on as `drive` says (None: freely cooling). Not part of the
+    /// engine's state: set it again after a restore. The default drives nothing and refuses
+    /// any driving.
+    fn set_driving(&mut self, drive: Option<Drive>) -> Result<()> {
+        match drive {
+            None => Ok(()),
+            Some(_) => Err(Error::Unsupported {
+                what: "driving".into(),
+            }),
+        }
     }
 
     /// The temperature and Sonine a2 of all particles ([`crate::observe::temperature`],
@@ -154,16 +166,92 @@ pub trait Engine<const D: usize> {
 }
 
 /// An engine whose complete state can be saved and restored: a restored engine continues
-/// bit for bit as the saved one would have (the law is passed again: laws are not data).
+/// bit for bit as the saved one would have.
 pub trait Checkpoint<const D: usize>: Engine<D> + Sized {
     /// Everything needed to continue, options included, as plain serde data.
     type State: Serialize + DeserializeOwned + Clone + Debug;
+    /// What a restore needs besides the state: the collision law for engines of
+    /// instantaneous collisions (laws are not data), nothing (`()`) for engines whose
+    /// dynamics is all in their state (soft-sphere MD: the material; the rod chain).
+    type Needs;
 
     /// The state now. Engines may bring themselves to a canonical form first (the
     /// event-driven engine synchronizes every particle), so a run that saves at given
     /// points is bit-identical to one that saves and restores there.
     fn save(&mut self) -> Self::State;
 
-    /// An engine continuing from `state` with `law`; fails for an inconsistent state.
-    fn restore(state: Self::State, law: Box<dyn Restitution>) -> Result<Self>;
+    /// An engine continuing from `state` (with what it `needs`), after checking the state
+    /// for consistency; fails for an inconsistent state. The only way back from a state:
+    /// engines have no unchecked restore.
+    fn restore(state: Self::State, needs: Self::Needs) -> Result<Self>;
+}
+
+/// What an engine reports of itself beyond the counters ([`Engine::report`]): named
+/// sections of named numbers (one JSON object per section in `summary.json`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Report {
+    pub sections: Vec<ReportSection>,
+}
+
+impl Report {
+    /// The section called `name`, if the engine reports one.
+    pub fn section(&self, name: &str) -> Option<&ReportSection> {
+        self.sections.iter().find(|s| s.name == name)
+    }
+}
+
+/// One section of a [`Report`], e.g. `contacts`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportSection {
+    pub name: &'static str,
+    pub values: Vec<(&'static str, ReportValue)>,
+}
+
+impl ReportSection {
+    /// The value called `key`.
+    pub fn get(&self, key: &str) -> Option<ReportValue> {
+        self.values.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
+    }
+
+    /// The value called `key` as a real number (NaN if absent).
+    pub fn number(&self, key: &str) -> f64 {
+        self.get(key).map_or(f64::NAN, ReportValue::as_f64)
+    }
+}
+
+/// A number of a [`ReportSection`]: a count or a real number.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ReportValue {
+    Count(u64),
+    Real(f64),
+}
+
+impl ReportValue {
+    pub fn as_f64(self) -> f64 {
+        match self {
+            ReportValue::Count(n) => n as f64,
+            ReportValue::Real(x) => x,
+        }
+    }
+}
+
+impl Serialize for ReportValue {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match *self {
+            ReportValue::Count(n) => s.serialize_u64(n),
+            ReportValue::Real(x) => s.serialize_f64(x),
+        }
+    }
+}
+
+impl Serialize for ReportSection {
+    /// The values as one object (`{"steps": 120, "time_step": 0.001, ...}`).
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.values.len()))?;
+        for (key, value) in &self.values {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
+    }
 }

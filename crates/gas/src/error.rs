@@ -42,6 +42,20 @@ pub enum Error {
     /// Baths were set for a deterministic law.
     #[error("the law '{law}' has no baths")]
     NoBaths { law: String },
+    /// More ranks than an engine spread over ranks can use.
+    #[error("ranks = {ranks}: allowed {allowed}")]
+    TooManyRanks { ranks: usize, allowed: String },
+    /// A time step that does not resolve the contacts (soft-sphere MD): `name` is the
+    /// option that set it (`time_step` or `steps_per_contact`).
+    #[error("{name} = {value}: allowed {allowed}")]
+    UnresolvedStep {
+        name: &'static str,
+        value: f64,
+        allowed: String,
+    },
+    /// Something an engine cannot do (e.g. drive the gas).
+    #[error("{what}: this engine cannot do it")]
+    Unsupported { what: String },
     /// The collision law could not be built.
     #[error(transparent)]
     Law(#[from] restitution::Error),

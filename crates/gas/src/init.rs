@@ -237,6 +237,7 @@ pub const MELTING_COLLISIONS_PER_PARTICLE: u64 = 10;
 /// momentum are conserved exactly up to round-off, so T stays the initial temperature)
 /// and returns the state: the lattice order is gone, the velocities are Maxwellian.
 pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<System<D>> {
+    use crate::Engine;
     let n = system.len() as u64;
     let elastic = restitution::Constant::new(1.0)?;
     let mut engine = crate::EventDriven::new(system, Box::new(elastic))?;

@@ -31,12 +31,11 @@ pub mod contact;
 pub mod neighbors;
 mod step;
 
-use crate::engine::{Checkpoint, Counters, Engine};
+use crate::engine::{Checkpoint, Counters, Engine, Report, ReportSection, ReportValue};
 use crate::error::{require_positive, Error, Result};
 use crate::system::{minimum_image, wrap, System, Vector};
 use contact::{contact_duration, ViscoelasticMaterial};
 use neighbors::NeighborList;
-use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 
 /// Time steps per Hertz contact duration when none is given.
@@ -94,7 +93,7 @@ impl ContactStatistics {
 /// A soft-sphere run's contacts for reports (`summary.json`, Python): the time step, the
 /// [`ContactStatistics`] so far, and the pairs in contact now with the elastic energy they
 /// hold, which the kinetic temperature does not count.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactReport {
     pub time_step: f64,
     /// Time steps taken.
@@ -114,6 +113,27 @@ pub struct ContactReport {
     /// law)| of head-on contacts at 0.1, 1 and 10 initial thermal speeds
     /// ([`accuracy::eps_error`]).
     pub eps_error: f64,
+}
+
+impl ContactReport {
+    /// As the section `contacts` of an engine's [`Report`] (`summary.json`: `contacts`).
+    pub fn section(&self) -> ReportSection {
+        use ReportValue::{Count, Real};
+        ReportSection {
+            name: "contacts",
+            values: vec![
+                ("time_step", Real(self.time_step)),
+                ("steps", Count(self.steps)),
+                ("contacts_now", Count(self.contacts_now as u64)),
+                ("elastic_energy", Real(self.elastic_energy)),
+                ("max_relative_overlap", Real(self.max_relative_overlap)),
+                ("contact_steps", Count(self.contact_steps)),
+                ("multi_contact_steps", Count(self.multi_contact_steps)),
+                ("multi_contact_fraction", Real(self.multi_contact_fraction)),
+                ("eps_error", Real(self.eps_error)),
+            ],
+        }
+    }
 }
 
 /// NaN: a quantity a check-point did not record.
@@ -195,11 +215,14 @@ impl<const D: usize> SoftSphere<D> {
                 accuracy::MAX_EPS_ERROR,
                 engine.eps_error
             );
-            return Err(match options.time_step {
-                Some(dt) => Error::out_of_range("time_step", dt, allowed),
-                None => {
-                    Error::out_of_range("steps_per_contact", options.steps_per_contact, allowed)
-                }
+            let (name, value) = match options.time_step {
+                Some(dt) => ("time_step", dt),
+                None => ("steps_per_contact", options.steps_per_contact),
+            };
+            return Err(Error::UnresolvedStep {
+                name,
+                value,
+                allowed,
             });
         }
         Ok(engine)
@@ -278,61 +301,6 @@ impl<const D: usize> SoftSphere<D> {
         Ok(engine)
     }
 
-    /// Continues the run of `state` bit for bit.
-    pub fn restore(state: SoftSphereState<D>) -> Result<Self> {
-        let n = state.system.len();
-        if state.forces.len() != n || state.collision_counts.len() != n {
-            return Err(Error::LengthMismatch {
-                what: "system, forces and collision counts".into(),
-            });
-        }
-        state.material.validate()?;
-        state.system.check(true)?;
-        require_positive("time_step", state.time_step)?;
-        if !(state.time.is_finite() && state.time >= 0.0) {
-            return Err(Error::out_of_range(
-                "time",
-                state.time,
-                "a finite time >= 0",
-            ));
-        }
-        if state
-            .contacts
-            .iter()
-            .any(|&(i, j)| i >= j || j as usize >= n)
-            || state.contacts.windows(2).any(|w| w[0] >= w[1])
-        {
-            return Err(Error::out_of_range(
-                "contacts",
-                "(list)",
-                "sorted pairs i < j of particle indices",
-            ));
-        }
-        let largest = 2.0 * state.system.radii.iter().copied().fold(0.0, f64::max);
-        let active = (0..n as u32)
-            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
-            .collect();
-        Ok(SoftSphere {
-            active,
-            touching: vec![0; n],
-            current: Vec::new(),
-            impulses: Vec::new(),
-            neighbors: NeighborList::new(state.options.skin * largest),
-            system: state.system,
-            forces: state.forces,
-            material: state.material,
-            options: state.options,
-            time_step: state.time_step,
-            time: state.time,
-            steps: state.steps,
-            tally: state.counters,
-            contacts: state.contacts,
-            collision_counts: state.collision_counts,
-            statistics: state.statistics,
-            eps_error: state.eps_error,
-        })
-    }
-
     /// The time step.
     pub fn time_step(&self) -> f64 {
         self.time_step
@@ -354,6 +322,22 @@ impl<const D: usize> SoftSphere<D> {
     /// Steps taken.
     pub fn steps(&self) -> u64 {
         self.steps
+    }
+
+    /// What the contacts did so far ([`ContactReport`]).
+    pub fn contact_report(&self) -> ContactReport {
+        let s = self.statistics;
+        ContactReport {
+            time_step: self.time_step,
+            steps: self.steps,
+            contacts_now: self.contacts.len(),
+            elastic_energy: self.elastic_energy(),
+            max_relative_overlap: s.max_relative_overlap,
+            contact_steps: s.contact_steps,
+            multi_contact_steps: s.multi_contact_steps,
+            multi_contact_fraction: s.multi_contact_fraction(),
+            eps_error: self.eps_error,
+        }
     }
 
     /// Overlaps, contacts and multi-particle contacts so far.
@@ -494,19 +478,11 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
         Some(self.collision_counts.clone())
     }
 
-    fn contact_report(&self) -> Option<ContactReport> {
-        let s = self.statistics;
-        Some(ContactReport {
-            time_step: self.time_step,
-            steps: self.steps,
-            contacts_now: self.contacts.len(),
-            elastic_energy: self.elastic_energy(),
-            max_relative_overlap: s.max_relative_overlap,
-            contact_steps: s.contact_steps,
-            multi_contact_steps: s.multi_contact_steps,
-            multi_contact_fraction: s.multi_contact_fraction(),
-            eps_error: self.eps_error,
-        })
+    /// The contacts (section `contacts`: [`ContactReport`]).
+    fn report(&self) -> Report {
+        Report {
+            sections: vec![self.contact_report().section()],
+        }
     }
 
     fn memory_bytes(&self) -> usize {
@@ -522,6 +498,7 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
 
 impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
     type State = SoftSphereState<D>;
+    type Needs = ();
 
     fn save(&mut self) -> SoftSphereState<D> {
         SoftSphereState {
@@ -540,8 +517,59 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
         }
     }
 
-    /// The law is not used: the force law is the state's material.
-    fn restore(state: SoftSphereState<D>, _law: Box<dyn Restitution>) -> Result<Self> {
-        SoftSphere::restore(state)
+    /// Continues the run of `state` bit for bit, after checking it (the force law is the
+    /// state's material: a restore needs nothing else).
+    fn restore(state: SoftSphereState<D>, _needs: ()) -> Result<Self> {
+        let n = state.system.len();
+        if state.forces.len() != n || state.collision_counts.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "system, forces and collision counts".into(),
+            });
+        }
+        state.material.validate()?;
+        state.system.check(true)?;
+        require_positive("time_step", state.time_step)?;
+        if !(state.time.is_finite() && state.time >= 0.0) {
+            return Err(Error::out_of_range(
+                "time",
+                state.time,
+                "a finite time >= 0",
+            ));
+        }
+        if state
+            .contacts
+            .iter()
+            .any(|&(i, j)| i >= j || j as usize >= n)
+            || state.contacts.windows(2).any(|w| w[0] >= w[1])
+        {
+            return Err(Error::out_of_range(
+                "contacts",
+                "(list)",
+                "sorted pairs i < j of particle indices",
+            ));
+        }
+        let largest = 2.0 * state.system.radii.iter().copied().fold(0.0, f64::max);
+        let active = (0..n as u32)
+            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
+            .collect();
+        Ok(SoftSphere {
+            active,
+            touching: vec![0; n],
+            current: Vec::new(),
+            impulses: Vec::new(),
+            neighbors: NeighborList::new(state.options.skin * largest),
+            system: state.system,
+            forces: state.forces,
+            material: state.material,
+            options: state.options,
+            time_step: state.time_step,
+            time: state.time,
+            steps: state.steps,
+            tally: state.counters,
+            contacts: state.contacts,
+            collision_counts: state.collision_counts,
+            statistics: state.statistics,
+            eps_error: state.eps_error,
+        })
     }
 }

@@ -5,12 +5,12 @@ mod common;
 
 use common::constant;
 use gas::dsmc::{point_gas, Scheme, SpatialOptions};
-use gas::{Checkpoint, EventDriven, HomogeneousDsmc, SpatialDsmc};
+use gas::{Checkpoint, Engine, EventDriven, HomogeneousDsmc, SpatialDsmc};
 use restitution::{Glauber, Restitution};
 
 /// Runs `engine` in two halves with a JSON round trip of its state between them, and
 /// uninterrupted; both must agree exactly.
-fn continues_bit_for_bit<const D: usize, E: Checkpoint<D>>(
+fn continues_bit_for_bit<const D: usize, E: Checkpoint<D, Needs = Box<dyn Restitution>>>(
     mut engine: E,
     law: &dyn Restitution,
     collisions: u64,
@@ -67,7 +67,7 @@ fn a_state_of_another_dimension_is_refused() {
 /// application (`run_until` a multiple of the interval).
 #[test]
 fn driven_event_driven_continues_bit_for_bit() {
-    use gas::driving::{Driving, Thermostat, WhiteNoise};
+    use gas::driving::{Drive, Driving, Thermostat, WhiteNoise};
     let system = gas::init::monodisperse::<3>(500, 0.1, 1.0, 1.0, 1.0, 4).unwrap();
     let law = constant(0.8);
     let interval = 0.01;
@@ -75,9 +75,14 @@ fn driven_event_driven_continues_bit_for_bit() {
         Driving::WhiteNoise(WhiteNoise::new(1.0).unwrap()),
         Driving::Thermostat(Thermostat::new(1.0).unwrap()),
     ] {
+        let drive = Drive {
+            driving,
+            interval: Some(interval),
+            seed: 7,
+        };
         for halfway in [None, Some(2.0)] {
             let mut engine = EventDriven::new(system.clone(), law.box_clone()).unwrap();
-            engine.set_driving(Some(driving), interval, 7).unwrap();
+            engine.set_driving(Some(drive)).unwrap();
             match halfway {
                 None => engine.run_collisions(3000),
                 Some(t) => engine.run_until(t),
@@ -86,7 +91,7 @@ fn driven_event_driven_continues_bit_for_bit() {
             let mut restored =
                 EventDriven::restore(serde_json::from_str(&text).unwrap(), law.box_clone())
                     .unwrap();
-            restored.set_driving(Some(driving), interval, 7).unwrap();
+            restored.set_driving(Some(drive)).unwrap();
             let end = engine.time() + 2.0;
             engine.run_until(end);
             restored.run_until(end);
@@ -94,5 +99,64 @@ fn driven_event_driven_continues_bit_for_bit() {
             assert_eq!(engine.system(), restored.system());
             assert!(engine.counters().collisions > 1000);
         }
+    }
+}
+
+/// A state tampered with (one velocity made NaN, one position moved out of the box) is
+/// refused by every way back from a state: `Checkpoint::restore` of every engine, and the
+/// DSMC engines' restore over ranks. The oracle is the state check each engine documents
+/// (`EventDrivenState::check`, `Snapshot::check`, the soft-sphere restore), which no path
+/// may skip.
+#[test]
+fn a_tampered_state_is_refused_through_every_path() {
+    use gas::parallel::Local;
+    use gas::soft::contact::ViscoelasticMaterial;
+    use gas::{SoftSphere, SoftSphereOptions};
+    use std::sync::Arc;
+    let system = gas::init::monodisperse::<3>(200, 0.1, 1.0, 1.0, 1.0, 3).unwrap();
+    let points = point_gas::<3>(200, system.length, 1.0, 1.0, 1.0, 3).unwrap();
+    let law = constant(0.9);
+    let nan_velocity = |s: &mut gas::System<3>| s.velocities[7][1] = f64::NAN;
+    let outside = |s: &mut gas::System<3>| s.positions[7][0] = 3.0 * s.length;
+    for (k, tamper) in [nan_velocity, outside].into_iter().enumerate() {
+        let mut engine = EventDriven::new(system.clone(), law.box_clone()).unwrap();
+        engine.run_collisions(100);
+        let mut state = engine.save();
+        tamper(&mut state.system);
+        assert!(EventDriven::restore(state, law.box_clone()).is_err());
+
+        for scheme in [Scheme::Exact, Scheme::default()] {
+            let mut engine =
+                HomogeneousDsmc::new(points.clone(), 0.1, law.box_clone(), 3, scheme).unwrap();
+            engine.run_collisions(100);
+            let mut state = engine.save();
+            if k == 0 {
+                tamper(&mut state.system);
+            } else {
+                // The homogeneous engine has no positions: a negative time instead.
+                state.time = -1.0;
+            }
+            let local = Arc::new(Local);
+            assert!(HomogeneousDsmc::restore(state.clone(), law.box_clone()).is_err());
+            assert!(HomogeneousDsmc::restore_distributed(state, law.box_clone(), local).is_err());
+        }
+
+        let options = SpatialOptions::default();
+        let mut engine =
+            SpatialDsmc::new(points.clone(), 0.1, law.box_clone(), 3, options).unwrap();
+        engine.run_collisions(100);
+        let mut state = engine.save();
+        tamper(&mut state.system);
+        let local = Arc::new(Local);
+        assert!(SpatialDsmc::restore(state.clone(), law.box_clone()).is_err());
+        assert!(SpatialDsmc::restore_distributed(state, law.box_clone(), local).is_err());
+
+        let material = ViscoelasticMaterial::new(1e5, 0.3, 0.01).unwrap();
+        let mut engine =
+            SoftSphere::new(system.clone(), material, SoftSphereOptions::default()).unwrap();
+        engine.run_collisions(20);
+        let mut state = engine.save();
+        tamper(&mut state.system);
+        assert!(SoftSphere::restore(state, ()).is_err());
     }
 }

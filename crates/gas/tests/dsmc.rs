@@ -14,6 +14,7 @@ use gas::theory::{
     collision_frequency, haff_collisions_per_particle, haff_time, mean_free_path,
     van_noije_ernst_a2, SonineHierarchy,
 };
+use gas::{Checkpoint, Engine};
 use restitution::{Constant, Restitution};
 
 fn law(eps: f64) -> Box<dyn Restitution> {
@@ -481,7 +482,8 @@ fn restored_runs_continue_bit_for_bit() {
         a.run_collisions(12_345);
         a.run_until(a.time() * 1.5);
         let snapshot = a.snapshot();
-        let mut b = HomogeneousDsmc::restore(snapshot.clone(), law(0.8)).unwrap();
+        let mut b =
+            <HomogeneousDsmc<2> as Checkpoint<2>>::restore(snapshot.clone(), law(0.8)).unwrap();
         assert_eq!(b.snapshot(), snapshot);
         for e in [&mut a, &mut b] {
             e.run_collisions(10_000);
@@ -492,7 +494,7 @@ fn restored_runs_continue_bit_for_bit() {
     }
     let (mut a, _) = spatial_engine(5000, 0.8, 32);
     a.run_collisions(10_000);
-    let mut b = SpatialDsmc::restore(a.snapshot(), law(0.8)).unwrap();
+    let mut b = <SpatialDsmc<3> as Checkpoint<3>>::restore(a.snapshot(), law(0.8)).unwrap();
     a.run_collisions(10_000);
     b.run_collisions(10_000);
     assert_eq!(a.snapshot(), b.snapshot());

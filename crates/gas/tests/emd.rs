@@ -6,6 +6,7 @@ use common::mean_and_error;
 use gas::init::monodisperse;
 use gas::observe::{kinetic_energy, mean_velocity, temperature};
 use gas::system::dot;
+use gas::Engine;
 use gas::EventDriven;
 use restitution::Constant;
 

@@ -15,6 +15,7 @@ mod common;
 use common::{constant, viscoelastic};
 use gas::init::{monodisperse, polydisperse, Species};
 use gas::observe::temperature;
+use gas::Engine;
 use gas::EventDriven;
 use restitution::{Restitution, Viscoelastic};
 use std::f64::consts::PI;

@@ -6,6 +6,7 @@
 
 use gas::dsmc::{Scheme, SpatialOptions, StepSize};
 use gas::init::{polydisperse, Species};
+use gas::Engine;
 use gas::{EventDriven, HomogeneousDsmc, SpatialDsmc, System};
 use restitution::pairwise::Pairwise;
 use restitution::{Constant, Restitution};

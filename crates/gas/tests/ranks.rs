@@ -5,6 +5,7 @@
 
 use gas::dsmc::{point_gas, SpatialOptions, SpatialSnapshot, StepSize};
 use gas::parallel::{Communicator, InProcess};
+use gas::Engine;
 use gas::{Checkpoint, Counters, SpatialDsmc, System};
 use restitution::{Constant, Restitution};
 use std::sync::Arc;

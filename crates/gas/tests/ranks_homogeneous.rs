@@ -6,6 +6,7 @@
 
 use gas::dsmc::{point_gas, HomogeneousSnapshot, Scheme, StepSize};
 use gas::parallel::{Communicator, InProcess};
+use gas::Engine;
 use gas::{Checkpoint, Counters, HomogeneousDsmc, System};
 use restitution::{Constant, Restitution};
 use std::sync::Arc;

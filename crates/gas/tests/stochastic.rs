@@ -3,6 +3,7 @@
 
 use gas::init::monodisperse;
 use gas::observe::{kinetic_energy, temperature};
+use gas::Engine;
 use gas::EventDriven;
 use restitution::Glauber;
 

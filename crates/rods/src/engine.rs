@@ -8,7 +8,6 @@
 
 use crate::chain::{Chain, Impacts};
 use gas::{Checkpoint, Counters, Engine, System};
-use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 
 /// A rod chain with its impact counter.
@@ -138,6 +137,8 @@ impl Engine<1> for ChainEngine {
 
 impl Checkpoint<1> for ChainEngine {
     type State = ChainEngineState;
+    /// The chain's dynamics is all in its state: a restore needs nothing else.
+    type Needs = ();
 
     fn save(&mut self) -> ChainEngineState {
         ChainEngineState {
@@ -147,8 +148,8 @@ impl Checkpoint<1> for ChainEngine {
         }
     }
 
-    /// Restores the chain; its dynamics has no law (the law argument is not used).
-    fn restore(state: ChainEngineState, _law: Box<dyn Restitution>) -> gas::Result<Self> {
+    /// Restores the chain after checking it ([`ChainEngine::from_state`]).
+    fn restore(state: ChainEngineState, _needs: ()) -> gas::Result<Self> {
         ChainEngine::from_state(state)
     }
 }

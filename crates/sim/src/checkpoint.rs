@@ -1,11 +1,13 @@
 //! Check-points: one file, `DIR/checkpoint.bin`, from which a run continues bit for bit.
 //!
-//! Layout (version 4; 4 added the DSMC engines' per-species collision counts to the
-//! engine state):
+//! Layout (of a [`Format`] and its version; `haff run`'s is [`RUN`], version 5: 4 added
+//! the DSMC engines' per-species collision counts to the engine state, 5 the driver's
+//! position and the records keyed by observer):
 //!
 //! ```text
-//! {"format":"haff-run-checkpoint","version":4,"haff_version":"0.1.0","records_bytes":R,"engine_bytes":E,"crc32":C}\n
-//! <R bytes: the driver's records as JSON (run description, observers, interval)>\n
+//! {"format":"haff-run-checkpoint","version":5,"haff_version":"0.1.0","records_bytes":R,"engine_bytes":E,"crc32":C}\n
+//! <R bytes: the records as one JSON object: the caller's (run description, interval), the
+//!  driver's position ("driver"), then each observer's under its name>\n
 //! <E bytes: the engine's complete state (gas::Checkpoint::State), postcard-encoded>
 //! ```
 //!
@@ -20,14 +22,28 @@ use crate::error::{Error, Result};
 use crate::output::write_file;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The file name of a check-point in its directory.
 pub const FILE_NAME: &str = "checkpoint.bin";
 /// The file name older versions (1, 2: all JSON) wrote.
 pub const LEGACY_FILE_NAME: &str = "checkpoint.json";
-/// The version of the layout; a check-point of another version is refused, naming both.
-pub const VERSION: u32 = 4;
+
+/// What a check-point holds, and the version of its content: a check-point of another
+/// format or version is refused, naming both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Format {
+    pub name: &'static str,
+    pub version: u32,
+}
+
+/// The check-points of `haff run` (`crate::Simulation`).
+pub const RUN: Format = Format {
+    name: "haff-run-checkpoint",
+    version: 5,
+};
 /// The version of haff that writes.
 pub const HAFF_VERSION: &str = env!("CARGO_PKG_VERSION");
 /// The longest first line read before a file is declared foreign.
@@ -73,37 +89,34 @@ impl Sections {
     }
 }
 
-/// Writes the check-point of `format` into `dir` ([`FILE_NAME`]); see [`write_to`].
-pub fn write<R: Serialize, S: Serialize>(
-    dir: &Path,
-    format: &str,
-    records: &R,
-    engine: &S,
-) -> Result<()> {
-    write_to(&dir.join(FILE_NAME), format, records, engine)
+/// `state` encoded as the engine section of a check-point (postcard).
+pub fn encode_state<S: Serialize>(state: &S) -> Result<Vec<u8>> {
+    postcard::to_stdvec(state).map_err(|e| Error::Numerical {
+        key: "check-point".into(),
+        message: format!("encoding the engine state: {e}"),
+    })
 }
 
-/// Writes the check-point of `format` as the file `path` atomically (a partial file, then
-/// renamed), so that an interrupted write never destroys the last one.
-pub fn write_to<R: Serialize, S: Serialize>(
+/// Writes the check-point of `format` with `records` and the encoded engine `state` as the
+/// file `path` atomically (a partial file, then renamed), so that an interrupted write
+/// never destroys the last one.
+pub fn write_to<R: Serialize>(
     path: &Path,
-    format: &str,
+    format: Format,
     records: &R,
-    engine: &S,
+    state: &[u8],
 ) -> Result<()> {
     let path = path.to_path_buf();
     let records = serde_json::to_vec(records).map_err(|e| Error::write(&path, e.into()))?;
-    let engine =
-        postcard::to_stdvec(engine).map_err(|e| Error::write(&path, std::io::Error::other(e)))?;
     let mut crc = crc32fast::Hasher::new();
     crc.update(&records);
-    crc.update(&engine);
+    crc.update(state);
     let header = Header {
-        format: format.to_string(),
-        version: VERSION,
+        format: format.name.to_string(),
+        version: format.version,
         haff_version: HAFF_VERSION.to_string(),
         records_bytes: records.len() as u64,
-        engine_bytes: engine.len() as u64,
+        engine_bytes: state.len() as u64,
         crc32: crc.finalize(),
     };
     write_file(&path, |out| {
@@ -111,21 +124,22 @@ pub fn write_to<R: Serialize, S: Serialize>(
         out.write_all(b"\n")?;
         out.write_all(&records)?;
         out.write_all(b"\n")?;
-        out.write_all(&engine)
+        out.write_all(state)
     })
 }
 
 /// Reads the check-point of `format` in `dir` and verifies it: a haff check-point of this
 /// format and version, complete (nothing missing, nothing appended) and with the checksum
 /// of its content.
-pub fn read(dir: &Path, format: &str) -> Result<Sections> {
+pub fn read(dir: &Path, format: Format) -> Result<Sections> {
     let path = dir.join(FILE_NAME);
     if !path.exists() && dir.join(LEGACY_FILE_NAME).exists() {
         return Err(Error::Checkpoint {
             path: dir.join(LEGACY_FILE_NAME),
             message: format!(
                 "a check-point of an older haff (format version 1 or 2, all JSON); this haff \
-                 reads version {VERSION} ({FILE_NAME})"
+                 reads version {} ({FILE_NAME})",
+                format.version
             ),
         });
     }
@@ -133,7 +147,7 @@ pub fn read(dir: &Path, format: &str) -> Result<Sections> {
 }
 
 /// Reads the check-point file `path` of `format` and verifies it, as [`read`] does.
-pub fn read_from(path: &Path, format: &str) -> Result<Sections> {
+pub fn read_from(path: &Path, format: Format) -> Result<Sections> {
     let path = path.to_path_buf();
     let fail = |message: String| Error::Checkpoint {
         path: path.clone(),
@@ -147,11 +161,11 @@ pub fn read_from(path: &Path, format: &str) -> Result<Sections> {
         .ok_or_else(|| fail("not a haff check-point (no header line)".into()))?;
     let header: Header = serde_json::from_slice(&bytes[..end])
         .map_err(|e| fail(format!("not a haff check-point (header: {e})")))?;
-    if header.format != format || header.version != VERSION {
+    if header.format != format.name || header.version != format.version {
         return Err(fail(format!(
-            "written as '{}' version {} by haff {}; this haff {HAFF_VERSION} reads '{format}' \
-             version {VERSION}",
-            header.format, header.version, header.haff_version
+            "written as '{}' version {} by haff {}; this haff {HAFF_VERSION} reads '{}' \
+             version {}",
+            header.format, header.version, header.haff_version, format.name, format.version
         )));
     }
     let body = &bytes[end + 1..];
@@ -185,4 +199,77 @@ pub fn read_from(path: &Path, format: &str) -> Result<Sections> {
         records: records.to_vec(),
         engine: engine.to_vec(),
     })
+}
+
+/// The records of a check-point being written: one JSON object, its entries in the order
+/// pushed (the caller's first, then the driver's, then each observer's under its name).
+#[derive(Debug, Default)]
+pub struct RecordsOut {
+    entries: Vec<(String, Box<RawValue>)>,
+}
+
+impl RecordsOut {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds `value` under `key`.
+    pub fn push<T: Serialize + ?Sized>(&mut self, key: &str, value: &T) -> Result<()> {
+        let raw = serde_json::value::to_raw_value(value).map_err(|e| Error::Numerical {
+            key: "check-point".into(),
+            message: format!("{key}: {e}"),
+        })?;
+        self.push_raw(key, raw);
+        Ok(())
+    }
+
+    /// Adds JSON text already encoded under `key`.
+    pub fn push_raw(&mut self, key: &str, value: Box<RawValue>) {
+        self.entries.push((key.to_string(), value));
+    }
+}
+
+impl Serialize for RecordsOut {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(Some(self.entries.len()))?;
+        for (key, value) in &self.entries {
+            map.serialize_entry(key, value)?;
+        }
+        map.end()
+    }
+}
+
+/// The records of a check-point being read, by key: each reader takes its own
+/// ([`Records::take`]); [`Records::finish`] refuses records nobody took.
+#[derive(Debug, Deserialize)]
+#[serde(transparent)]
+pub struct Records {
+    entries: BTreeMap<String, Box<RawValue>>,
+}
+
+impl Records {
+    /// The JSON text under `key`, taken out.
+    pub fn take_raw(&mut self, key: &str) -> std::result::Result<Box<RawValue>, String> {
+        self.entries
+            .remove(key)
+            .ok_or_else(|| format!("records: no '{key}' (the check-point is not of this run)"))
+    }
+
+    /// The record under `key` as `T`, taken out.
+    pub fn take<T: DeserializeOwned>(&mut self, key: &str) -> std::result::Result<T, String> {
+        let raw = self.take_raw(key)?;
+        serde_json::from_str(raw.get()).map_err(|e| format!("records: {key}: {e}"))
+    }
+
+    /// Fails if a record was not taken: the check-point holds what this run does not have.
+    pub fn finish(self) -> std::result::Result<(), String> {
+        match self.entries.keys().next() {
+            None => Ok(()),
+            Some(key) => Err(format!(
+                "records: '{key}' does not belong to this run (its observers are set by the run \
+                 description)"
+            )),
+        }
+    }
 }

@@ -1,541 +1,314 @@
-//! Engines built from a plan: fresh from the `[system]` section, or restored from a
-//! check-point after checking that the saved state belongs to the plan's run. The one place
-//! that maps `run.engine` to an engine type.
+//! The one place that maps engine kinds to engines (LAMMPS' styles, DynamO's dynamics): each
+//! kind's module owns its keys of the run file, what it can do ([`Abilities`]), how it
+//! starts from a plan, how it is restored from a check-point (its state checked against the
+//! plan) and how it is built for a system set up in code ([`build`]: the reproduced papers,
+//! the benches). Validation, the observers and the driver ask [`Abilities`] and never match
+//! an engine kind.
+//!
+//! A new engine: a type in `crates/gas` implementing `gas::Engine` and `gas::Checkpoint`,
+//! a module here (its keys, start, restore, state check), a variant of [`EngineSpec`] and
+//! one arm in each `match` of this file.
 
-use crate::checkpoint::{self, Sections};
-use crate::description::species;
+mod dsmc;
+mod event_driven;
+mod initial;
+mod soft_sphere;
+
+use crate::checkpoint::Sections;
+use crate::description::{DsmcScheme, EngineKind, RunDescription};
+use crate::driver::Driven;
 use crate::error::{Error, Result};
-use crate::observer::{TimeSeries, VelocityHistograms};
-use crate::validate::{EngineSpec, LawSpec, Plan};
-use gas::parallel::Communicator;
-use gas::{
-    BathState, Checkpoint, Engine, EventDriven, EventDrivenState, HomogeneousDsmc, SoftSphere,
-    SoftSphereState, SpatialDsmc, System,
-};
+use crate::validate::{Plan, Species, Stop};
+use gas::dsmc::{Scheme, SpatialOptions};
+use gas::parallel::{Communicator, Local};
+use gas::soft::contact::ViscoelasticMaterial;
+use gas::{SoftSphereOptions, SorterKind, System};
 use restitution::Restitution;
-use serde::{Deserialize, Serialize};
-use std::path::Path;
 use std::sync::Arc;
 
-/// The `format` of a run check-point.
-pub const FORMAT: &str = "haff-run-checkpoint";
-
-/// What a run check-point holds besides the engine (JSON, readable).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct Records {
-    /// The run file (normalized).
-    pub description: crate::RunDescription,
-    /// Check-point interval in samples (reused on resume).
-    pub every: Option<usize>,
-    pub timeseries: TimeSeries,
-    pub histograms: VelocityHistograms,
-    /// The observers of `[output]` (absent in check-points of runs without them).
-    #[serde(default)]
-    pub space: crate::space::SpaceRecords,
-    /// The per-species series of a mixture (`system.species`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub species: Option<crate::species::SpeciesSeries>,
+/// The engine and its options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EngineSpec {
+    EventDriven,
+    HomogeneousDsmc(Scheme),
+    SpatialDsmc(SpatialOptions),
+    SoftSphere(SoftSphereOptions, ViscoelasticMaterial),
 }
 
-/// [`Records`], borrowed for writing.
-#[derive(Serialize)]
-pub(crate) struct RecordsRef<'a> {
-    pub description: &'a crate::RunDescription,
-    pub every: Option<usize>,
-    pub timeseries: &'a TimeSeries,
-    pub histograms: &'a VelocityHistograms,
-    pub space: &'a crate::space::SpaceRecords,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub species: Option<&'a crate::species::SpeciesSeries>,
+/// How an engine drives a gas ([`gas::Engine::set_driving`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DrivingTimes {
+    /// It cannot.
+    Never,
+    /// At every step of its own (DSMC blocks).
+    AtSteps,
+    /// At the times k `driving.interval` (event-driven).
+    AtIntervals,
 }
 
-/// An engine the driver runs: the engine interface and a check-point writer. Engines are
-/// `Send`, so that a run can go on in another thread (Python releases the GIL).
-pub(crate) trait Driven<const D: usize>: Engine<D> + Send {
-    /// Saves the engine's state with `records` as the check-point file `path` if `write`
-    /// (the state is taken in any case: on several ranks that is collective).
-    fn write_checkpoint(&mut self, path: &Path, records: RecordsRef<'_>, write: bool)
-        -> Result<()>;
+/// The keys of `[run]` that set an engine's time step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TimeStep {
+    /// No time step (event-driven: events in continuous time).
+    None,
+    /// DSMC: `run.collisions_per_step` or `run.time_step`.
+    Collisions,
+    /// Soft-sphere MD: `run.steps_per_contact` or `run.time_step`.
+    Contact,
 }
 
-impl<const D: usize, E: Checkpoint<D> + Send> Driven<D> for E {
-    fn write_checkpoint(
-        &mut self,
-        path: &Path,
-        records: RecordsRef<'_>,
-        write: bool,
-    ) -> Result<()> {
-        let state = self.save();
-        if !write {
-            return Ok(());
-        }
-        checkpoint::write_to(path, FORMAT, &records, &state)
+/// What an engine can do: the questions validation, the observers and the factory ask.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Abilities {
+    /// Its particles have positions (the observers of space need them).
+    pub positions: bool,
+    /// Its particles are points placed independently (DSMC): no overlaps to avoid, a box
+    /// that may stand for more physical particles, S(k -> 0) = 1.
+    pub point_particles: bool,
+    /// It spreads over MPI ranks.
+    pub ranks: bool,
+    pub driving: DrivingTimes,
+    /// Contacts of finite duration (soft-sphere MD): one viscoelastic material.
+    pub contacts: bool,
+    pub time_step: TimeStep,
+    /// Instantaneous collisions in continuous time: inelastic collapse can stop it (the TC
+    /// model; a restitution of 0 sticks for ever).
+    pub collapse: bool,
+    /// Per-particle baths of the stochastic law (Giese's ED + MC).
+    pub baths: bool,
+    /// Species of their own viscoelastic materials.
+    pub species_materials: bool,
+}
+
+/// The name of an engine kind in the run file.
+pub fn kind_name(kind: EngineKind) -> &'static str {
+    match kind {
+        EngineKind::EventDriven => "event-driven",
+        EngineKind::Dsmc => "dsmc",
+        EngineKind::SoftSphere => "soft-sphere",
     }
 }
 
-/// Physical particles per simulated one (`run.particle_weight`, spatial DSMC; else 1).
-fn particle_weight(plan: &Plan) -> f64 {
-    plan.description.run.particle_weight.unwrap_or(1.0)
+/// What the engine a run file names can do (`run.engine`, for DSMC `run.dsmc_scheme`), known
+/// before its keys are read.
+pub fn abilities_of(description: &RunDescription) -> Abilities {
+    kind_abilities(description.run.engine, description.run.dsmc_scheme)
 }
 
-/// The initial particles of the `[system]` section.
-fn initial_system<const D: usize>(plan: &Plan) -> Result<System<D>> {
-    let s = &plan.description.system;
-    let diameter = s.diameter.unwrap_or(1.0);
-    let mass = s.mass.unwrap_or(1.0);
-    let phi = s.packing_fraction;
-    let weight = particle_weight(plan);
-    match (&s.species, plan.engine) {
-        // DSMC particles are points: no need to place them without overlaps.
-        (None, EngineSpec::HomogeneousDsmc(_) | EngineSpec::SpatialDsmc(_)) => {
-            gas::dsmc::point_gas::<D>(
-                s.particles,
-                monodisperse_side::<D>(s.particles, diameter, phi, weight),
-                diameter,
-                mass,
-                s.temperature,
-                s.seed,
-            )
-        }
-        (None, EngineSpec::EventDriven | EngineSpec::SoftSphere(..)) => {
-            gas::init::monodisperse::<D>(s.particles, phi, diameter, mass, s.temperature, s.seed)
-        }
-        (Some(entries), _) => {
-            gas::init::polydisperse::<D>(s.particles, phi, &species(entries), s.temperature, s.seed)
-                .map(|system| widened(system, phi, weight))
-        }
-    }
-    .map_err(|e| Error::input("system", e))
-}
-
-/// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical
-/// ones at packing fraction `phi` (exactly the initializer's side for weight 1).
-fn monodisperse_side<const D: usize>(n: usize, diameter: f64, phi: f64, weight: f64) -> f64 {
-    if weight == 1.0 {
-        gas::system::monodisperse_box_side::<D>(n, diameter, phi)
-    } else {
-        let volume = n as f64 * weight * gas::system::ball_volume::<D>(0.5 * diameter);
-        gas::system::box_side::<D>(volume, phi)
+/// What an engine kind can do (DSMC: with `scheme`, by default the blocks).
+fn kind_abilities(kind: EngineKind, scheme: Option<DsmcScheme>) -> Abilities {
+    match kind {
+        EngineKind::EventDriven => event_driven::ABILITIES,
+        EngineKind::SoftSphere => soft_sphere::ABILITIES,
+        EngineKind::Dsmc => dsmc::abilities(scheme.unwrap_or(DsmcScheme::Blocks)),
     }
 }
 
-/// `system` (a mixture placed at `phi`) in the box of its spheres times `weight` at `phi`,
-/// positions scaled with the box: DSMC particles are points, so the placement only has to
-/// be uniform.
-fn widened<const D: usize>(mut system: System<D>, phi: f64, weight: f64) -> System<D> {
-    if weight == 1.0 {
-        return system;
-    }
-    let length = mixture_side::<D>(&system, phi, weight);
-    let scale = length / system.length;
-    for x in &mut system.positions {
-        for c in x.iter_mut() {
-            *c = gas::system::wrap(*c * scale, length);
-        }
-    }
-    system.length = length;
-    system
-}
-
-/// The box side of the mixture `system` standing for `weight` times its spheres at `phi`.
-fn mixture_side<const D: usize>(system: &System<D>, phi: f64, weight: f64) -> f64 {
-    let volume: f64 = system
-        .radii
-        .iter()
-        .map(|&r| gas::system::ball_volume::<D>(r))
-        .sum();
-    gas::system::box_side::<D>(volume * weight, phi)
-}
-
-/// A fresh engine at time 0.
-pub(crate) fn start<const D: usize>(
-    plan: &Plan,
-    law: Box<dyn Restitution>,
-    comm: &Arc<dyn Communicator>,
-) -> Result<Box<dyn Driven<D>>> {
-    let system = initial_system::<D>(plan)?;
-    let s = &plan.description.system;
-    let fail = |e: gas::Error| Error::input("system", e);
-    Ok(match plan.engine {
-        EngineSpec::EventDriven => {
-            let mut engine = EventDriven::new(system, law).map_err(fail)?;
-            if let LawSpec::Stochastic {
-                bath_temperature, ..
-            } = plan.law
-            {
-                let baths = BathState {
-                    temperatures: vec![bath_temperature; s.particles],
-                    seed: s.seed,
-                    draws: 0,
-                };
-                engine
-                    .set_bath_state(baths)
-                    .map_err(|e| Error::input("collision.bath_temperature", e))?;
+impl EngineSpec {
+    /// What this engine can do.
+    pub fn abilities(&self) -> Abilities {
+        match self {
+            EngineSpec::EventDriven => event_driven::ABILITIES,
+            EngineSpec::SoftSphere(..) => soft_sphere::ABILITIES,
+            EngineSpec::HomogeneousDsmc(Scheme::Blocks { .. }) => {
+                dsmc::abilities(DsmcScheme::Blocks)
             }
-            if let Some(tc) = plan.tc {
-                engine
-                    .set_tc_model(tc, None)
-                    .map_err(|e| Error::input("collision.tc", e))?;
-            }
-            drive(&mut engine, plan)?;
-            Box::new(engine)
+            EngineSpec::HomogeneousDsmc(Scheme::Exact) => dsmc::abilities(DsmcScheme::Exact),
+            EngineSpec::SpatialDsmc(_) => dsmc::abilities(DsmcScheme::Spatial),
         }
-        EngineSpec::HomogeneousDsmc(scheme) => {
-            let mut engine = HomogeneousDsmc::distributed(
-                system,
-                s.packing_fraction,
-                law,
-                s.seed,
-                scheme,
-                comm.clone(),
-            )
-            .map_err(ranks_or_system)?;
-            engine
-                .set_driving(plan.driving)
-                .map_err(|e| Error::input("driving", e))?;
-            Box::new(engine)
-        }
-        EngineSpec::SpatialDsmc(options) => Box::new(
-            SpatialDsmc::distributed(
-                system,
-                s.packing_fraction,
-                law,
-                s.seed,
-                options,
-                comm.clone(),
-            )
-            .map_err(ranks_or_system)?,
-        ),
-        EngineSpec::SoftSphere(options, material) => {
-            Box::new(
-                SoftSphere::new(system, material, options).map_err(|e| match &e {
-                    // The step comes from run.steps_per_contact or run.time_step.
-                    gas::Error::OutOfRange { name, .. }
-                        if name == "steps_per_contact" || name == "time_step" =>
-                    {
-                        Error::input(format!("run.{name}"), e)
-                    }
-                    _ => fail(e),
-                })?,
-            )
-        }
-    })
-}
-
-/// The engine of the check-point `sections`, after checking that its state belongs to
-/// the run of `plan`.
-pub(crate) fn restore<const D: usize>(
-    plan: &Plan,
-    law: Box<dyn Restitution>,
-    sections: &Sections,
-    comm: &Arc<dyn Communicator>,
-) -> Result<Box<dyn Driven<D>>> {
-    if let (EngineSpec::SpatialDsmc(_), true) = (plan.engine, comm.size() > 1) {
-        let state: gas::dsmc::SpatialSnapshot<D> = sections.engine()?;
-        SpatialDsmc::check_state(plan, &state)
-            .map_err(|e| sections.error(format!("engine state: {e}")))?;
-        state
-            .check(true)
-            .map_err(|e| sections.error(format!("engine state: {e}")))?;
-        let engine =
-            SpatialDsmc::restore_distributed(state, law, comm.clone()).map_err(ranks_or_system)?;
-        return Ok(Box::new(engine));
-    }
-    match plan.engine {
-        EngineSpec::EventDriven => {
-            let mut engine = restored::<D, EventDriven<D>>(plan, law, sections)?;
-            drive(&mut engine, plan)?;
-            Ok(Box::new(engine))
-        }
-        EngineSpec::HomogeneousDsmc(_) => restore_homogeneous::<D>(plan, law, sections, comm),
-        EngineSpec::SpatialDsmc(_) => restore_as::<D, SpatialDsmc<D>>(plan, law, sections),
-        EngineSpec::SoftSphere(..) => restore_as::<D, SoftSphere<D>>(plan, law, sections),
     }
 }
 
-/// Drives an event-driven engine as the plan says, at its interval, with kicks drawn from
-/// the run's seed.
-fn drive<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
-    let interval = plan.driving_interval.unwrap_or(1.0);
-    engine
-        .set_driving(plan.driving, interval, plan.description.system.seed)
-        .map_err(|e| Error::input("driving.interval", e))
-}
-
-/// The homogeneous engine of a check-point, on the ranks of `comm`, driven as the plan says.
-fn restore_homogeneous<const D: usize>(
-    plan: &Plan,
-    law: Box<dyn Restitution>,
-    sections: &Sections,
-    comm: &Arc<dyn Communicator>,
-) -> Result<Box<dyn Driven<D>>> {
-    let state: gas::dsmc::HomogeneousSnapshot<D> = sections.engine()?;
-    HomogeneousDsmc::check_state(plan, &state)
-        .map_err(|e| sections.error(format!("engine state: {e}")))?;
-    state
-        .check(true)
-        .map_err(|e| sections.error(format!("engine state: {e}")))?;
-    let mut engine = HomogeneousDsmc::restore_distributed(state, law, comm.clone())
-        .map_err(|e| sections.error(format!("engine state: {e}")))?;
-    engine
-        .set_driving(plan.driving)
-        .map_err(|e| Error::input("driving", e))?;
-    Ok(Box::new(engine))
-}
-
-fn restore_as<const D: usize, E: Planned<D> + Send + 'static>(
-    plan: &Plan,
-    law: Box<dyn Restitution>,
-    sections: &Sections,
-) -> Result<Box<dyn Driven<D>>> {
-    Ok(Box::new(restored::<D, E>(plan, law, sections)?))
-}
-
-/// The engine of the check-point `sections`, its state checked against the run of `plan`.
-fn restored<const D: usize, E: Planned<D>>(
-    plan: &Plan,
-    law: Box<dyn Restitution>,
-    sections: &Sections,
-) -> Result<E> {
-    let state: E::State = sections.engine()?;
-    E::check_state(plan, &state).map_err(|e| sections.error(format!("engine state: {e}")))?;
-    E::restore(state, law).map_err(|e| sections.error(format!("engine state: {e}")))
-}
-
-/// An error of an engine spread over ranks: too many ranks for its planes of cells or
-/// blocks (naming `run.ranks`, the launch's count), else an error of `[system]`.
-fn ranks_or_system(e: gas::Error) -> Error {
-    match &e {
-        gas::Error::OutOfRange { name, .. } if name == "ranks" => Error::input("run.ranks", e),
-        _ => Error::input("system", e),
+/// The engine of the run file and its options from its keys of `[run]` (and, for
+/// soft-sphere MD, the material of `[collision]`), for the particles `species` and a run
+/// to `stop`; keys of another engine are refused.
+pub(crate) fn spec(
+    description: &RunDescription,
+    species: &[Species],
+    stop: Stop,
+) -> Result<EngineSpec> {
+    match description.run.engine {
+        EngineKind::EventDriven => event_driven::spec(description),
+        EngineKind::Dsmc => dsmc::spec(description, stop),
+        EngineKind::SoftSphere => soft_sphere::spec(description, species, stop),
     }
 }
 
-/// An engine state that can be checked against the run it claims to belong to.
-trait Planned<const D: usize>: Checkpoint<D> {
-    /// Why `state` cannot be a state of the run of `plan`, if it cannot.
-    fn check_state(plan: &Plan, state: &Self::State) -> std::result::Result<(), String>;
-}
+/// Every engine kind, in the order the run file's documentation lists them.
+const KINDS: [EngineKind; 3] = [
+    EngineKind::EventDriven,
+    EngineKind::Dsmc,
+    EngineKind::SoftSphere,
+];
 
-impl<const D: usize> Planned<D> for EventDriven<D> {
-    fn check_state(plan: &Plan, state: &EventDrivenState<D>) -> std::result::Result<(), String> {
-        particles(plan, &state.system)?;
-        box_side(plan, &state.system)?;
-        if state.tc.as_ref().map(|tc| tc.duration) != plan.tc {
-            return Err("the TC model differs from collision.tc".into());
-        }
-        let stochastic = matches!(plan.law, LawSpec::Stochastic { .. });
-        match &state.baths {
-            Some(b) if stochastic && b.seed == plan.description.system.seed => {}
-            None if !stochastic => {}
-            _ => return Err("the baths do not belong to collision.law".into()),
-        }
-        if state.min_cell_width != 0.0 || state.sorter != gas::SorterKind::default() {
-            return Err("cells or sorter differ from a run's".into());
-        }
-        no_energy_gained(
-            plan,
-            &state.system,
-            state.baths.as_ref().map(|b| b.temperatures.as_slice()),
-        )
+/// The keys of `[run]` each engine kind reads beyond the common ones.
+fn own_keys(kind: EngineKind) -> &'static [&'static str] {
+    match kind {
+        EngineKind::EventDriven => &[],
+        EngineKind::Dsmc => &[
+            "run.dsmc_scheme",
+            "run.block_size",
+            "run.collisions_per_step",
+            "run.time_step",
+            "run.collision_cell_width",
+            "run.particle_weight",
+        ],
+        EngineKind::SoftSphere => &["run.steps_per_contact", "run.time_step"],
     }
 }
 
-impl<const D: usize> Planned<D> for SoftSphere<D> {
-    fn check_state(plan: &Plan, state: &SoftSphereState<D>) -> std::result::Result<(), String> {
-        particles(plan, &state.system)?;
-        box_side(plan, &state.system)?;
-        match plan.engine {
-            EngineSpec::SoftSphere(options, material)
-                if state.options == options && state.material == material => {}
-            _ => {
-                return Err(
-                    "the material or the soft-sphere options differ from the run file's".into(),
-                )
-            }
-        }
-        no_energy_gained(plan, &state.system, None)?;
-        let contact = crate::validate::contact_duration(&plan.description, &state.material)
-            .map_err(|e| e.to_string())?;
-        let (finest, coarsest) = crate::validate::time_step_range(contact);
-        let dt = state.time_step;
-        if !(finest..=coarsest).contains(&dt) {
-            return Err(format!(
-                "time_step {dt:e} outside {finest:e} ..= {coarsest:e} (4 to 1e6 steps per contact)"
-            ));
-        }
-        // A half kick changes no velocity by more than a few times the largest speed the
-        // initial energy allows (the forces are repulsive contact forces): a bound that
-        // every state of the run meets, and forged forces do not.
-        let s = &plan.description.system;
-        let energy = 0.5 * (D * s.particles) as f64 * s.temperature;
-        let lightest = state
-            .system
-            .masses
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        let speed = (2.0 * energy / lightest).sqrt();
-        for (force, mass) in state.forces.iter().zip(&state.system.masses) {
-            let kick = force.iter().map(|f| f * f).sum::<f64>().sqrt() * 0.5 * dt / mass;
-            if kick.is_nan() || kick > 10.0 * speed {
-                return Err(format!(
-                    "a force kicks a particle by {kick:e} in half a step, more than 10 times \
-                     the largest speed {speed:e} the initial energy allows"
-                ));
-            }
-        }
-        Ok(())
-    }
-}
-
-macro_rules! planned_dsmc {
-    ($engine:ident, $spec:ident, $box:expr) => {
-        impl<const D: usize> Planned<D> for $engine<D> {
-            fn check_state(
-                plan: &Plan,
-                state: &<Self as Checkpoint<D>>::State,
-            ) -> std::result::Result<(), String> {
-                particles(plan, &state.system)?;
-                let s = &plan.description.system;
-                let options = match plan.engine {
-                    EngineSpec::$spec(options) => options,
-                    _ => return Err("another engine".into()),
-                };
-                if state.options != options
-                    || state.packing_fraction != s.packing_fraction
-                    || state.seed != s.seed
-                {
-                    return Err(
-                        "the DSMC options, packing fraction or seed differ from the run file's"
-                            .into(),
-                    );
-                }
-                if $box {
-                    box_side(plan, &state.system)?;
-                }
-                no_energy_gained(plan, &state.system, None)
-            }
-        }
-    };
-}
-
-// The homogeneous engine's box is its volume's cube root, not an initial box.
-planned_dsmc!(HomogeneousDsmc, HomogeneousDsmc, false);
-planned_dsmc!(SpatialDsmc, SpatialDsmc, true);
-
-/// The particles of `system` are those of `[system]`: their number, and their radii and
-/// masses (one kind, or the species in their counts).
-fn particles<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
-    let s = &plan.description.system;
-    if system.len() != s.particles {
-        return Err(format!(
-            "{} particles where system.particles = {}",
-            system.len(),
-            s.particles
-        ));
-    }
-    let kinds: Vec<(f64, f64, usize)> = match &s.species {
-        None => vec![(
-            0.5 * s.diameter.unwrap_or(1.0),
-            s.mass.unwrap_or(1.0),
-            s.particles,
-        )],
-        Some(entries) => {
-            let counts = gas::init::species_counts(s.particles, &species(entries))
-                .map_err(|e| e.to_string())?;
-            entries
+/// Refuses a key of `[run]` that the run's engine does not read (it would be recorded and
+/// ignored), naming the engines that read it.
+fn refuse_foreign_keys(description: &RunDescription) -> Result<()> {
+    let r = &description.run;
+    let given = [
+        ("run.steps_per_contact", r.steps_per_contact.is_some()),
+        ("run.dsmc_scheme", r.dsmc_scheme.is_some()),
+        ("run.block_size", r.block_size.is_some()),
+        ("run.collisions_per_step", r.collisions_per_step.is_some()),
+        ("run.time_step", r.time_step.is_some()),
+        ("run.collision_cell_width", r.collision_cell_width.is_some()),
+        ("run.particle_weight", r.particle_weight.is_some()),
+    ];
+    for (key, _) in given.iter().filter(|(_, on)| *on) {
+        if !own_keys(r.engine).contains(key) {
+            let owners: Vec<String> = KINDS
                 .iter()
-                .zip(counts)
-                .map(|(x, count)| (0.5 * x.diameter, x.mass, count))
-                .collect()
-        }
-    };
-    for (radius, mass, count) in kinds {
-        let found = system
-            .radii
-            .iter()
-            .zip(&system.masses)
-            .filter(|&(&r, &m)| r == radius && m == mass)
-            .count();
-        if found != count {
-            return Err(format!(
-                "{found} particles of radius {radius} and mass {mass} where [system] has {count}"
+                .filter(|&&k| own_keys(k).contains(key))
+                .map(|&k| format!("\"{}\"", kind_name(k)))
+                .collect();
+            return Err(Error::input(
+                *key,
+                format!("only for run.engine = {}", owners.join(" or ")),
             ));
         }
     }
     Ok(())
 }
 
-/// A cooling gas never gains energy: the kinetic energy of the particles (plus, for a
-/// stochastic law, the energy `modes * T_i` held by each particle's bath, which the
-/// collisions exchange with the translation, `restitution::collide_with_baths`) is at most
-/// the initial one, `N (D/2) T0 (+ N modes T_bath)`: the initializer sets the temperature
-/// exactly (to round-off). The tolerance 1e-6 is far above the round-off of the collision
-/// updates (~1e-16 relative per collision, a random walk) and far below what an edit that
-/// would blow up the run (a velocity or bath temperature of 1e100) adds.
-fn no_energy_gained<const D: usize>(
+/// The engine kinds whose default options can do what `can` asks, as
+/// `"event-driven" or "dsmc"` (for messages).
+pub(crate) fn kinds_that(can: impl Fn(&Abilities) -> bool) -> String {
+    let names: Vec<String> = KINDS
+        .iter()
+        .filter(|&&kind| can(&kind_abilities(kind, None)))
+        .map(|&k| format!("\"{}\"", kind_name(k)))
+        .collect();
+    names.join(" or ")
+}
+
+/// A fresh engine at time 0, from the `[system]` section.
+pub(crate) fn start<const D: usize>(
     plan: &Plan,
-    system: &System<D>,
-    bath_temperatures: Option<&[f64]>,
-) -> std::result::Result<(), String> {
-    if plan.driving.is_some() {
-        // A driven gas gains energy.
-        return Ok(());
-    }
-    let s = &plan.description.system;
-    let n = system.len() as f64;
-    let kinetic = gas::observe::kinetic_energy(system);
-    let mut initial = n * 0.5 * D as f64 * s.temperature;
-    let mut now = kinetic;
-    if let LawSpec::Stochastic {
-        modes,
-        bath_temperature,
-        ..
-    } = plan.law
-    {
-        let modes = f64::from(modes);
-        initial += n * modes * bath_temperature;
-        now += modes * bath_temperatures.unwrap_or(&[]).iter().sum::<f64>();
-    }
-    if now.is_finite() && now <= initial * (1.0 + 1e-6) {
-        Ok(())
-    } else {
-        Err(format!(
-            "energy {now:e} above the initial energy {initial:e} of [system] and [collision]; \
-             a cooling gas does not gain energy"
-        ))
+    law: Box<dyn Restitution>,
+    comm: &Arc<dyn Communicator>,
+) -> Result<Box<dyn Driven<D>>> {
+    let system = initial::system::<D>(plan)?;
+    match plan.engine {
+        EngineSpec::EventDriven => event_driven::start(plan, system, law),
+        EngineSpec::HomogeneousDsmc(scheme) => {
+            dsmc::start_homogeneous(plan, system, law, scheme, comm)
+        }
+        EngineSpec::SpatialDsmc(options) => dsmc::start_spatial(plan, system, law, options, comm),
+        EngineSpec::SoftSphere(options, material) => soft_sphere::start(system, options, material),
     }
 }
 
-/// The box side is the one of `[system]` (the spheres' volume at the packing fraction),
-/// exactly for one kind of sphere (the initializer computes it the same way), to the
-/// round-off of the initializer's sum over the particles for a mixture (n ulp).
-fn box_side<const D: usize>(plan: &Plan, system: &System<D>) -> std::result::Result<(), String> {
-    let s = &plan.description.system;
-    let weight = particle_weight(plan);
-    let (expected, tolerance) = match &s.species {
-        None => {
-            let side = monodisperse_side::<D>(
-                s.particles,
-                s.diameter.unwrap_or(1.0),
-                s.packing_fraction,
-                weight,
-            );
-            (side, 0.0)
-        }
-        Some(_) => {
-            let side = mixture_side::<D>(system, s.packing_fraction, weight);
-            (side, 2.0 * f64::EPSILON * system.len() as f64 * side)
-        }
-    };
-    if (system.length - expected).abs() <= tolerance {
-        Ok(())
-    } else {
-        Err(format!(
-            "box side {} where system.packing_fraction gives {expected}",
-            system.length
-        ))
+/// The engine of the check-point `sections`, after checking that its state belongs to the
+/// run of `plan`.
+pub(crate) fn restore<const D: usize>(
+    plan: &Plan,
+    law: Box<dyn Restitution>,
+    sections: &Sections,
+    comm: &Arc<dyn Communicator>,
+) -> Result<Box<dyn Driven<D>>> {
+    match plan.engine {
+        EngineSpec::EventDriven => event_driven::restore(plan, law, sections),
+        EngineSpec::HomogeneousDsmc(_) => dsmc::restore_homogeneous(plan, law, sections, comm),
+        EngineSpec::SpatialDsmc(_) => dsmc::restore_spatial(plan, law, sections, comm),
+        EngineSpec::SoftSphere(..) => soft_sphere::restore(plan, sections),
     }
+}
+
+/// What an engine built for a system set up in code needs besides the particles.
+pub struct Setup {
+    pub law: Box<dyn Restitution>,
+    /// The packing fraction the collision rates refer to (DSMC: the spheres' volume is
+    /// that fraction of the volume they move in).
+    pub packing_fraction: f64,
+    /// The seed of the engine's random streams (DSMC).
+    pub seed: u64,
+}
+
+/// An engine of `spec` for the particles of `system` set up in code (the reproduced papers,
+/// the benches), in this process.
+pub fn build<const D: usize>(
+    spec: &EngineSpec,
+    system: System<D>,
+    setup: Setup,
+) -> Result<Box<dyn Driven<D>>> {
+    let local: Arc<dyn Communicator> = Arc::new(Local);
+    let fail = |e: gas::Error| Error::input("system", e);
+    Ok(match *spec {
+        EngineSpec::EventDriven => {
+            let engine = event_driven::engine(system, setup.law, Tuning::default());
+            Box::new(engine.map_err(fail)?)
+        }
+        EngineSpec::HomogeneousDsmc(scheme) => {
+            Box::new(dsmc::homogeneous(system, setup, scheme, &local).map_err(fail)?)
+        }
+        EngineSpec::SpatialDsmc(options) => {
+            Box::new(dsmc::spatial(system, setup, options, &local).map_err(fail)?)
+        }
+        EngineSpec::SoftSphere(options, material) => {
+            Box::new(soft_sphere::engine(system, options, material).map_err(fail)?)
+        }
+    })
+}
+
+/// Options of the event-driven engine that no run file sets (the benches compare them):
+/// the smallest cell width and the sorter of its event calendar.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Tuning {
+    /// The smallest cell width (0: the largest diameter).
+    pub cell_width: f64,
+    pub sorter: SorterKind,
+}
+
+/// The event-driven engine of `system` with `law` and `tuning`, as the type itself (the
+/// benches step it event by event).
+pub fn event_driven<const D: usize>(
+    system: System<D>,
+    law: Box<dyn Restitution>,
+    tuning: Tuning,
+) -> Result<gas::EventDriven<D>> {
+    event_driven::engine(system, law, tuning).map_err(|e| Error::input("system", e))
+}
+
+/// The soft-sphere engine of `system`, as the type itself (the bench steps it).
+pub fn soft_sphere<const D: usize>(
+    system: System<D>,
+    options: SoftSphereOptions,
+    material: ViscoelasticMaterial,
+) -> Result<gas::SoftSphere<D>> {
+    soft_sphere::engine(system, options, material).map_err(|e| Error::input("system", e))
+}
+
+/// The rod-chain MD of Giese's Eq. (2) for `chain` (`haff rods chain`).
+pub fn rod_chain(chain: rods::chain::Chain) -> rods::engine::ChainEngine {
+    rods::engine::ChainEngine::new(chain)
+}
+
+/// An error of building an engine spread over ranks: too many ranks for its planes of
+/// cells or blocks blames `run.ranks` (the launch's count), anything else `[system]`.
+fn ranks_or_system(e: gas::Error) -> Error {
+    match e {
+        gas::Error::TooManyRanks { .. } => Error::input("run.ranks", e),
+        _ => Error::input("system", e),
+    }
+}
+
+/// The error of a check-point's engine state.
+fn state_error(sections: &Sections) -> impl Fn(String) -> Error + '_ {
+    move |e| sections.error(format!("engine state: {e}"))
 }

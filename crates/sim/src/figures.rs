@@ -33,7 +33,7 @@ pub fn temperature(
     let s = &plan.description.system;
     let tau = match (&plan.law, &s.species, samples.first()) {
         (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 && plan.driving.is_none() => {
-            let (diameter, mass) = (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+            let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
             let phi = s.packing_fraction;
             let t0 = first.temperature;
             let omega0 = match s.dimension {

@@ -21,7 +21,8 @@
 
 pub mod checkpoint;
 pub mod description;
-mod engines;
+pub mod driver;
+pub mod engines;
 pub mod error;
 mod figures;
 pub mod law;
@@ -40,6 +41,7 @@ pub mod validate;
 pub mod vtk;
 
 pub use description::RunDescription;
+pub use driver::{Point, Progress, PIECE_COLLISIONS};
 pub use error::{Error, Result};
-pub use simulation::{Outcome, Particles, Point, Progress, Simulation, PIECE_COLLISIONS};
+pub use simulation::{Outcome, Particles, Simulation};
 pub use validate::{validate, Plan};

@@ -1,19 +1,97 @@
 //! Observers: what a run records at the stops of its schedule. Each observer looks at the
-//! engine through [`gas::Engine`] only, keeps its records (saved in check-points) and
-//! writes its own file. A new observable is a new observer.
+//! engine through [`gas::Engine`] only, owns its name, its records (saved in check-points
+//! under its name), their check on resume and its files. A new observable is one type
+//! implementing [`Observer`] and one line where a run's list is built
+//! ([`for_plan`]); the driver ([`crate::driver`]) runs every observer of the list alike.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::output::{number, write_csv_file};
-use crate::schedule::Target;
+use crate::schedule::{Measure, Schedule, Target};
+use crate::validate::Plan;
 use gas::observe::{pressure, sonine_a2, temperature, velocity_histogram};
 use gas::Engine;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use std::any::Any;
 use std::path::Path;
 
 /// Something recorded at the stops of the schedule.
-pub trait Observer<const D: usize> {
+pub trait Observer<const D: usize>: Send {
+    /// The name of its record in check-points, unique in a run (not `driver`, nor a key
+    /// of the run's own records such as `description` and `every`).
+    fn name(&self) -> &'static str;
+
     /// Looks at the engine at `target` (every stop; the observer picks its own).
-    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>);
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) -> Result<()>;
+
+    /// What it has recorded so far, as JSON for a check-point ([`record_of`]).
+    fn record(&self) -> Result<Box<RawValue>>;
+
+    /// Takes `record` from a check-point in place of its records, after checking it
+    /// against the first `done` targets of `schedule` (those observed) and the engine
+    /// where it stands; the error says what does not match.
+    fn resume(
+        &mut self,
+        record: &RawValue,
+        schedule: &Schedule,
+        done: usize,
+        engine: &mut dyn Engine<D>,
+    ) -> std::result::Result<(), String>;
+
+    /// Fails (naming the key that asked for it) if it cannot observe the rest of the run:
+    /// files to write during the run and no directory for them.
+    fn check_ready(&self) -> Result<()> {
+        Ok(())
+    }
+
+    /// The directory files are written to during the run, and whether this process writes
+    /// them (rank 0 of a run on several ranks; the others keep the same records).
+    fn set_output(&mut self, _dir: &Path, _writer: bool) {}
+
+    /// A few words for the progress bar after a sample (e.g. the temperature).
+    fn note(&self) -> Option<String> {
+        None
+    }
+
+    /// Writes its files into `dir` at the end of a run (or of a part of it).
+    fn write(&self, dir: &Path) -> Result<()>;
+
+    /// The observer itself, for reading its records (`Simulation::samples`).
+    fn as_any(&self) -> &dyn Any;
+}
+
+/// `records` as the JSON of a check-point.
+pub fn record_of<T: Serialize>(records: &T) -> Result<Box<RawValue>> {
+    serde_json::value::to_raw_value(records).map_err(|e| Error::Numerical {
+        key: "check-point".into(),
+        message: e.to_string(),
+    })
+}
+
+/// The records of a check-point as `T`.
+pub fn records_from<T: DeserializeOwned>(record: &RawValue) -> std::result::Result<T, String> {
+    serde_json::from_str(record.get()).map_err(|e| e.to_string())
+}
+
+/// The observers of a run as its plan asks: the time series always, the velocity
+/// histograms with `run.histogram_at`, the observers of space with `[output]`, the
+/// per-species series of a mixture. A new observer adds its line here.
+pub fn for_plan<const D: usize>(plan: &Plan) -> Vec<Box<dyn Observer<D>>> {
+    let run = &plan.description.run;
+    let mut list: Vec<Box<dyn Observer<D>>> = vec![Box::new(TimeSeries::default())];
+    if run.histogram_at.as_ref().is_some_and(|at| !at.is_empty()) {
+        let bins = run.histogram_bins.unwrap_or(HISTOGRAM_BINS);
+        list.push(Box::new(VelocityHistograms::new(bins)));
+    }
+    let space = crate::space::SpaceObserver::new(plan);
+    if space.is_on() {
+        list.push(Box::new(space));
+    }
+    if let Some(species) = crate::species::SpeciesSeries::of(plan) {
+        list.push(Box::new(species));
+    }
+    list
 }
 
 /// One row of `timeseries.csv`.
@@ -58,9 +136,13 @@ pub struct TimeSeries {
 }
 
 impl<const D: usize> Observer<D> for TimeSeries {
-    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) {
+    fn name(&self) -> &'static str {
+        "timeseries"
+    }
+
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) -> Result<()> {
         if target.sample.is_none() {
-            return;
+            return Ok(());
         }
         let counters = engine.counters();
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
@@ -94,12 +176,87 @@ impl<const D: usize> Observer<D> for TimeSeries {
             bath_temperature,
         });
         self.last_virial = (time, counters.virial);
+        Ok(())
+    }
+
+    fn record(&self) -> Result<Box<RawValue>> {
+        record_of(self)
+    }
+
+    /// One sample per sample target done, in order, each where its target put it, and the
+    /// engine at or after the last one (exactly there if the run is complete).
+    fn resume(
+        &mut self,
+        record: &RawValue,
+        schedule: &Schedule,
+        done: usize,
+        engine: &mut dyn Engine<D>,
+    ) -> std::result::Result<(), String> {
+        let records: TimeSeries = records_from(record)?;
+        let due = schedule.samples_before(done);
+        if records.samples.len() != due {
+            return Err(format!(
+                "{} samples where the schedule has taken {due}",
+                records.samples.len()
+            ));
+        }
+        records.check_samples(schedule)?;
+        let (time, events) = (engine.time(), engine.counters().events);
+        if let Some(last) = records.samples.last() {
+            let complete = done == schedule.targets.len();
+            let behind = time < last.time || events < last.events;
+            let beyond = complete && (time != last.time || events != last.events);
+            if behind || beyond {
+                return Err(
+                    "the engine does not stand at the last sample or before the next one".into(),
+                );
+            }
+        }
+        *self = records;
+        Ok(())
+    }
+
+    fn note(&self) -> Option<String> {
+        let temperature = self.samples.last()?.temperature;
+        Some(format!("T = {temperature:.4e}"))
+    }
+
+    fn write(&self, dir: &Path) -> Result<()> {
+        self.write_csv(&dir.join("timeseries.csv"))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }
 
 impl TimeSeries {
+    /// Checks the samples against the schedule: from the start onwards in time, collisions
+    /// and events, and (a schedule in time) each at the time of its target.
+    fn check_samples(&self, schedule: &Schedule) -> std::result::Result<(), String> {
+        let mut previous = (0.0, 0.0, 0);
+        let mut targets = schedule.targets.iter().filter(|t| t.sample.is_some());
+        for (i, sample) in self.samples.iter().enumerate() {
+            let now = (sample.time, sample.collisions_per_particle, sample.events);
+            let ordered = now.0 >= previous.0 && now.1 >= previous.1 && now.2 >= previous.2;
+            let on_time = match (schedule.measure, targets.next()) {
+                (Measure::Time, Some(target)) => sample.time == target.value,
+                _ => true,
+            };
+            if !(sample.time.is_finite() && ordered && on_time) {
+                return Err(format!(
+                    "sample {i} (time {}, {} collisions per particle, {} events) is not where \
+                     the schedule and the samples before it put it",
+                    sample.time, sample.collisions_per_particle, sample.events
+                ));
+            }
+            previous = now;
+        }
+        Ok(())
+    }
+
     /// Writes `timeseries.csv`.
-    pub fn write(&self, path: &Path) -> Result<()> {
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
         let baths = self.samples.iter().any(|s| s.bath_temperature.is_some());
         let mut header = TIMESERIES_HEADER.to_vec();
         if baths {
@@ -162,7 +319,7 @@ impl VelocityHistograms {
 
     /// Writes `velocity_histograms.csv`: one row per bin of every histogram, with the
     /// Maxwellian exp(-c^2) / sqrt(pi) at the bin centre.
-    pub fn write(&self, path: &Path) -> Result<()> {
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
         let header = [
             "target",
             "time",
@@ -191,9 +348,13 @@ impl VelocityHistograms {
 }
 
 impl<const D: usize> Observer<D> for VelocityHistograms {
-    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) {
+    fn name(&self) -> &'static str {
+        "histograms"
+    }
+
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) -> Result<()> {
         if !target.histogram {
-            return;
+            return Ok(());
         }
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
         self.histograms.push(Histogram {
@@ -202,5 +363,41 @@ impl<const D: usize> Observer<D> for VelocityHistograms {
             collisions_per_particle,
             bins: velocity_histogram(engine.system(), self.bins, C_MAX),
         });
+        Ok(())
+    }
+
+    fn record(&self) -> Result<Box<RawValue>> {
+        record_of(self)
+    }
+
+    /// One histogram of the run's bins at each histogram target done.
+    fn resume(
+        &mut self,
+        record: &RawValue,
+        schedule: &Schedule,
+        done: usize,
+        _engine: &mut dyn Engine<D>,
+    ) -> std::result::Result<(), String> {
+        let records: VelocityHistograms = records_from(record)?;
+        let due: Vec<f64> = schedule.targets[..done]
+            .iter()
+            .filter(|t| t.histogram)
+            .map(|t| t.value)
+            .collect();
+        let taken: Vec<f64> = records.histograms.iter().map(|h| h.target).collect();
+        let wrong_bins = records.histograms.iter().any(|h| h.bins.len() != self.bins);
+        if due != taken || records.bins != self.bins || wrong_bins {
+            return Err("the velocity histograms do not match run.histogram_at and bins".into());
+        }
+        *self = records;
+        Ok(())
+    }
+
+    fn write(&self, dir: &Path) -> Result<()> {
+        self.write_csv(&dir.join("velocity_histograms.csv"))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }

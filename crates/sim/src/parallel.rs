@@ -109,7 +109,7 @@ pub fn check_ranks(plan: &Plan, size: usize) -> Result<()> {
             ));
         }
     }
-    if size > 1 && !crate::validate::spreads_over_ranks(&plan.engine) {
+    if size > 1 && !plan.engine.abilities().ranks {
         return Err(Error::input(
             "run.engine",
             format!("launched on {size} ranks: {SPREADING}; run this engine in one process"),

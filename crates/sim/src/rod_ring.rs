@@ -88,8 +88,11 @@ struct RingRecords {
     every: Option<usize>,
 }
 
-/// The `format` of a rods chain check-point.
-const FORMAT: &str = "haff-rods-chain-checkpoint";
+/// The format of a rods chain check-point.
+const FORMAT: checkpoint::Format = checkpoint::Format {
+    name: "haff-rods-chain-checkpoint",
+    version: 4,
+};
 
 /// A chain run: the chain MD of every repeat, then ED + MC from the same start.
 pub struct RingRun {
@@ -286,7 +289,8 @@ impl RingRun {
             every: self.every,
         };
         let state = gas::Checkpoint::save(&mut current.engine);
-        checkpoint::write(dir, FORMAT, &saved, &state)
+        let file = dir.join(checkpoint::FILE_NAME);
+        checkpoint::write_to(&file, FORMAT, &saved, &checkpoint::encode_state(&state)?)
     }
 
     /// The stochastic law of an ED + MC comparison.

@@ -1,5 +1,43 @@
 //! The sampling schedule: where a run stops to observe.
 
+/// What the values of a schedule's targets measure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Measure {
+    Time,
+    /// Collisions per particle (each collision counts for two particles).
+    CollisionsPerParticle,
+}
+
+/// The stops of a run, in order, and what their values measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Schedule {
+    pub targets: Vec<Target>,
+    pub measure: Measure,
+}
+
+impl Schedule {
+    /// A sample at each of `values` (increasing), no histograms.
+    pub fn samples_at(values: &[f64], measure: Measure) -> Self {
+        Schedule {
+            targets: schedule(values, &[]),
+            measure,
+        }
+    }
+
+    /// The samples of the whole schedule.
+    pub fn samples(&self) -> usize {
+        self.targets.iter().filter(|t| t.sample.is_some()).count()
+    }
+
+    /// The samples among the first `done` targets.
+    pub fn samples_before(&self, done: usize) -> usize {
+        self.targets[..done.min(self.targets.len())]
+            .iter()
+            .filter(|t| t.sample.is_some())
+            .count()
+    }
+}
+
 /// A point where the run stops to observe: a row of the time series, a velocity histogram
 /// or both.
 #[derive(Debug, Clone, Copy, PartialEq)]

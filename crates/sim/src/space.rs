@@ -8,11 +8,14 @@
 //! the CSV files and the collections at the end.
 
 use crate::description::{OutputSection, RunDescription};
+use crate::engines::Abilities;
 use crate::error::{Error, Result};
 use crate::maps;
+use crate::observer::{record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
 use crate::plot::tick_label;
-use crate::validate::{EngineSpec, Plan};
+use crate::schedule::{Schedule, Target};
+use crate::validate::Plan;
 use crate::vtk::{write_collection, write_fields, write_particles, ParticleData};
 use gas::structure::{
     coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor, Fields,
@@ -21,6 +24,8 @@ use gas::system::System;
 use gas::theory::long_wavelength_structure_factor;
 use gas::Engine;
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use std::any::Any;
 use std::path::{Path, PathBuf};
 
 /// Largest |n|² of the mode shells by default (|n|² = 1, 2, 3).
@@ -46,12 +51,13 @@ pub const STRUCTURE_HEADER: [&str; 5] =
 /// The message of a run asking for fields or snapshots without an output directory.
 const NO_DIRECTORY: &str = "writes files during the run: give the run an output directory";
 
-/// Checks `[output]` against the engine (errors name the key and the allowed range).
-pub fn check_output(description: &RunDescription, engine: &EngineSpec) -> Result<()> {
+/// Checks `[output]` against what the engine can do (errors name the key and the allowed
+/// range).
+pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<()> {
     let Some(o) = &description.output else {
         return Ok(());
     };
-    let spatial = !matches!(engine, EngineSpec::HomogeneousDsmc(_));
+    let spatial = engine.positions;
     let asked = [
         ("output.modes", o.modes),
         ("output.structure", o.structure),
@@ -222,31 +228,26 @@ pub struct SpaceObserver {
 }
 
 impl SpaceObserver {
-    pub fn new(plan: &Plan, records: SpaceRecords) -> Self {
+    pub fn new(plan: &Plan) -> Self {
         let d = &plan.description;
         let phi = d.system.packing_fraction;
         // DSMC particles are points placed independently: their S(0) is that of an ideal
         // gas, whatever the packing fraction that sets their collision rate.
-        let structure_factor0 = match (plan.engine, d.system.dimension) {
-            (EngineSpec::SpatialDsmc(_) | EngineSpec::HomogeneousDsmc(_), _) => 1.0,
-            (_, 1) => long_wavelength_structure_factor::<1>(phi),
-            (_, 2) => long_wavelength_structure_factor::<2>(phi),
-            _ => long_wavelength_structure_factor::<3>(phi),
+        let points = plan.engine.abilities().point_particles;
+        let structure_factor0 = match (points, d.system.dimension) {
+            (true, _) => 1.0,
+            (false, 1) => long_wavelength_structure_factor::<1>(phi),
+            (false, 2) => long_wavelength_structure_factor::<2>(phi),
+            (false, _) => long_wavelength_structure_factor::<3>(phi),
         };
-        let species = match &d.system.species {
-            Some(list) => list.iter().map(|s| (s.diameter, s.mass)).collect(),
-            None => vec![(
-                d.system.diameter.unwrap_or(1.0),
-                d.system.mass.unwrap_or(1.0),
-            )],
-        };
+        let species = plan.species.iter().map(|s| (s.diameter, s.mass)).collect();
         SpaceObserver {
             output: d.output.clone().unwrap_or_default(),
             structure_factor0,
             species,
             directory: None,
             writer: true,
-            records,
+            records: SpaceRecords::default(),
         }
     }
 
@@ -327,7 +328,7 @@ impl SpaceObserver {
     }
 
     /// Observes sample number `sample` (0-based) of `engine`.
-    pub fn observe<const D: usize>(
+    fn observe_sample<const D: usize>(
         &mut self,
         sample: usize,
         engine: &mut dyn Engine<D>,
@@ -438,7 +439,7 @@ impl SpaceObserver {
     }
 
     /// Writes `modes.csv`, `structure.csv` and the `.pvd` collections into `dir`.
-    pub fn write(&self, dir: &Path) -> Result<()> {
+    fn write_files(&self, dir: &Path) -> Result<()> {
         let o = &self.output;
         if o.modes {
             let rows = self.records.modes.iter().flat_map(|s| {
@@ -475,5 +476,55 @@ impl SpaceObserver {
             write_collection(&dir.join("snapshots.pvd"), &self.records.snapshots)?;
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> Observer<D> for SpaceObserver {
+    fn name(&self) -> &'static str {
+        "space"
+    }
+
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) -> Result<()> {
+        match target.sample {
+            Some(sample) => self.observe_sample(sample, engine),
+            None => Ok(()),
+        }
+    }
+
+    fn record(&self) -> Result<Box<RawValue>> {
+        record_of(&self.records)
+    }
+
+    fn resume(
+        &mut self,
+        record: &RawValue,
+        schedule: &Schedule,
+        done: usize,
+        _engine: &mut dyn Engine<D>,
+    ) -> std::result::Result<(), String> {
+        let records: SpaceRecords = records_from(record)?;
+        let previous = std::mem::replace(&mut self.records, records);
+        if let Err(e) = self.check_records(schedule.samples_before(done)) {
+            self.records = previous;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    fn check_ready(&self) -> Result<()> {
+        self.check_directory()
+    }
+
+    fn set_output(&mut self, dir: &Path, writer: bool) {
+        self.set_directory(dir);
+        self.set_writer(writer);
+    }
+
+    fn write(&self, dir: &Path) -> Result<()> {
+        self.write_files(dir)
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }

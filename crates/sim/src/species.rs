@@ -4,13 +4,15 @@
 //! freely cooling gas started at rest, where T_i = m_i <v^2>_i / D).
 
 use crate::error::Result;
-use crate::observer::Observer;
+use crate::observer::{record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
-use crate::schedule::Target;
+use crate::schedule::{Schedule, Target};
 use crate::validate::{LawSpec, Plan};
 use gas::driving::{Driving, WhiteNoise};
 use gas::Engine;
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
+use std::any::Any;
 use std::path::Path;
 
 /// One row of `species.csv`.
@@ -62,6 +64,13 @@ impl SpeciesSeries {
         }
     }
 
+    /// The series of a run with `system.species`; None for one kind of particle not
+    /// listed as a species.
+    pub fn of(plan: &Plan) -> Option<Self> {
+        plan.description.system.species.as_ref()?;
+        Some(SpeciesSeries::new(plan.kinds()))
+    }
+
     /// The index of the species of a particle of `radius` and `mass`.
     fn kind_of(&self, radius: f64, mass: f64) -> Option<usize> {
         self.kinds
@@ -82,7 +91,7 @@ impl SpeciesSeries {
     }
 
     /// Writes `species.csv`.
-    pub fn write(&self, path: &Path) -> Result<()> {
+    pub fn write_csv(&self, path: &Path) -> Result<()> {
         let rows = self.samples.iter().map(|s| {
             vec![
                 number(s.time),
@@ -117,9 +126,42 @@ impl SpeciesSeries {
 }
 
 impl<const D: usize> Observer<D> for SpeciesSeries {
-    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) {
+    fn name(&self) -> &'static str {
+        "species"
+    }
+
+    fn record(&self) -> Result<Box<RawValue>> {
+        record_of(self)
+    }
+
+    /// The species of `system.species`, one row each per sample done.
+    fn resume(
+        &mut self,
+        record: &RawValue,
+        schedule: &Schedule,
+        done: usize,
+        _engine: &mut dyn Engine<D>,
+    ) -> std::result::Result<(), String> {
+        let records: SpeciesSeries = records_from(record)?;
+        if records.kinds != self.kinds {
+            return Err("the per-species records do not match system.species".into());
+        }
+        records.check_records(schedule.samples_before(done))?;
+        *self = records;
+        Ok(())
+    }
+
+    fn write(&self, dir: &Path) -> Result<()> {
+        self.write_csv(&dir.join("species.csv"))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn observe(&mut self, target: &Target, engine: &mut dyn Engine<D>) -> Result<()> {
         if target.sample.is_none() {
-            return;
+            return Ok(());
         }
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
         let collisions = self.collisions(engine);
@@ -170,6 +212,7 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
             });
         }
         self.last = collisions.map(|c| (time, c));
+        Ok(())
     }
 }
 
@@ -369,21 +412,10 @@ struct Kinds {
 
 impl Kinds {
     fn of(plan: &Plan) -> Self {
-        let s = &plan.description.system;
-        match &s.species {
-            Some(list) => {
-                let total: f64 = list.iter().map(|x| x.fraction).sum();
-                Kinds {
-                    masses: list.iter().map(|x| x.mass).collect(),
-                    diameters: list.iter().map(|x| x.diameter).collect(),
-                    fractions: list.iter().map(|x| x.fraction / total).collect(),
-                }
-            }
-            None => Kinds {
-                masses: vec![s.mass.unwrap_or(1.0)],
-                diameters: vec![s.diameter.unwrap_or(1.0)],
-                fractions: vec![1.0],
-            },
+        Kinds {
+            masses: plan.species.iter().map(|x| x.mass).collect(),
+            diameters: plan.species.iter().map(|x| x.diameter).collect(),
+            fractions: plan.species.iter().map(|x| x.fraction).collect(),
         }
     }
 

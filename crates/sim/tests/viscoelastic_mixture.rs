@@ -4,7 +4,7 @@
 //! collision; and the keys are checked.
 
 use gas::emd::EventDriven;
-use gas::System;
+use gas::{Engine, System};
 use restitution::{Restitution, Viscoelastic};
 use sim::{RunDescription, Simulation};
 use std::path::Path;

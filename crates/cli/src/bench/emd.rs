@@ -21,7 +21,7 @@ struct EmdTiming {
 /// medians of repeats, and the engine's memory per particle. With `--calendar both` the
 /// repeats of the two calendars alternate, so that drifts of the machine hit both alike.
 pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
-    use gas::{init, EventDriven, SorterKind};
+    use gas::{init, Engine, EventDriven, SorterKind};
     let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
     let phi = super::packing_fraction(&args.packing_fraction)?;
     let width = crate::output::parse_number(

@@ -8,7 +8,7 @@ use crate::output::{parse_count, significant, stdout, write_json, write_table, R
 use gas::structure::{
     coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor,
 };
-use gas::{init, EventDriven, System};
+use gas::{init, Engine, EventDriven, System};
 use serde::Serialize;
 use sim::space::{structure_resolution, StructureResolution, MODE_SHELLS};
 use std::io::Write;

@@ -12,8 +12,8 @@ use super::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally, T
 use super::reduce;
 use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
-use crate::driving::Driving;
-use crate::engine::{Counters, SpeciesCollisions, VelocityStatistics};
+use crate::driving::{Drive, Driving};
+use crate::engine::{Checkpoint, Counters, Engine, SpeciesCollisions, VelocityStatistics};
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
@@ -149,21 +149,20 @@ impl<const D: usize> HomogeneousDsmc<D> {
             Scheme::Blocks { block_size, .. } => {
                 let layout = Blocks::new(n, block_size);
                 if ranks > layout.count {
-                    return Err(Error::out_of_range(
-                        "ranks",
+                    return Err(Error::TooManyRanks {
                         ranks,
-                        format!("at most the {} blocks of the gas", layout.count),
-                    ));
+                        allowed: format!("at most the {} blocks of the gas", layout.count),
+                    });
                 }
                 let share = layout.share(comm.rank(), ranks);
                 Some((layout.start(share.first), layout.start(share.end)))
             }
             Scheme::Exact if ranks > 1 => {
-                return Err(Error::out_of_range(
-                    "ranks",
+                return Err(Error::TooManyRanks {
                     ranks,
-                    "1: the exact scheme is one serial process (the block scheme spreads)",
-                ))
+                    allowed: "1: the exact scheme is one serial process (the block scheme spreads)"
+                        .into(),
+                })
             }
             Scheme::Exact => None,
         };
@@ -221,18 +220,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
         })
     }
 
-    /// Continues the run of `snapshot` bit for bit with the law it used.
-    pub fn restore(snapshot: HomogeneousSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
-        Self::restore_distributed(snapshot, law, Arc::new(Local))
-    }
-
-    /// [`HomogeneousDsmc::restore`] over the ranks of `comm` (every rank reads the same
-    /// snapshot, from any number of ranks, and keeps its blocks).
+    /// The engine of `snapshot` over the ranks of `comm` (every rank reads the same
+    /// snapshot, from any number of ranks, and keeps its blocks), bit for bit the single
+    /// process's run. The snapshot is checked first ([`HomogeneousSnapshot::check`]).
     pub fn restore_distributed(
         snapshot: HomogeneousSnapshot<D>,
         law: Box<dyn Restitution>,
         comm: Arc<dyn Communicator>,
     ) -> Result<Self> {
+        snapshot.check(true)?;
         if matches!(snapshot.options, Scheme::Blocks { .. }) {
             snapshot.check_step_temperature()?;
         }
@@ -304,38 +300,6 @@ impl<const D: usize> HomogeneousDsmc<D> {
         }
     }
 
-    pub fn time(&self) -> f64 {
-        self.core.time
-    }
-
-    pub fn counters(&self) -> Counters {
-        self.core.tally
-    }
-
-    /// Drives the gas from now on (None: freely cooling). The block scheme only (its steps
-    /// are the kick interval); fails (`driving`) for the exact scheme. Not part of the
-    /// snapshot: set it again after a restore.
-    pub fn set_driving(&mut self, driving: Option<Driving>) -> Result<()> {
-        if driving.is_some() && matches!(self.core.scheme, Scheme::Exact) {
-            return Err(Error::out_of_range(
-                "driving",
-                "the exact scheme",
-                "the block scheme (its steps are the kick interval)",
-            ));
-        }
-        self.core.driving = driving;
-        Ok(())
-    }
-
-    /// The collisions of each species' particles so far (each collision counts for both).
-    pub fn species_collisions(&self) -> Option<Vec<SpeciesCollisions>> {
-        Some(by_species(
-            &self.core.species,
-            &self.core.species_collisions,
-            &self.core.tally,
-        ))
-    }
-
     /// Steps of [`Scheme::Blocks`] so far (0 for the exact scheme).
     pub fn steps(&self) -> u64 {
         self.core.steps
@@ -355,11 +319,6 @@ impl<const D: usize> HomogeneousDsmc<D> {
         self.len() == 0
     }
 
-    /// Collisions per particle so far (each collision counts for two particles).
-    pub fn collisions_per_particle(&self) -> f64 {
-        2.0 * self.core.tally.collisions as f64 / self.len() as f64
-    }
-
     /// The volume V of the gas (N sphere volumes over phi).
     pub fn volume(&self) -> f64 {
         self.core.volume
@@ -370,97 +329,6 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// for the current one.
     pub fn step_temperature(&self) -> f64 {
         self.core.temperature
-    }
-
-    /// The current state: velocities, radii and masses in the engine's current order (the
-    /// block scheme permutes particles every step), positions all zero, `length` the side of
-    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`. On several ranks,
-    /// collective: the blocks of all ranks in order.
-    pub fn system(&mut self) -> &System<D> {
-        let core = &mut self.core;
-        let s = &mut self.system;
-        s.length = core.volume.powf(1.0 / D as f64);
-        s.velocities.clear();
-        s.radii.clear();
-        s.masses.clear();
-        match &self.store {
-            Store::Uniform(now, _) => fill(s, &gathered(now, core), &core.species),
-            Store::Mixed(now, _) => fill(s, &gathered(now, core), &core.species),
-        }
-        s.positions.clear();
-        s.positions.resize(s.velocities.len(), [0.0; D]);
-        &self.system
-    }
-
-    /// Every rank's particles, blocks and communication so far (collective); None on one
-    /// rank.
-    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
-        let core = &self.core;
-        let blocks = match core.scheme {
-            Scheme::Blocks { block_size, .. } => {
-                let share =
-                    Blocks::new(core.total, block_size).share(core.comm.rank(), core.comm.size());
-                share.end - share.first
-            }
-            Scheme::Exact => 0,
-        };
-        let particles = match &self.store {
-            Store::Uniform(now, _) => now.len(),
-            Store::Mixed(now, _) => now.len(),
-        };
-        core.traffic
-            .reports(core.comm.as_ref(), particles, blocks as u64)
-    }
-
-    /// The temperature and Sonine a2 of all particles, and the volume, from exact sums over
-    /// the particles of all ranks (collective; the same bits on any number of ranks).
-    pub fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
-        let core = &mut self.core;
-        let (species, total, volume) = (&core.species, core.total, core.volume);
-        let (comm, traffic) = (core.comm.as_ref(), &mut core.traffic);
-        Some(match &self.store {
-            Store::Uniform(now, _) => {
-                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
-            }
-            Store::Mixed(now, _) => {
-                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
-            }
-        })
-    }
-
-    /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
-    /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
-    /// and the species tables.
-    pub fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let records = match &self.store {
-            Store::Uniform(a, b) => (a.capacity() + b.capacity()) * size_of::<Vector<D>>(),
-            Store::Mixed(a, b) => (a.capacity() + b.capacity()) * size_of::<Tagged<D>>(),
-        };
-        let s = &self.system;
-        let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
-        records + self.core.class.capacity() + output + self.core.species.memory_bytes()
-    }
-
-    /// Runs until `collisions` more collisions have happened. The exact scheme stops at
-    /// the collision; the block scheme at the end of a step, its last steps shortened to the
-    /// expected remaining count (overshoot of order its square root). Stops early if
-    /// nothing can collide (all particles at rest relative to each other).
-    pub fn run_collisions(&mut self, collisions: u64) {
-        let target = self.core.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target, u64::MAX);
-    }
-
-    /// Runs until the time reaches `t` (no effect if it already has).
-    pub fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX, u64::MAX);
-    }
-
-    /// Runs toward `end` and `collisions`, pausing where the tally reaches `pause` (the
-    /// blocks scheme at the end of a step; see [`crate::Engine::run_paused`]).
-    pub fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
-        self.run(end, collisions, pause);
     }
 
     fn run(&mut self, end: f64, target: u64, pause: u64) {
@@ -631,5 +499,157 @@ fn run_exact<const D: usize, R: Record<D>>(
             core.speed_bound = kernel::speed_bound(records, &core.reference);
             core.classes = None;
         }
+    }
+}
+
+impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
+    /// Runs until the time reaches `t` (no effect if it already has).
+    fn run_until(&mut self, t: f64) {
+        self.run(t, u64::MAX, u64::MAX);
+    }
+
+    /// Runs until `collisions` more collisions have happened. The exact scheme stops at
+    /// the collision; the block scheme at the end of a step, its last steps shortened to the
+    /// expected remaining count (overshoot of order its square root). Stops early if
+    /// nothing can collide (all particles at rest relative to each other).
+    fn run_collisions(&mut self, collisions: u64) {
+        let target = self.core.tally.collisions.saturating_add(collisions);
+        self.run(f64::INFINITY, target, u64::MAX);
+    }
+
+    /// Runs toward `end` and `collisions`, pausing where the tally reaches `pause` (the
+    /// blocks scheme at the end of a step; see [`crate::Engine::run_paused`]).
+    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        self.run(end, collisions, pause);
+    }
+
+    fn time(&self) -> f64 {
+        self.core.time
+    }
+
+    fn counters(&self) -> Counters {
+        self.core.tally
+    }
+
+    /// The current state: velocities, radii and masses in the engine's current order (the
+    /// block scheme permutes particles every step), positions all zero, `length` the side of
+    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`. On several ranks,
+    /// collective: the blocks of all ranks in order.
+    fn system(&mut self) -> &System<D> {
+        let core = &mut self.core;
+        let s = &mut self.system;
+        s.length = core.volume.powf(1.0 / D as f64);
+        s.velocities.clear();
+        s.radii.clear();
+        s.masses.clear();
+        match &self.store {
+            Store::Uniform(now, _) => fill(s, &gathered(now, core), &core.species),
+            Store::Mixed(now, _) => fill(s, &gathered(now, core), &core.species),
+        }
+        s.positions.clear();
+        s.positions.resize(s.velocities.len(), [0.0; D]);
+        &self.system
+    }
+
+    /// The collisions of each species' particles so far (each collision counts for both).
+    fn species_collisions(&self) -> Option<Vec<SpeciesCollisions>> {
+        Some(by_species(
+            &self.core.species,
+            &self.core.species_collisions,
+            &self.core.tally,
+        ))
+    }
+
+    /// Every rank's particles, blocks and communication so far (collective); None on one
+    /// rank.
+    fn rank_reports(&self) -> Option<Vec<RankReport>> {
+        let core = &self.core;
+        let blocks = match core.scheme {
+            Scheme::Blocks { block_size, .. } => {
+                let share =
+                    Blocks::new(core.total, block_size).share(core.comm.rank(), core.comm.size());
+                share.end - share.first
+            }
+            Scheme::Exact => 0,
+        };
+        let particles = match &self.store {
+            Store::Uniform(now, _) => now.len(),
+            Store::Mixed(now, _) => now.len(),
+        };
+        core.traffic
+            .reports(core.comm.as_ref(), particles, blocks as u64)
+    }
+
+    /// The temperature and Sonine a2 of all particles, and the volume, from exact sums over
+    /// the particles of all ranks (collective; the same bits on any number of ranks).
+    fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
+        let core = &mut self.core;
+        let (species, total, volume) = (&core.species, core.total, core.volume);
+        let (comm, traffic) = (core.comm.as_ref(), &mut core.traffic);
+        Some(match &self.store {
+            Store::Uniform(now, _) => {
+                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+            }
+            Store::Mixed(now, _) => {
+                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+            }
+        })
+    }
+
+    /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
+    /// scheme (a byte per particle), the output of [`HomogeneousDsmc::system`] once taken,
+    /// and the species tables.
+    fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let records = match &self.store {
+            Store::Uniform(a, b) => (a.capacity() + b.capacity()) * size_of::<Vector<D>>(),
+            Store::Mixed(a, b) => (a.capacity() + b.capacity()) * size_of::<Tagged<D>>(),
+        };
+        let s = &self.system;
+        let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
+        records + self.core.class.capacity() + output + self.core.species.memory_bytes()
+    }
+
+    fn particles(&self) -> usize {
+        self.len()
+    }
+
+    /// Drives the gas from now on (None: freely cooling) at every step of the block scheme;
+    /// fails (`driving`) for the exact scheme and (`interval`) for an interval: the steps
+    /// are the kick interval. Not part of the snapshot: set it again after a restore.
+    fn set_driving(&mut self, drive: Option<Drive>) -> Result<()> {
+        if let Some(interval) = drive.and_then(|d| d.interval) {
+            return Err(Error::out_of_range(
+                "interval",
+                interval,
+                "none: the DSMC drives at every step",
+            ));
+        }
+        if drive.is_some() && matches!(self.core.scheme, Scheme::Exact) {
+            return Err(Error::out_of_range(
+                "driving",
+                "the exact scheme",
+                "the block scheme (its steps are the kick interval)",
+            ));
+        }
+        self.core.driving = drive.map(|d| d.driving);
+        Ok(())
+    }
+}
+
+impl<const D: usize> Checkpoint<D> for HomogeneousDsmc<D> {
+    type State = HomogeneousSnapshot<D>;
+    /// The collision law.
+    type Needs = Box<dyn Restitution>;
+
+    fn save(&mut self) -> HomogeneousSnapshot<D> {
+        self.snapshot()
+    }
+
+    /// Continues the run of `state` bit for bit with the law it used, in this process
+    /// ([`HomogeneousDsmc::restore_distributed`] over ranks).
+    fn restore(state: HomogeneousSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        Self::restore_distributed(state, law, Arc::new(Local))
     }
 }

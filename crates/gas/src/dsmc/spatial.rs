@@ -6,7 +6,7 @@ use super::domain::{Slabs, Traffic};
 use super::kernel::{self, scaled, Collider, Moments, Simulator, SpeciesTally};
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
-use crate::engine::Counters;
+use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{require_positive, Error, Result};
 use crate::parallel::{Communicator, Local};
 use crate::rng::{Purpose, Stream};
@@ -187,15 +187,14 @@ impl<const D: usize> SpatialDsmc<D> {
         let cells_per_side = cells_per_side as u64;
         let ranks = comm.size();
         if ranks as u64 > cells_per_side {
-            return Err(Error::out_of_range(
-                "ranks",
+            return Err(Error::TooManyRanks {
                 ranks,
-                format!(
+                allowed: format!(
                     "at most {cells_per_side}, the planes of collision cells along the last \
                      axis (cell width {}): each rank owns whole planes",
                     length / cells_per_side as f64
                 ),
-            ));
+            });
         }
         let mut simulators: Vec<Simulator<D>> = system
             .positions
@@ -258,18 +257,15 @@ impl<const D: usize> SpatialDsmc<D> {
         })
     }
 
-    /// Continues the run of `snapshot` bit for bit with the law it used.
-    pub fn restore(snapshot: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
-        Self::restore_distributed(snapshot, law, Arc::new(Local))
-    }
-
-    /// [`SpatialDsmc::restore`] over the ranks of `comm` (every rank reads the same
-    /// snapshot; it need not come from as many ranks): the single process's run, bit for bit.
+    /// The engine of `snapshot` over the ranks of `comm` (every rank reads the same
+    /// snapshot; it need not come from as many ranks): the single process's run, bit for
+    /// bit. The snapshot is checked first ([`SpatialSnapshot::check`]).
     pub fn restore_distributed(
         snapshot: SpatialSnapshot<D>,
         law: Box<dyn Restitution>,
         comm: Arc<dyn Communicator>,
     ) -> Result<Self> {
+        snapshot.check(true)?;
         snapshot.check_step_temperature()?;
         let mut engine = Self::distributed(
             snapshot.system,
@@ -314,23 +310,6 @@ impl<const D: usize> SpatialDsmc<D> {
         }
     }
 
-    pub fn time(&self) -> f64 {
-        self.time
-    }
-
-    pub fn counters(&self) -> Counters {
-        self.tally
-    }
-
-    /// The collisions of each species' particles so far (each collision counts for both).
-    pub fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
-        Some(super::species::by_species(
-            &self.species,
-            &self.species_collisions,
-            &self.tally,
-        ))
-    }
-
     pub fn steps(&self) -> u64 {
         self.steps
     }
@@ -349,16 +328,6 @@ impl<const D: usize> SpatialDsmc<D> {
         self.comm.size()
     }
 
-    /// Collisions per particle so far (each collision counts for two particles).
-    pub fn collisions_per_particle(&self) -> f64 {
-        2.0 * self.tally.collisions as f64 / self.len() as f64
-    }
-
-    /// Physical particles per simulated particle, F = phi V_box / (sum of sphere volumes).
-    pub fn weight(&self) -> f64 {
-        self.weight
-    }
-
     /// Width of the collision cells.
     pub fn cell_width(&self) -> f64 {
         self.length / self.cells_per_side as f64
@@ -372,55 +341,6 @@ impl<const D: usize> SpatialDsmc<D> {
     /// The temperature at the end of the last step (sets the next step).
     pub fn step_temperature(&self) -> f64 {
         self.temperature
-    }
-
-    /// The current state in the engine's current order (sorted by cell every step); on
-    /// several ranks, gathered from all of them in rank order (the same order; collective).
-    pub fn system(&mut self) -> &System<D> {
-        let gathered = (self.comm.size() > 1).then(|| self.gathered());
-        let s = &mut self.system;
-        s.positions.clear();
-        s.velocities.clear();
-        s.radii.clear();
-        s.masses.clear();
-        for p in gathered.as_ref().unwrap_or(&self.simulators) {
-            s.positions.push(p.position);
-            s.velocities.push(p.velocity);
-            s.radii.push(self.species.radii[p.species as usize]);
-            s.masses.push(self.species.masses[p.species as usize]);
-        }
-        &self.system
-    }
-
-    /// Bytes held between steps: records, the sort's scratch (4 per particle and per
-    /// cell), the output of [`SpatialDsmc::system`] once taken, the species tables. A step
-    /// also allocates one entry per occupied cell, freed at its end.
-    pub fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let s = &self.system;
-        self.simulators.capacity() * size_of::<Simulator<D>>()
-            + self.sorter.memory_bytes()
-            + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
-            + self.species.memory_bytes()
-    }
-
-    /// Runs until `collisions` more collisions have happened, at the end of a step (the last
-    /// steps shortened to the expected remaining count).
-    pub fn run_collisions(&mut self, collisions: u64) {
-        let target = self.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target, u64::MAX);
-    }
-
-    /// Runs until the time reaches `t` (the last step shortened to end there).
-    pub fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX, u64::MAX);
-    }
-
-    /// Runs toward `end` and `collisions`, pausing at the end of the step where the tally
-    /// reaches `pause` (see [`crate::Engine::run_paused`]).
-    pub fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
-        self.run(end, collisions, pause);
     }
 
     /// Steps toward `end` and `target` (which choose the steps), pausing at `pause`.
@@ -548,4 +468,105 @@ fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mu
     }
     parts.push(data);
     parts
+}
+
+impl<const D: usize> Engine<D> for SpatialDsmc<D> {
+    /// Runs until the time reaches `t` (the last step shortened to end there).
+    fn run_until(&mut self, t: f64) {
+        self.run(t, u64::MAX, u64::MAX);
+    }
+
+    /// Runs until `collisions` more collisions have happened, at the end of a step (the last
+    /// steps shortened to the expected remaining count).
+    fn run_collisions(&mut self, collisions: u64) {
+        let target = self.tally.collisions.saturating_add(collisions);
+        self.run(f64::INFINITY, target, u64::MAX);
+    }
+
+    /// Runs toward `end` and `collisions`, pausing at the end of the step where the tally
+    /// reaches `pause` (see [`crate::Engine::run_paused`]).
+    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        self.run(end, collisions, pause);
+    }
+
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn counters(&self) -> Counters {
+        self.tally
+    }
+
+    /// Physical particles per simulated particle, F = phi V_box / (sum of sphere volumes).
+    fn weight(&self) -> f64 {
+        self.weight
+    }
+
+    /// The current state in the engine's current order (sorted by cell every step); on
+    /// several ranks, gathered from all of them in rank order (the same order; collective).
+    fn system(&mut self) -> &System<D> {
+        let gathered = (self.comm.size() > 1).then(|| self.gathered());
+        let s = &mut self.system;
+        s.positions.clear();
+        s.velocities.clear();
+        s.radii.clear();
+        s.masses.clear();
+        for p in gathered.as_ref().unwrap_or(&self.simulators) {
+            s.positions.push(p.position);
+            s.velocities.push(p.velocity);
+            s.radii.push(self.species.radii[p.species as usize]);
+            s.masses.push(self.species.masses[p.species as usize]);
+        }
+        &self.system
+    }
+
+    /// The collisions of each species' particles so far (each collision counts for both).
+    fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
+        Some(super::species::by_species(
+            &self.species,
+            &self.species_collisions,
+            &self.tally,
+        ))
+    }
+
+    /// Bytes held between steps: records, the sort's scratch (4 per particle and per
+    /// cell), the output of [`SpatialDsmc::system`] once taken, the species tables. A step
+    /// also allocates one entry per occupied cell, freed at its end.
+    fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let s = &self.system;
+        self.simulators.capacity() * size_of::<Simulator<D>>()
+            + self.sorter.memory_bytes()
+            + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
+            + self.species.memory_bytes()
+    }
+
+    fn particles(&self) -> usize {
+        self.len()
+    }
+
+    fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
+        self.reports_of_ranks()
+    }
+
+    fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
+        self.exact_velocity_statistics()
+    }
+}
+
+impl<const D: usize> Checkpoint<D> for SpatialDsmc<D> {
+    type State = SpatialSnapshot<D>;
+    /// The collision law.
+    type Needs = Box<dyn Restitution>;
+
+    fn save(&mut self) -> SpatialSnapshot<D> {
+        self.snapshot()
+    }
+
+    /// Continues the run of `state` bit for bit with the law it used, in this process
+    /// ([`SpatialDsmc::restore_distributed`] over ranks).
+    fn restore(state: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
+        Self::restore_distributed(state, law, Arc::new(Local))
+    }
 }

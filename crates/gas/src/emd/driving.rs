@@ -8,7 +8,7 @@
 //! depend on where it was paused or check-pointed.
 
 use super::EventDriven;
-use crate::driving::Driving;
+use crate::driving::{Drive, Driving};
 use crate::error::{Error, Result};
 use crate::rng::{Purpose, Stream};
 use crate::system::Vector;
@@ -30,23 +30,31 @@ impl Kicks {
 }
 
 impl<const D: usize> EventDriven<D> {
-    /// Drives the gas from now on with `driving` applied at the times k `interval` (the
-    /// first after the current time; None: freely cooling), white-noise kicks drawn from
-    /// `seed`. Fails (`interval`) unless 0 < interval < inf. Not part of the snapshot:
-    /// set it again after a restore (the applications so far follow from the time).
-    pub fn set_driving(
-        &mut self,
-        driving: Option<Driving>,
-        interval: f64,
-        seed: u64,
-    ) -> Result<()> {
-        let Some(driving) = driving else {
+    /// Drives the gas from now on with `drive.driving` applied at the times k
+    /// `drive.interval` (the first after the current time; None: freely cooling),
+    /// white-noise kicks drawn from `drive.seed`. Fails (`interval`) unless
+    /// 0 < interval < inf. Not part of the snapshot: set it again after a restore (the
+    /// applications so far follow from the time). [`crate::Engine::set_driving`].
+    pub(super) fn drive(&mut self, drive: Option<Drive>) -> Result<()> {
+        let Some(Drive {
+            driving,
+            interval,
+            seed,
+        }) = drive
+        else {
             self.kicks = None;
             return Ok(());
         };
-        if !(interval.is_finite() && interval > 0.0) {
-            return Err(Error::out_of_range("interval", interval, "finite and > 0"));
-        }
+        let interval = match interval {
+            Some(dt) if dt.is_finite() && dt > 0.0 => dt,
+            other => {
+                return Err(Error::out_of_range(
+                    "interval",
+                    other.map_or("none".to_string(), |dt| dt.to_string()),
+                    "finite and > 0 (the event-driven engine drives at discrete times)",
+                ))
+            }
+        };
         // The first k with k dt > now (an application at exactly now has been made).
         let mut next = (self.time / interval).floor().max(0.0) as u64;
         while next as f64 * interval <= self.time {

@@ -117,11 +117,6 @@ impl<const D: usize> EventDriven<D> {
         Ok(())
     }
 
-    /// Bath temperature of each particle, if the law is stochastic.
-    pub fn bath_temperatures(&self) -> Option<&[f64]> {
-        self.baths.as_ref().map(|b| b.temperatures.as_slice())
-    }
-
     /// The baths and the position of their random stream (for check-points).
     pub fn bath_state(&self) -> Option<BathState> {
         self.baths.as_ref().map(|b| BathState {

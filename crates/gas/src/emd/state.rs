@@ -1,12 +1,13 @@
 //! The complete state of the event-driven engine, and the engine interface.
 
-use super::{BathState, EventDriven};
+use super::{BathState, EventDriven, Particle};
 use crate::cells::NONE;
+use crate::driving::Drive;
 use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{Error, Result};
 use crate::serde_util;
 use crate::sorter::SorterKind;
-use crate::system::System;
+use crate::system::{wrap, System, Vector};
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 
@@ -132,40 +133,99 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
     fn collision_counts(&self) -> Option<Vec<u32>> {
         Some(self.particles.iter().map(|p| p.count).collect())
     }
+
+    /// Runs until the time reaches `t` (events at later times stay pending), or stops at
+    /// inelastic collapse (see [`Engine::collapsed`]).
     fn run_until(&mut self, t: f64) {
-        EventDriven::run_until(self, t)
+        while let Some(next) = self.upcoming() {
+            if next > t || !self.step() {
+                break;
+            }
+        }
+        if self.collapsed.is_none() {
+            self.time = self.time.max(t);
+        }
     }
+
+    /// Runs until `collisions` more collisions have happened (or nothing moves).
     fn run_collisions(&mut self, collisions: u64) {
-        EventDriven::run_collisions(self, collisions)
+        let target = self.tally.collisions + collisions;
+        while self.tally.collisions < target && self.step() {}
     }
+
     fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
         EventDriven::run_bounded(self, end, collisions.min(pause))
     }
+
     fn time(&self) -> f64 {
         self.time
     }
+
     fn counters(&self) -> Counters {
         self.tally
     }
+
     fn particles(&self) -> usize {
         self.particles.len()
     }
+
+    /// The state with every position at the current time (wrapped into the box).
     fn system(&mut self) -> &System<D> {
-        EventDriven::system(self)
+        let (time, length) = (self.time, self.system.length);
+        let s = &mut self.system;
+        s.positions.clear();
+        s.velocities.clear();
+        s.radii.clear();
+        s.masses.clear();
+        for p in &self.particles {
+            let x = p.position_at(time);
+            s.positions
+                .push(std::array::from_fn(|k| wrap(x[k], length)));
+            s.velocities.push(p.velocity);
+            s.radii.push(p.radius);
+            s.masses.push(p.mass);
+        }
+        &self.system
     }
+
+    /// Bath temperature of each particle, if the law is stochastic.
     fn bath_temperatures(&self) -> Option<&[f64]> {
-        EventDriven::bath_temperatures(self)
+        self.baths.as_ref().map(|b| b.temperatures.as_slice())
     }
+
+    /// The time of inelastic collapse, if the engine stopped there: more than
+    /// [`super::COLLAPSE_COLLISIONS_PER_PARTICLE`] collisions per particle without time
+    /// advancing (a finite-time singularity of inelastic hard spheres; the TC model
+    /// prevents it).
     fn collapsed(&self) -> Option<f64> {
         self.collapsed
     }
+
+    /// Drives the gas at the times k `interval` (required; the first after the current
+    /// time), white-noise kicks drawn from `seed` (see [`super::driving`]).
+    fn set_driving(&mut self, drive: Option<Drive>) -> Result<()> {
+        self.drive(drive)
+    }
+
+    /// Bytes held by the engine's per-particle and per-cell arrays (state, predictions,
+    /// sorter, cell lists, and the snapshot of [`Engine::system`] once taken).
     fn memory_bytes(&self) -> usize {
-        EventDriven::memory_bytes(self)
+        use std::mem::size_of;
+        let s = &self.system;
+        let snapshot = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
+            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();
+        let state = self.particles.capacity() * size_of::<Particle<D>>()
+            + self.heads.capacity() * size_of::<u32>()
+            + self.occupied.capacity() * size_of::<u64>()
+            + self.tc.as_ref().map_or(0, |tc| tc.last.capacity() * 8);
+        snapshot + state + self.queue.memory_bytes()
     }
 }
 
 impl<const D: usize> Checkpoint<D> for EventDriven<D> {
     type State = EventDrivenState<D>;
+    /// The collision law.
+    type Needs = Box<dyn Restitution>;
 
     /// Synchronizes the engine (see [`EventDriven::synchronize`]), then takes its state.
     fn save(&mut self) -> EventDrivenState<D> {

@@ -2,16 +2,16 @@
 //! blocks at every step, the event-driven engine at discrete times).
 
 use crate::description::{DrivingKind, RunDescription};
+use crate::engines::{Abilities, DrivingTimes};
 use crate::error::{Error, Result};
-use crate::validate::{EngineSpec, LawSpec};
+use crate::validate::LawSpec;
 use gas::driving::{Driving, Thermostat, WhiteNoise};
-use gas::dsmc::Scheme;
 
 /// The driving of the run and the event-driven interval between its applications, if
 /// given (the default follows from the plan: [`crate::species::default_driving_interval`]).
 pub(crate) fn driving_spec(
     description: &RunDescription,
-    engine: &EngineSpec,
+    engine: &Abilities,
     law: &LawSpec,
 ) -> Result<(Option<Driving>, Option<f64>)> {
     let Some(d) = &description.driving else {
@@ -55,8 +55,8 @@ pub(crate) fn driving_spec(
              other laws",
         ));
     }
-    match engine {
-        EngineSpec::HomogeneousDsmc(Scheme::Blocks { .. }) => {
+    match engine.driving {
+        DrivingTimes::AtSteps => {
             if let Some(dt) = d.interval {
                 return Err(Error::out_of_range(
                     "driving.interval",
@@ -67,7 +67,7 @@ pub(crate) fn driving_spec(
             }
             Ok((Some(driving), None))
         }
-        EngineSpec::EventDriven => {
+        DrivingTimes::AtIntervals => {
             if let Some(dt) = d.interval {
                 if !(dt.is_finite() && dt > 0.0) {
                     return Err(Error::out_of_range(
@@ -79,7 +79,7 @@ pub(crate) fn driving_spec(
             }
             Ok((Some(driving), d.interval))
         }
-        _ => Err(Error::input(
+        DrivingTimes::Never => Err(Error::input(
             "driving",
             "driving runs in run.engine = \"event-driven\" (at discrete times) or \"dsmc\" with \
              dsmc_scheme = \"blocks\" (at its steps)",

@@ -2,6 +2,7 @@
 //! (`material = "ice"`, SI, as `haff cor eps --material` takes it) or `young`, `poisson`
 //! and `dissipative_constant` in the units of the system; beta per pair from it.
 
+use super::Species;
 use crate::description::RunDescription;
 use crate::error::{Error, Result};
 use gas::soft::contact::ViscoelasticMaterial;
@@ -112,13 +113,12 @@ pub(crate) fn material(description: &RunDescription) -> Result<Option<Viscoelast
 
 /// beta of the viscoelastic law of one kind of spheres (a mixture with a material takes
 /// [`species_betas`]): `collision.beta`, or from the material and the spheres, beta = (3/2) A (rho / m_eff)^(2/5) (Eq. (8) of Müller & Pöschel 2011).
-pub(crate) fn viscoelastic_beta(description: &RunDescription) -> Result<f64> {
+pub(crate) fn viscoelastic_beta(description: &RunDescription, kind: &Species) -> Result<f64> {
     let c = &description.collision;
     match (c.beta, material(description)?) {
         (Some(beta), None) => Ok(beta),
         (None, Some(m)) => {
-            let s = &description.system;
-            let (r, mass) = (0.5 * s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+            let (r, mass) = (kind.radius(), kind.mass);
             Ok(m.beta(r, r, mass, mass))
         }
         (Some(_), Some(_)) => Err(Error::input(

@@ -14,7 +14,7 @@ use std::time::Instant;
 impl<const D: usize> SpatialDsmc<D> {
     /// Every rank's particles, cells and communication so far (collective: every rank
     /// calls it); None on one rank.
-    pub fn rank_reports(&self) -> Option<Vec<RankReport>> {
+    pub(super) fn reports_of_ranks(&self) -> Option<Vec<RankReport>> {
         let (_, cells) = self.slabs.keys(self.comm.rank());
         self.traffic
             .reports(self.comm.as_ref(), self.simulators.len(), cells)

@@ -35,7 +35,7 @@ impl<const D: usize> SpatialDsmc<D> {
 
     /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
     /// over the particles of all ranks (collective; [`reduce::velocity_statistics`]).
-    pub fn velocity_statistics(&mut self) -> Option<VelocityStatistics> {
+    pub(super) fn exact_velocity_statistics(&mut self) -> Option<VelocityStatistics> {
         Some(reduce::velocity_statistics(
             &self.simulators,
             &self.species,

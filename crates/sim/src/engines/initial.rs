@@ -1,0 +1,179 @@
+//! The initial particles of `[system]` and the checks every engine state of a run must pass:
+//! its particles are those of `[system]`, in its box, and a cooling gas has not gained
+//! energy.
+
+use crate::description::species;
+use crate::error::{Error, Result};
+use crate::validate::{LawSpec, Plan, Species};
+use gas::System;
+
+/// The initial particles of the `[system]` section: a mixture placed at the packing
+/// fraction (in the wider box of weighted particles), spheres of one kind on a melted
+/// lattice, or (point particles) points placed independently.
+pub(super) fn system<const D: usize>(plan: &Plan) -> Result<System<D>> {
+    let s = &plan.description.system;
+    let phi = s.packing_fraction;
+    let weight = plan.particle_weight;
+    let Species { diameter, mass, .. } = plan.species[0];
+    match &s.species {
+        Some(entries) => {
+            gas::init::polydisperse::<D>(s.particles, phi, &species(entries), s.temperature, s.seed)
+                .map(|system| widened(system, phi, weight))
+        }
+        // Points need not be placed without overlaps.
+        None if plan.engine.abilities().point_particles => gas::dsmc::point_gas::<D>(
+            s.particles,
+            monodisperse_side::<D>(s.particles, diameter, phi, weight),
+            diameter,
+            mass,
+            s.temperature,
+            s.seed,
+        ),
+        None => {
+            gas::init::monodisperse::<D>(s.particles, phi, diameter, mass, s.temperature, s.seed)
+        }
+    }
+    .map_err(|e| Error::input("system", e))
+}
+
+/// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical
+/// ones at packing fraction `phi` (exactly the initializer's side for weight 1).
+fn monodisperse_side<const D: usize>(n: usize, diameter: f64, phi: f64, weight: f64) -> f64 {
+    if weight == 1.0 {
+        gas::system::monodisperse_box_side::<D>(n, diameter, phi)
+    } else {
+        let volume = n as f64 * weight * gas::system::ball_volume::<D>(0.5 * diameter);
+        gas::system::box_side::<D>(volume, phi)
+    }
+}
+
+/// `system` (a mixture placed at `phi`) in the box of its spheres times `weight` at `phi`,
+/// positions scaled with the box: DSMC particles are points, so the placement only has to
+/// be uniform.
+fn widened<const D: usize>(mut system: System<D>, phi: f64, weight: f64) -> System<D> {
+    if weight == 1.0 {
+        return system;
+    }
+    let length = mixture_side::<D>(&system, phi, weight);
+    let scale = length / system.length;
+    for x in &mut system.positions {
+        for c in x.iter_mut() {
+            *c = gas::system::wrap(*c * scale, length);
+        }
+    }
+    system.length = length;
+    system
+}
+
+/// The box side of the mixture `system` standing for `weight` times its spheres at `phi`.
+fn mixture_side<const D: usize>(system: &System<D>, phi: f64, weight: f64) -> f64 {
+    let volume: f64 = system
+        .radii
+        .iter()
+        .map(|&r| gas::system::ball_volume::<D>(r))
+        .sum();
+    gas::system::box_side::<D>(volume * weight, phi)
+}
+
+/// The particles of `system` are those of `[system]`: their number, and the radii and
+/// masses of each species in its count.
+pub(super) fn particles<const D: usize>(
+    plan: &Plan,
+    system: &System<D>,
+) -> std::result::Result<(), String> {
+    let s = &plan.description.system;
+    if system.len() != s.particles {
+        return Err(format!(
+            "{} particles where system.particles = {}",
+            system.len(),
+            s.particles
+        ));
+    }
+    for kind in &plan.species {
+        let (radius, mass) = (kind.radius(), kind.mass);
+        let found = system
+            .radii
+            .iter()
+            .zip(&system.masses)
+            .filter(|&(&r, &m)| r == radius && m == mass)
+            .count();
+        if found != kind.count {
+            return Err(format!(
+                "{found} particles of radius {radius} and mass {mass} where [system] has {}",
+                kind.count
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The box side is the one of `[system]` (the spheres' volume at the packing fraction),
+/// exactly for one kind of sphere (the initializer computes it the same way), to the
+/// round-off of the initializer's sum over the particles for a mixture (n ulp).
+pub(super) fn box_side<const D: usize>(
+    plan: &Plan,
+    system: &System<D>,
+) -> std::result::Result<(), String> {
+    let s = &plan.description.system;
+    let weight = plan.particle_weight;
+    let (expected, tolerance) = match &s.species {
+        None => {
+            let diameter = plan.species[0].diameter;
+            let side = monodisperse_side::<D>(s.particles, diameter, s.packing_fraction, weight);
+            (side, 0.0)
+        }
+        Some(_) => {
+            let side = mixture_side::<D>(system, s.packing_fraction, weight);
+            (side, 2.0 * f64::EPSILON * system.len() as f64 * side)
+        }
+    };
+    if (system.length - expected).abs() <= tolerance {
+        Ok(())
+    } else {
+        Err(format!(
+            "box side {} where system.packing_fraction gives {expected}",
+            system.length
+        ))
+    }
+}
+
+/// A cooling gas never gains energy: the kinetic energy of the particles (plus, for a
+/// stochastic law, the energy `modes * T_i` held by each particle's bath, which the
+/// collisions exchange with the translation, `restitution::collide_with_baths`) is at most
+/// the initial one, `N (D/2) T0 (+ N modes T_bath)`: the initializer sets the temperature
+/// exactly (to round-off). The tolerance 1e-6 is far above the round-off of the collision
+/// updates (~1e-16 relative per collision, a random walk) and far below what an edit that
+/// would blow up the run (a velocity or bath temperature of 1e100) adds.
+pub(super) fn no_energy_gained<const D: usize>(
+    plan: &Plan,
+    system: &System<D>,
+    bath_temperatures: Option<&[f64]>,
+) -> std::result::Result<(), String> {
+    if plan.driving.is_some() {
+        // A driven gas gains energy.
+        return Ok(());
+    }
+    let s = &plan.description.system;
+    let n = system.len() as f64;
+    let kinetic = gas::observe::kinetic_energy(system);
+    let mut initial = n * 0.5 * D as f64 * s.temperature;
+    let mut now = kinetic;
+    if let LawSpec::Stochastic {
+        modes,
+        bath_temperature,
+        ..
+    } = plan.law
+    {
+        let modes = f64::from(modes);
+        initial += n * modes * bath_temperature;
+        now += modes * bath_temperatures.unwrap_or(&[]).iter().sum::<f64>();
+    }
+    if now.is_finite() && now <= initial * (1.0 + 1e-6) {
+        Ok(())
+    } else {
+        Err(format!(
+            "energy {now:e} above the initial energy {initial:e} of [system] and [collision]; \
+             a cooling gas does not gain energy"
+        ))
+    }
+}

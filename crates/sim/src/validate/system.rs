@@ -1,0 +1,103 @@
+//! `[system]`: the dimension, the particles and their species, the packing fraction and the
+//! initial temperature, in range; the species with every default resolved.
+
+use super::{in_scale, Species, MIN_PACKING};
+use crate::description::{species, RunDescription};
+use crate::error::{positive, Error, Result};
+
+/// `[system]`.
+pub(super) fn check_system(description: &RunDescription) -> Result<Vec<Species>> {
+    let s = &description.system;
+    if !(1..=3).contains(&s.dimension) {
+        return Err(Error::out_of_range(
+            "system.dimension",
+            s.dimension,
+            "1, 2 or 3",
+        ));
+    }
+    if s.particles < 2 || s.particles > 100_000_000 {
+        return Err(Error::out_of_range(
+            "system.particles",
+            s.particles,
+            "2 <= N <= 1e8",
+        ));
+    }
+    let max_phi = gas::init::packing_limit(s.dimension as usize);
+    if !(s.packing_fraction >= MIN_PACKING && s.packing_fraction <= max_phi) {
+        let allowed = format!(
+            "{MIN_PACKING:e} <= phi <= {max_phi} in {} dimensions",
+            s.dimension
+        );
+        return Err(Error::out_of_range(
+            "system.packing_fraction",
+            s.packing_fraction,
+            &allowed,
+        ));
+    }
+    match &s.species {
+        None => {
+            in_scale("system.diameter", s.diameter.unwrap_or(1.0))?;
+            in_scale("system.mass", s.mass.unwrap_or(1.0))?;
+        }
+        Some(_) if s.diameter.is_some() || s.mass.is_some() => {
+            return Err(Error::input(
+                "system.species",
+                "give either system.species or system.diameter/system.mass, not both",
+            ));
+        }
+        Some(entries) => {
+            if entries.is_empty() {
+                return Err(Error::input("system.species", "give at least one species"));
+            }
+            for (k, x) in entries.iter().enumerate() {
+                in_scale(&format!("system.species[{k}].diameter"), x.diameter)?;
+                in_scale(&format!("system.species[{k}].mass"), x.mass)?;
+                positive(&format!("system.species[{k}].fraction"), x.fraction)?;
+                // Particles are told apart by diameter and mass (species.csv, the DSMC
+                // tables): two entries alike would be one species counted twice.
+                if let Some(j) = entries[..k]
+                    .iter()
+                    .position(|y| y.diameter == x.diameter && y.mass == x.mass)
+                {
+                    return Err(Error::input(
+                        format!("system.species[{k}]"),
+                        format!(
+                            "the diameter and mass of system.species[{j}]: species must differ \
+                             in diameter or mass (merge the two entries)"
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    in_scale("system.temperature", s.temperature)?;
+    species_of(description)
+}
+
+/// The particles of `[system]` with every default resolved: `system.species` (fractions
+/// normalized, counts as the initializer splits `system.particles`), or the one kind of
+/// `system.diameter` and `system.mass` (1 unless given).
+fn species_of(description: &RunDescription) -> Result<Vec<Species>> {
+    let s = &description.system;
+    let Some(entries) = &s.species else {
+        return Ok(vec![Species {
+            diameter: s.diameter.unwrap_or(1.0),
+            mass: s.mass.unwrap_or(1.0),
+            fraction: 1.0,
+            count: s.particles,
+        }]);
+    };
+    let counts = gas::init::species_counts(s.particles, &species(entries))
+        .map_err(|e| Error::input("system.species", e))?;
+    let total: f64 = entries.iter().map(|x| x.fraction).sum();
+    Ok(entries
+        .iter()
+        .zip(counts)
+        .map(|(x, count)| Species {
+            diameter: x.diameter,
+            mass: x.mass,
+            fraction: x.fraction / total,
+            count,
+        })
+        .collect())
+}
