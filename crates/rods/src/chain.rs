@@ -505,6 +505,15 @@ impl Chain {
         std::mem::take(&mut self.records)
     }
 
+    /// Runs toward time `t` until at least `episodes` contact episodes are completed (or
+    /// nothing is left before `t`; the time is then not set to `t`: see
+    /// [`Chain::run_until`]) and returns them. The integration is the same however a run is
+    /// cut into such calls: each step of [`Chain::advance`] depends on the state alone.
+    pub fn run_bounded(&mut self, t: f64, episodes: usize) -> Vec<CollisionRecord> {
+        self.advance(t, episodes);
+        std::mem::take(&mut self.records)
+    }
+
     /// Runs until time `t` and returns the contact episodes completed meanwhile.
     pub fn run_until(&mut self, t: f64) -> Vec<CollisionRecord> {
         self.advance(t, usize::MAX);

@@ -6,7 +6,8 @@
 //! observers is the rods as hard rods: centres in [0, P), centre-of-mass velocities,
 //! radius l/2, mass rho l.
 
-use crate::chain::{Chain, Impacts};
+use crate::chain::{Chain, CollisionRecord, Impacts};
+use gas::engine::{Report, ReportSection, ReportValue};
 use gas::{Checkpoint, Counters, Engine, System};
 use serde::{Deserialize, Serialize};
 
@@ -16,6 +17,10 @@ pub struct ChainEngine {
     chain: Chain,
     impacts: Impacts,
     episodes: u64,
+    /// Episodes completed on the way to the end of a run in time that has paused, not yet
+    /// counted: [`Impacts::count`] orders the episodes of one call by their start, so a run
+    /// toward a time counts them together when it gets there, however it was paused.
+    pending: Vec<CollisionRecord>,
     system: System<1>,
 }
 
@@ -26,6 +31,7 @@ pub struct ChainEngineState {
     pub chain: Chain,
     pub impacts: Impacts,
     pub episodes: u64,
+    pub pending: Vec<CollisionRecord>,
 }
 
 impl ChainEngine {
@@ -36,6 +42,7 @@ impl ChainEngine {
             chain,
             impacts: Impacts::new(rods),
             episodes: 0,
+            pending: Vec::new(),
             system: System {
                 length: 0.0,
                 positions: Vec::new(),
@@ -60,6 +67,7 @@ impl ChainEngine {
         let mut engine = ChainEngine::new(state.chain);
         engine.impacts = state.impacts;
         engine.episodes = state.episodes;
+        engine.pending = state.pending;
         Ok(engine)
     }
 
@@ -81,12 +89,15 @@ impl ChainEngine {
 
 impl Engine<1> for ChainEngine {
     fn run_until(&mut self, t: f64) {
-        let records = self.chain.run_until(t);
+        let mut records = std::mem::take(&mut self.pending);
+        records.extend(self.chain.run_until(t));
         self.count(&records);
     }
 
     /// Runs contact episodes until `collisions` more impacts have been counted.
     fn run_collisions(&mut self, collisions: u64) {
+        let pending = std::mem::take(&mut self.pending);
+        self.count(&pending);
         let target = self.impacts.collisions() + collisions;
         while self.impacts.collisions() < target {
             let records = self.chain.run_collisions(1);
@@ -97,14 +108,59 @@ impl Engine<1> for ChainEngine {
         }
     }
 
+    /// Runs toward `end` contact episode by contact episode, pausing after about
+    /// `pause` minus the impacts counted so far more episodes (or at `collisions`); a run
+    /// toward a finite `end` counts its episodes when it gets there, together, as
+    /// [`Engine::run_until`] does (see [`ChainEngine::pending`]): the pieces compose to one
+    /// call, integration and count alike ([`Chain::run_bounded`]).
+    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
+        if !end.is_finite() {
+            let have = self.impacts.collisions();
+            self.run_collisions(collisions.min(pause).saturating_sub(have));
+            return;
+        }
+        let budget = collisions
+            .min(pause)
+            .saturating_sub(self.impacts.collisions());
+        let mut episodes = 0;
+        while episodes < budget.max(1) {
+            let records = self.chain.run_bounded(end, 1);
+            if records.is_empty() {
+                // Nothing left before `end`: the time reaches it, the episodes are counted.
+                self.run_until(end);
+                return;
+            }
+            episodes += records.len() as u64;
+            self.pending.extend(records);
+        }
+    }
+
     fn time(&self) -> f64 {
         self.chain.time()
+    }
+
+    /// The section `chain`: `mode_energy`, the energy of all rods' internal modes, and
+    /// `total_energy`, the chain's energy ([`Chain::energy`]).
+    fn report(&self) -> Report {
+        let chain = &self.chain;
+        let modes: f64 = (0..chain.n_rods())
+            .map(|i| chain.modal_energies(i).iter().sum::<f64>())
+            .sum();
+        Report {
+            sections: vec![ReportSection {
+                name: "chain",
+                values: vec![
+                    ("mode_energy", ReportValue::Real(modes)),
+                    ("total_energy", ReportValue::Real(chain.energy())),
+                ],
+            }],
+        }
     }
 
     fn counters(&self) -> Counters {
         Counters {
             collisions: self.impacts.collisions(),
-            events: self.episodes,
+            events: self.episodes + self.pending.len() as u64,
             ..Counters::default()
         }
     }
@@ -145,6 +201,7 @@ impl Checkpoint<1> for ChainEngine {
             chain: self.chain.clone(),
             impacts: self.impacts.clone(),
             episodes: self.episodes,
+            pending: self.pending.clone(),
         }
     }
 

@@ -590,3 +590,33 @@ fn saved_chain_continues_bit_for_bit() {
     assert_eq!(a.energy().to_bits(), b.energy().to_bits());
     assert_eq!(a.time().to_bits(), b.time().to_bits());
 }
+
+/// The chain engine run in pieces (`gas::Engine::run_paused`, paused every few impacts,
+/// as the run driver cuts a run for its interruptions) ends where one `run_until` to the
+/// same times ends: positions, velocities, energy and the impact count (which orders the
+/// episodes of a run toward a time by their start) to the last bit.
+#[test]
+fn chain_engine_pieces_compose_to_one_run() {
+    use gas::Engine;
+    use rods::engine::ChainEngine;
+    let targets = [40.0, 90.0, 150.0];
+    let mut whole = ChainEngine::new(ring(12, 6, 100.0, 0.25, 9, true));
+    let mut pieces = ChainEngine::new(ring(12, 6, 100.0, 0.25, 9, true));
+    for &t in &targets {
+        whole.run_until(t);
+        let mut calls = 0;
+        while pieces.time() < t {
+            let pause = pieces.counters().collisions + 3;
+            pieces.run_paused(t, u64::MAX, pause);
+            calls += 1;
+        }
+        assert!(calls > 3, "the run was cut into pieces ({calls})");
+        assert_eq!(whole.counters(), pieces.counters(), "t = {t}");
+        assert_eq!(whole.time().to_bits(), pieces.time().to_bits());
+        let (a, b) = (whole.chain(), pieces.chain());
+        assert_eq!(a.positions(), b.positions());
+        assert_eq!(a.velocities(), b.velocities());
+        assert_eq!(a.energy().to_bits(), b.energy().to_bits());
+    }
+    assert!(whole.counters().collisions > 20);
+}

@@ -163,7 +163,7 @@ impl<const D: usize> Driver<D> {
         let position: Position = records.take(DRIVER_RECORD)?;
         if position.next > driver.schedule.targets.len() {
             return Err(format!(
-                "{} targets done where the schedule has {}",
+                "{} targets (samples and histograms) done where the schedule has {}",
                 position.next,
                 driver.schedule.targets.len()
             ));

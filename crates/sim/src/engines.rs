@@ -238,6 +238,8 @@ pub struct Setup {
     pub packing_fraction: f64,
     /// The seed of the engine's random streams (DSMC).
     pub seed: u64,
+    /// The baths of a stochastic law (Giese's ED + MC; an engine with baths only).
+    pub baths: Option<gas::BathState>,
 }
 
 /// An engine of `spec` for the particles of `system` set up in code (the reproduced papers,
@@ -249,10 +251,17 @@ pub fn build<const D: usize>(
 ) -> Result<Box<dyn Driven<D>>> {
     let local: Arc<dyn Communicator> = Arc::new(Local);
     let fail = |e: gas::Error| Error::input("system", e);
+    if setup.baths.is_some() && !spec.abilities().baths {
+        return Err(Error::input("baths", "this engine has no baths"));
+    }
     Ok(match *spec {
         EngineSpec::EventDriven => {
-            let engine = event_driven::engine(system, setup.law, Tuning::default());
-            Box::new(engine.map_err(fail)?)
+            let mut engine =
+                event_driven::engine(system, setup.law, Tuning::default()).map_err(fail)?;
+            if let Some(baths) = setup.baths {
+                engine.set_bath_state(baths).map_err(fail)?;
+            }
+            Box::new(engine)
         }
         EngineSpec::HomogeneousDsmc(scheme) => {
             Box::new(dsmc::homogeneous(system, setup, scheme, &local).map_err(fail)?)

@@ -32,6 +32,7 @@ pub mod outdir;
 pub mod output;
 pub mod parallel;
 pub mod plot;
+pub mod probe;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;

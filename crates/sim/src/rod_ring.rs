@@ -22,86 +22,58 @@
 //! ```
 
 mod description;
+mod rows;
 
 use description::chain_error;
 pub use description::{ChainSection, CompareLaw, RingDescription, RingRunSection};
+pub use rows::{EnergyRow, ENERGY_HEADER};
 
-use crate::checkpoint;
+use crate::checkpoint::{self, Format, RecordsOut};
+use crate::driver::{Driver, Progress, Saving, Until};
+use crate::engines::{self, EngineSpec, Setup};
 use crate::error::{Error, Result};
 use crate::output::{number, write_csv_file, write_json_file};
 use crate::plot::{self, Axes};
-use crate::simulation::Progress;
-use gas::{Engine, EventDriven};
+use crate::schedule::{Measure, Schedule};
+use gas::{BathState, Checkpoint};
 use restitution::{Glauber, Restitution};
 use rods::engine::{ChainEngine, ChainEngineState};
-use rods::ring::{equipartition_share, translational_energy, RingSetup, RingState};
-use serde::{Deserialize, Serialize};
+use rods::ring::{equipartition_share, RingSetup, RingState};
+use rows::EnergyRows;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// One row of a time series: energies summed over the rods.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct EnergyRow {
-    pub time: f64,
-    pub collisions_per_particle: f64,
-    /// Translational energy in the centre-of-mass frame.
-    pub translational_energy: f64,
-    /// Energy of the internal modes (the baths of ED + MC).
-    pub bath_energy: f64,
-    pub total_energy: f64,
-}
-
-/// The header of `timeseries.csv` and `ed_mc_<law>.csv`.
-pub const ENERGY_HEADER: [&str; 5] = [
-    "time",
-    "collisions_per_particle",
-    "translational_energy",
-    "bath_energy",
-    "total_energy",
-];
-
-/// The chain MD of one repeat in progress.
-#[derive(Debug, Clone)]
-struct Repeat {
-    rows: Vec<EnergyRow>,
-    engine: ChainEngine,
-}
 
 /// A named curve of rows (the chain MD, or ED + MC with one law), summed over repeats.
 type Curve = (String, Vec<EnergyRow>);
 
-/// Where a run stands besides the chain (the check-point's JSON records), saved after a
-/// sample of the chain MD; the chain itself is the engine state ([`ChainEngineState`]).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RingRecords {
-    description: RingDescription,
+/// The format of a rods chain check-point (5: the common layout of [`crate::driver`]: the
+/// run's records, the driver's position, the rows as the observer's record).
+const FORMAT: Format = Format {
+    name: "haff-rods-chain-checkpoint",
+    version: 5,
+};
+
+/// Where a run stands besides the chain MD of the repeat in progress (the check-point's
+/// own records).
+#[derive(Debug, Clone)]
+struct Progressed {
     /// The repeat in progress (0-based).
     repeat: usize,
-    /// Its chain MD rows so far.
-    rows: Vec<EnergyRow>,
     /// Sums of the completed repeats (curve 0: chain MD; then one per compared law).
     curves: Vec<Curve>,
     chain_seconds: f64,
-    /// Check-point interval in samples (reused on resume).
-    every: Option<usize>,
 }
 
-/// The format of a rods chain check-point.
-const FORMAT: checkpoint::Format = checkpoint::Format {
-    name: "haff-rods-chain-checkpoint",
-    version: 4,
-};
-
-/// A chain run: the chain MD of every repeat, then ED + MC from the same start.
+/// A chain run: the chain MD of every repeat, then ED + MC from the same start, each
+/// through the run driver ([`Driver`]: pieces, interruptions, check-points).
 pub struct RingRun {
     description: RingDescription,
     ring: RingSetup,
     /// Sampling times.
     targets: Vec<f64>,
     repeat: usize,
-    current: Option<Repeat>,
+    /// The chain MD of the repeat in progress.
+    current: Option<Driver<1>>,
     curves: Vec<Curve>,
     chain_seconds: f64,
     checkpoint_dir: Option<PathBuf>,
@@ -135,28 +107,47 @@ impl RingRun {
     /// checked against its run file; further check-points go to `dir`.
     pub fn resume(dir: &Path) -> Result<Self> {
         let sections = checkpoint::read(dir, FORMAT)?;
-        let saved: RingRecords = sections.records()?;
+        let fail = |e: String| sections.error(e);
+        let mut records: checkpoint::Records = sections.records()?;
+        let description: RingDescription = records.take("description").map_err(fail)?;
+        let every: Option<usize> = records.take("every").map_err(fail)?;
+        let saved = Progressed {
+            repeat: records.take("repeat").map_err(fail)?,
+            curves: records.take("curves").map_err(fail)?,
+            chain_seconds: records.take("chain_seconds").map_err(fail)?,
+        };
         let state: ChainEngineState = sections.engine()?;
-        let mut run = RingRun::new(&saved.description).map_err(|e| sections.error(e))?;
-        run.check_saved(&saved, &state)
-            .map_err(|e| sections.error(e))?;
-        let engine = ChainEngine::from_state(state).map_err(|e| sections.error(e))?;
+        let mut run = RingRun::new(&description).map_err(|e| sections.error(e))?;
+        run.check_saved(&saved, every, &state).map_err(fail)?;
+        let engine = ChainEngine::restore(state, ()).map_err(|e| sections.error(e))?;
+        let driver = Driver::resume(
+            Box::new(engine),
+            vec![Box::new(EnergyRows::chain())],
+            run.schedule(),
+            &mut records,
+        )
+        .map_err(fail)?;
+        records.finish().map_err(fail)?;
         run.repeat = saved.repeat;
-        run.current = Some(Repeat {
-            rows: saved.rows,
-            engine,
-        });
+        run.current = Some(driver);
         run.curves = saved.curves;
         run.chain_seconds = saved.chain_seconds;
-        run.every = saved.every;
+        run.every = every;
         run.checkpoint_dir = Some(dir.to_path_buf());
         Ok(run)
     }
 
-    /// Why the saved records and chain cannot be this run's after a sample, if they cannot.
+    /// The samples of one repeat.
+    fn schedule(&self) -> Schedule {
+        Schedule::samples_at(&self.targets, Measure::Time)
+    }
+
+    /// Why the saved records and chain cannot be this run's, if they cannot (the rows and
+    /// the driver's position are checked by the driver).
     fn check_saved(
         &self,
-        saved: &RingRecords,
+        saved: &Progressed,
+        every: Option<usize>,
         state: &ChainEngineState,
     ) -> std::result::Result<(), String> {
         let run = &self.description.run;
@@ -170,11 +161,8 @@ impl RingRun {
                 self.ring.modes
             ));
         }
-        let (Some(last), true) = (saved.rows.last(), saved.rows.len() <= run.samples) else {
-            return Err("no rows, or more than run.samples".into());
-        };
-        if saved.repeat >= run.repeats || last.time != chain.time() {
-            return Err("the repeat or the chain's time does not match the rows".into());
+        if saved.repeat >= run.repeats {
+            return Err("the repeat does not match run.repeats".into());
         }
         let curves = if saved.repeat == 0 {
             0
@@ -188,14 +176,14 @@ impl RingRun {
         if saved.curves.len() != curves || !complete {
             return Err("the averaged curves do not match the repeats done".into());
         }
-        let every = saved.every.is_none_or(|k| (1..=1_000_000).contains(&k));
+        let every = every.is_none_or(|k| (1..=1_000_000).contains(&k));
         if !(every && saved.chain_seconds.is_finite() && saved.chain_seconds >= 0.0) {
             return Err("every or chain_seconds out of range".into());
         }
         Ok(())
     }
 
-    /// Saves the run to the check-point of `dir` every `every` samples taken.
+    /// Saves the run to the check-point of `dir` every `every` samples of the chain MD.
     pub fn set_checkpoints(&mut self, dir: &Path, every: Option<usize>) {
         self.checkpoint_dir = Some(dir.to_path_buf());
         self.every = every;
@@ -216,7 +204,8 @@ impl RingRun {
     }
 
     /// Runs every remaining repeat; false if it stopped (after a check-point) once
-    /// `stop_after` samples were taken by this call.
+    /// `stop_after` samples of the chain MD were taken by this call. Between pieces of the
+    /// chain MD it asks [`Progress::keep_going`] (an interruption stands where it stopped).
     pub fn run(&mut self, progress: &mut dyn Progress, stop_after: Option<usize>) -> Result<bool> {
         let clock = Instant::now();
         let result = self.run_repeats(progress, stop_after);
@@ -236,38 +225,37 @@ impl RingRun {
             chain.seed = chain.seed.wrapping_add(self.repeat as u64);
             let ring = chain.ring();
             let start = ring.initial_state();
-            let mut current = match self.current.take() {
-                Some(current) => current,
-                None => Repeat {
-                    rows: Vec::new(),
-                    engine: ChainEngine::new(ring.chain(&start).map_err(chain_error)?),
-                },
+            let mut driver = match self.current.take() {
+                Some(driver) => driver,
+                None => {
+                    let engine = engines::rod_chain(ring.chain(&start).map_err(chain_error)?);
+                    let rows: Vec<Box<dyn crate::observer::Observer<1>>> =
+                        vec![Box::new(EnergyRows::chain())];
+                    Driver::new(Box::new(engine), rows, self.schedule())
+                }
+            };
+            let before = driver.samples_taken();
+            let until = Until {
+                samples: stop_after.map(|k| before + k.saturating_sub(taken)),
+                point: None,
             };
             let clock = Instant::now();
-            progress.start(self.targets.len(), current.rows.len());
-            for k in current.rows.len()..self.targets.len() {
-                let engine = &mut current.engine;
-                engine.run_until(self.targets[k]);
-                current.rows.push(chain_row(engine));
-                taken += 1;
-                progress.sample(current.rows.len(), "");
-                let stop = stop_after.is_some_and(|k| taken >= k);
-                if stop || self.every.is_some_and(|k| taken.is_multiple_of(k)) {
-                    let seconds = self.chain_seconds + clock.elapsed().as_secs_f64();
-                    self.write_checkpoint(&mut current, seconds)?;
-                }
-                if stop {
-                    progress.finish();
-                    self.chain_seconds += clock.elapsed().as_secs_f64();
-                    self.current = Some(current);
-                    return Ok(false);
-                }
-            }
-            progress.finish();
+            let result = self.run_chain(&mut driver, progress, until, &clock);
             self.chain_seconds += clock.elapsed().as_secs_f64();
-            let mut runs = vec![("rod-chain MD".to_string(), current.rows)];
+            taken += driver.samples_taken() - before;
+            if let Err(e) = result {
+                self.current = Some(driver);
+                return Err(e);
+            }
+            if stop_after.is_some_and(|k| taken >= k) || !driver.is_complete() {
+                let seconds = self.chain_seconds;
+                self.write_checkpoint(&mut driver, seconds)?;
+                self.current = Some(driver);
+                return Ok(false);
+            }
+            let mut runs = vec![("rod-chain MD".to_string(), rows_of(&driver))];
             for &law in &self.description.run.compare {
-                let rows = ed_mc(self.compare_law(law)?, &ring, &start, &self.targets)?;
+                let rows = ed_mc(self.compare_law(law)?, &ring, &start, self.schedule())?;
                 runs.push((format!("ED + MC, {}", law.name()), rows));
             }
             accumulate(&mut self.curves, runs, repeats);
@@ -276,21 +264,47 @@ impl RingRun {
         Ok(true)
     }
 
-    fn write_checkpoint(&self, current: &mut Repeat, chain_seconds: f64) -> Result<()> {
+    /// The chain MD of the repeat in progress through the driver, with check-points every
+    /// `every` samples of the repeat.
+    fn run_chain(
+        &self,
+        driver: &mut Driver<1>,
+        progress: &mut dyn Progress,
+        until: Until,
+        clock: &Instant,
+    ) -> Result<()> {
+        let preamble = || self.records(self.chain_seconds + clock.elapsed().as_secs_f64());
+        let file = self
+            .checkpoint_dir
+            .as_ref()
+            .map(|d| d.join(checkpoint::FILE_NAME));
+        let saving = file.as_deref().zip(self.every).map(|(file, every)| Saving {
+            file,
+            format: FORMAT,
+            every,
+            write: true,
+            preamble: &preamble,
+        });
+        driver.go(progress, until, saving.as_ref())
+    }
+
+    /// The run's own records of a check-point.
+    fn records(&self, chain_seconds: f64) -> Result<RecordsOut> {
+        let mut records = RecordsOut::new();
+        records.push("description", &self.description)?;
+        records.push("every", &self.every)?;
+        records.push("repeat", &self.repeat)?;
+        records.push("curves", &self.curves)?;
+        records.push("chain_seconds", &chain_seconds)?;
+        Ok(records)
+    }
+
+    fn write_checkpoint(&self, driver: &mut Driver<1>, chain_seconds: f64) -> Result<()> {
         let Some(dir) = &self.checkpoint_dir else {
             return Ok(());
         };
-        let saved = RingRecords {
-            description: self.description.clone(),
-            repeat: self.repeat,
-            rows: current.rows.clone(),
-            curves: self.curves.clone(),
-            chain_seconds,
-            every: self.every,
-        };
-        let state = gas::Checkpoint::save(&mut current.engine);
-        let file = dir.join(checkpoint::FILE_NAME);
-        checkpoint::write_to(&file, FORMAT, &saved, &checkpoint::encode_state(&state)?)
+        let records = self.records(chain_seconds)?;
+        driver.write_checkpoint(&dir.join(checkpoint::FILE_NAME), FORMAT, records, true)
     }
 
     /// The stochastic law of an ED + MC comparison.
@@ -359,30 +373,21 @@ impl RingRun {
     }
 }
 
-/// The energies of the chain now.
-fn chain_row(engine: &mut ChainEngine) -> EnergyRow {
-    let chain = engine.chain();
-    let bath: f64 = (0..chain.n_rods())
-        .map(|i| chain.modal_energies(i).iter().sum::<f64>())
-        .sum();
-    let translational = translational_energy(&chain.velocities(), &chain.masses());
-    let total = chain.energy();
-    EnergyRow {
-        time: chain.time(),
-        collisions_per_particle: engine.collisions_per_particle(),
-        translational_energy: translational,
-        bath_energy: bath,
-        total_energy: total,
-    }
+/// The rows the chain MD of `driver` took.
+fn rows_of(driver: &Driver<1>) -> Vec<EnergyRow> {
+    driver
+        .observer::<EnergyRows>()
+        .map_or_else(Vec::new, |r| r.rows.clone())
 }
 
 /// Giese's ED + MC: the same rods as hard rods on the ring, each with a bath of `modes`
-/// modes at the chain's initial mode temperature.
+/// modes at the chain's initial mode temperature, through the driver at the samples of
+/// `schedule`.
 fn ed_mc(
     law: Box<dyn Restitution>,
     ring: &RingSetup,
     start: &RingState,
-    targets: &[f64],
+    schedule: Schedule,
 ) -> Result<Vec<EnergyRow>> {
     let masses = ring.masses();
     let lengths = ring.rod_lengths();
@@ -393,33 +398,24 @@ fn ed_mc(
         radii: lengths.iter().map(|l| 0.5 * l).collect(),
         masses: masses.clone(),
     };
-    let mut engine = EventDriven::new(system, law).map_err(|e| Error::input("chain", e))?;
-    engine
-        .set_baths(vec![ring.bath_temperature; lengths.len()], ring.seed)
-        .map_err(|e| Error::input("chain.bath_temperature", e))?;
-    let mut rows = Vec::with_capacity(targets.len());
-    for &t in targets {
-        engine.run_until(t);
-        // A bath of M modes at temperature T holds M T.
-        let baths = engine
-            .bath_temperatures()
-            .unwrap_or(&[])
-            .iter()
-            .sum::<f64>()
-            * ring.modes as f64;
-        let time = engine.time();
-        let collisions_per_particle = engine.collisions_per_particle();
-        let v: Vec<f64> = engine.system().velocities.iter().map(|v| v[0]).collect();
-        let kinetic = translational_energy(&v, &masses);
-        rows.push(EnergyRow {
-            time: t.max(time),
-            collisions_per_particle,
-            translational_energy: kinetic,
-            bath_energy: baths,
-            total_energy: kinetic + baths,
-        });
-    }
-    Ok(rows)
+    let setup = Setup {
+        law,
+        packing_fraction: 0.0,
+        seed: ring.seed,
+        baths: Some(BathState {
+            temperatures: vec![ring.bath_temperature; lengths.len()],
+            seed: ring.seed,
+            draws: 0,
+        }),
+    };
+    let engine = engines::build(&EngineSpec::EventDriven, system, setup)
+        .map_err(|e| Error::input("chain", e))?;
+    let rows = EnergyRows::baths(ring.modes, masses);
+    let mut driver = Driver::new(engine, vec![Box::new(rows)], schedule);
+    driver.go(&mut (), Until::default(), None)?;
+    Ok(driver
+        .observer::<EnergyRows>()
+        .map_or_else(Vec::new, |r| r.rows.clone()))
 }
 
 /// Adds `runs` (one row list per curve) into `sums` with weight 1/`repeats`.

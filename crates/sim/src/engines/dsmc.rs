@@ -208,6 +208,7 @@ fn setup(plan: &Plan, law: Box<dyn Restitution>) -> Setup {
         law,
         packing_fraction: s.packing_fraction,
         seed: s.seed,
+        baths: None,
     }
 }
 
