@@ -8,10 +8,12 @@ use super::{mean_and_error, sig, Context, Entry, Outcome};
 use gas::dsmc::{point_gas, Scheme};
 use gas::observe::{sonine_a2, temperature};
 use gas::theory::{collision_frequency, second_sonine, van_noije_ernst_a2, SonineHierarchy};
-use gas::{Engine, EventDriven, HomogeneousDsmc};
 use restitution::{Constant, Restitution, ScaledForm, Viscoelastic};
+use sim::driver::Driven;
+use sim::engines::{self, EngineSpec, Setup};
 use sim::error::Result;
 use sim::plot::Figure;
+use sim::schedule::{Measure, Schedule};
 
 const PAPER: &str = "Kinetic theory (Brilliantov & Pöschel 2004; van Noije & Ernst 1998)";
 
@@ -55,27 +57,32 @@ fn enskog_frequency(phi: f64) -> f64 {
 }
 
 /// A homogeneous DSMC gas of `n` points (blocks scheme) with the given law.
-fn dsmc(n: usize, phi: f64, law: Box<dyn Restitution>, seed: u64) -> Result<HomogeneousDsmc<3>> {
+fn dsmc(n: usize, phi: f64, law: Box<dyn Restitution>, seed: u64) -> Result<Box<dyn Driven<3>>> {
     let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
     let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
-    HomogeneousDsmc::new(system, phi, law, seed, Scheme::default()).map_err(engine_error)
+    let spec = EngineSpec::HomogeneousDsmc(Scheme::default());
+    engines::build(&spec, system, setup(law, phi, seed))
 }
 
 /// An eMD gas of `n` unit spheres at phi with the given law.
-fn emd(n: usize, phi: f64, law: Box<dyn Restitution>, seed: u64) -> Result<EventDriven<3>> {
+fn emd(n: usize, phi: f64, law: Box<dyn Restitution>, seed: u64) -> Result<Box<dyn Driven<3>>> {
     let system = gas::init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
-    EventDriven::new(system, law).map_err(engine_error)
+    engines::build(&EngineSpec::EventDriven, system, setup(law, phi, seed))
 }
 
-/// T at each of `times` (increasing).
-fn temperatures(engine: &mut dyn Engine<3>, times: &[f64]) -> Vec<f64> {
-    times
-        .iter()
-        .map(|&t| {
-            engine.run_until(t);
-            temperature(engine.system())
-        })
-        .collect()
+fn setup(law: Box<dyn Restitution>, phi: f64, seed: u64) -> Setup {
+    Setup {
+        law,
+        packing_fraction: phi,
+        seed,
+        baths: None,
+    }
+}
+
+/// T at each of `times` (increasing), through the run driver.
+fn temperatures(engine: Box<dyn Driven<3>>, times: &[f64]) -> Result<Vec<f64>> {
+    let schedule = Schedule::samples_at(times, Measure::Time);
+    sim::probe::sample(engine, schedule, |e| temperature(e.system()))
 }
 
 /// Haff's law T(t) = 1 / (1 + t/t0)^2, 1/t0 = zeta0/2, with the cooling rate of the HCS
@@ -103,11 +110,11 @@ fn haff(ctx: &Context) -> Result<Outcome> {
     };
     let mut runs = Vec::new();
     for seed in 0..seeds {
-        let mut e = emd(n_emd, phi, law()?, 100 + seed)?;
-        runs.push(temperatures(&mut e, &times));
+        let e = emd(n_emd, phi, law()?, 100 + seed)?;
+        runs.push(temperatures(e, &times)?);
     }
-    let mut d = dsmc(n_dsmc, phi, law()?, 7)?;
-    let dsmc_t = temperatures(&mut d, &times);
+    let d = dsmc(n_dsmc, phi, law()?, 7)?;
+    let dsmc_t = temperatures(d, &times)?;
     let haff_law = |t: f64, tau: f64| 1.0 / (1.0 + t / tau).powi(2);
     let mut rows = Vec::new();
     let (mut emd_curve, mut dsmc_curve, mut maxwell_curve) = (vec![], vec![], vec![]);
@@ -226,6 +233,8 @@ fn a2(ctx: &Context) -> Result<Outcome> {
         let mut means = Vec::new();
         for seed in 0..seeds {
             let law = Box::new(Constant::new(eps).map_err(engine_error)?);
+            // Batch means over runs of relative length (the engine's own count, not the
+            // driver's schedule of absolute targets).
             let mut d = dsmc(n, phi, law, 1000 + seed)?;
             let per_particle = |c: f64| (c * n as f64 / 2.0).round() as u64;
             d.run_collisions(per_particle(10.0));
@@ -403,14 +412,11 @@ fn viscoelastic(ctx: &Context) -> Result<Outcome> {
     let times: Vec<f64> = (0..=16)
         .map(|k| 10.0 * (end / 10.0f64).powf(k as f64 / 16.0))
         .collect();
-    let mut e = emd(n_emd, phi, law(1.0)?, 5)?;
-    let emd_t = temperatures(&mut e, &times);
-    let mut d = dsmc(n_dsmc, phi, law(1.0)?, 6)?;
-    let dsmc_t = temperatures(&mut d, &times);
+    let emd_t = temperatures(emd(n_emd, phi, law(1.0)?, 5)?, &times)?;
+    let dsmc_t = temperatures(dsmc(n_dsmc, phi, law(1.0)?, 6)?, &times)?;
     // The local exponent of a less dissipative gas over seven decades.
     let late_times: Vec<f64> = (0..=10).map(|k| 1e3 * 10f64.powf(k as f64 / 2.0)).collect();
-    let mut late = dsmc(late_n, phi, law(0.01)?, 8)?;
-    let late_t = temperatures(&mut late, &late_times);
+    let late_t = temperatures(dsmc(late_n, phi, law(0.01)?, 8)?, &late_times)?;
     let exponents: Vec<(f64, f64)> = late_times
         .windows(2)
         .zip(late_t.windows(2))

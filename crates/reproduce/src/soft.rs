@@ -13,10 +13,13 @@ use gas::dsmc::{point_gas, Scheme};
 use gas::observe::temperature;
 use gas::soft::contact::{contact_duration, ViscoelasticMaterial};
 use gas::theory::collision_frequency;
-use gas::{Engine, EventDriven, HomogeneousDsmc, SoftSphere, SoftSphereOptions};
+use gas::{SoftSphereOptions, System};
 use restitution::{Restitution, ScaledForm, Viscoelastic};
+use sim::driver::Driven;
+use sim::engines::{self, EngineSpec, Setup};
 use sim::error::Result;
 use sim::plot::Figure;
+use sim::schedule::{Measure, Schedule};
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -49,17 +52,60 @@ fn law(beta: f64, form: &str) -> Result<Box<dyn Restitution>> {
     ))
 }
 
-/// T at each of `times` and the wall time.
-fn temperatures(engine: &mut dyn Engine<3>, times: &[f64]) -> (Vec<f64>, f64) {
+/// An engine of `spec` for `system` at `phi` (the seed: DSMC's streams).
+fn engine(
+    spec: EngineSpec,
+    system: System<3>,
+    law: Box<dyn Restitution>,
+    phi: f64,
+    seed: u64,
+) -> Result<Box<dyn Driven<3>>> {
+    let setup = Setup {
+        law,
+        packing_fraction: phi,
+        seed,
+        baths: None,
+    };
+    engines::build(&spec, system, setup)
+}
+
+/// T at each of `times` through the run driver, and the wall time.
+fn temperatures(engine: Box<dyn Driven<3>>, times: &[f64]) -> Result<(Vec<f64>, f64)> {
     let start = Instant::now();
-    let t = times
-        .iter()
-        .map(|&t| {
-            engine.run_until(t);
-            temperature(engine.system())
-        })
-        .collect();
-    (t, start.elapsed().as_secs_f64())
+    let schedule = Schedule::samples_at(times, Measure::Time);
+    let t = sim::probe::sample(engine, schedule, |e| temperature(e.system()))?;
+    Ok((t, start.elapsed().as_secs_f64()))
+}
+
+/// What soft-sphere MD reports of its contacts at a sample ([`gas::soft::ContactReport`]).
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
+struct Contacts {
+    temperature: f64,
+    contact_steps: u64,
+    multi_contact_steps: u64,
+    max_relative_overlap: f64,
+    time_step: f64,
+}
+
+/// The temperature and the contacts of soft-sphere MD at each of `times`.
+fn contacts(engine: Box<dyn Driven<3>>, times: &[f64]) -> Result<Vec<Contacts>> {
+    let schedule = Schedule::samples_at(times, Measure::Time);
+    sim::probe::sample(engine, schedule, |e| {
+        let report = e.report();
+        let c = report.section("contacts");
+        let count = |key: &str| match c.and_then(|c| c.get(key)) {
+            Some(gas::engine::ReportValue::Count(n)) => n,
+            _ => 0,
+        };
+        let real = |key: &str| c.map_or(f64::NAN, |c| c.number(key));
+        Contacts {
+            temperature: temperature(e.system()),
+            contact_steps: count("contact_steps"),
+            multi_contact_steps: count("multi_contact_steps"),
+            max_relative_overlap: real("max_relative_overlap"),
+            time_step: real("time_step"),
+        }
+    })
 }
 
 /// One seed at one density: T of each engine at the sample times, the soft-sphere delay
@@ -88,25 +134,37 @@ fn seed_run(
     beta: f64,
 ) -> Result<SeedRun> {
     let system = gas::init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
-    let mut soft = SoftSphere::new(system.clone(), material, SoftSphereOptions::default())
-        .map_err(engine_error)?;
+    let spec = EngineSpec::SoftSphere(SoftSphereOptions::default(), material);
+    let soft = engine(spec, system.clone(), law(beta, "exact")?, phi, seed)?;
     let start = Instant::now();
-    let (mut soft_t, mut delay) = (Vec::new(), Vec::new());
-    for &t in times {
-        soft.run_until(t);
-        soft_t.push(temperature(soft.system()));
-        delay.push(soft.statistics().contact_steps as f64 * soft.time_step() / n as f64);
-    }
+    let rows = contacts(soft, times)?;
+    let soft_t = rows.iter().map(|r| r.temperature).collect();
+    let delay = rows
+        .iter()
+        .map(|r| r.contact_steps as f64 * r.time_step / n as f64)
+        .collect();
     let soft_s = start.elapsed().as_secs_f64();
-    let mut exact = EventDriven::new(system.clone(), law(beta, "exact")?).map_err(engine_error)?;
-    let (exact_t, exact_s) = temperatures(&mut exact, times);
-    let mut fast = EventDriven::new(system.clone(), law(beta, "fast")?).map_err(engine_error)?;
-    let (fast_t, fast_s) = temperatures(&mut fast, times);
+    let exact = engine(
+        EngineSpec::EventDriven,
+        system.clone(),
+        law(beta, "exact")?,
+        phi,
+        seed,
+    )?;
+    let (exact_t, exact_s) = temperatures(exact, times)?;
+    let fast = engine(
+        EngineSpec::EventDriven,
+        system.clone(),
+        law(beta, "fast")?,
+        phi,
+        seed,
+    )?;
+    let (fast_t, fast_s) = temperatures(fast, times)?;
     let points = point_gas::<3>(n, system.length, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
-    let mut dsmc = HomogeneousDsmc::new(points, phi, law(beta, "exact")?, seed, Scheme::default())
-        .map_err(engine_error)?;
-    let (dsmc_t, dsmc_s) = temperatures(&mut dsmc, times);
-    let stats = soft.statistics();
+    let spec = EngineSpec::HomogeneousDsmc(Scheme::default());
+    let dsmc = engine(spec, points, law(beta, "exact")?, phi, seed)?;
+    let (dsmc_t, dsmc_s) = temperatures(dsmc, times)?;
+    let stats = *rows.last().expect("samples");
     Ok(SeedRun {
         soft: soft_t,
         exact: exact_t,
@@ -203,7 +261,7 @@ fn density(phi: f64, n: usize, collisions: f64, seeds: &[u64]) -> Result<Density
     // The end: eMD (exact law) of the first seed after `collisions` per particle.
     let system =
         gas::init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, seeds[0]).map_err(engine_error)?;
-    let mut probe = EventDriven::new(system, law(beta, "exact")?).map_err(engine_error)?;
+    let mut probe = engine(EngineSpec::EventDriven, system, law(beta, "exact")?, phi, 0)?;
     probe.run_collisions((collisions * n as f64 / 2.0) as u64);
     let times = logspace(0.01 * probe.time(), probe.time(), 15);
     let runs = seeds
