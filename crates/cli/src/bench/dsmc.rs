@@ -12,8 +12,10 @@ use std::time::Instant;
 /// gas, T0 = 1), on all cores or `--threads`, medians of repeats, and memory per particle.
 pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     use gas::dsmc::{point_gas, Scheme, SpatialOptions, StepSize};
-    use gas::{Engine, HomogeneousDsmc, SpatialDsmc};
     use restitution::{Constant, ScaledForm, Viscoelastic};
+    use sim::driver::{Driver, Until};
+    use sim::engines::{EngineSpec, Setup};
+    use sim::schedule::{Measure, Schedule};
     let spatial = matches!(args.scheme, DsmcSchemeChoice::Spatial);
     let particles =
         args.particles
@@ -75,34 +77,42 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     for repeat in 0..repeats {
         let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 1 + repeat as u64)
             .map_err(|e| CliError::argument("--particles", e))?;
-        let mut engine: Box<dyn Engine<3> + Send> = match scheme {
-            Some(scheme) => Box::new(
-                HomogeneousDsmc::new(system, phi, law.box_clone(), 1, scheme)
-                    .map_err(|e| CliError::argument("--particles", e))?,
-            ),
-            None => {
-                // Cells holding `per_cell` particles on average; steps of a fifth of the
-                // mean free time (0.2 collisions per particle), SPARTA's dt = tau / 5.
-                let options = SpatialOptions {
-                    cell_width: Some(length * (per_cell / n as f64).cbrt()),
-                    step: StepSize::CollisionsPerParticle(0.2),
-                };
-                Box::new(
-                    SpatialDsmc::new(system, phi, law.box_clone(), 1, options)
-                        .map_err(|e| CliError::argument("--particles", e))?,
-                )
-            }
+        let spec = match scheme {
+            Some(scheme) => EngineSpec::HomogeneousDsmc(scheme),
+            // Cells holding `per_cell` particles on average; steps of a fifth of the mean
+            // free time (0.2 collisions per particle), SPARTA's dt = tau / 5.
+            None => EngineSpec::SpatialDsmc(SpatialOptions {
+                cell_width: Some(length * (per_cell / n as f64).cbrt()),
+                step: StepSize::CollisionsPerParticle(0.2),
+            }),
         };
-        pool.install(|| engine.run_collisions(n as u64 / 2));
-        let before = engine.counters();
+        let setup = Setup {
+            law: law.box_clone(),
+            packing_fraction: phi,
+            seed: 1,
+            baths: None,
+        };
+        let engine = sim::engines::build(&spec, system, setup)
+            .map_err(|e| CliError::argument("--particles", e))?;
+        // A warm-up of one collision per particle, then the timed collisions, through the
+        // run driver (as `haff run` advances an engine).
+        let timed = 1.0 + 2.0 * collisions as f64 / n as f64;
+        let schedule = Schedule::samples_at(&[1.0, timed], Measure::CollisionsPerParticle);
+        let mut driver = Driver::new(engine, Vec::new(), schedule);
+        let warm_up = Until {
+            samples: Some(1),
+            point: None,
+        };
+        pool.install(|| driver.go(&mut (), warm_up, None))?;
+        let before = driver.engine().counters();
         let start = Instant::now();
-        pool.install(|| engine.run_collisions(collisions));
+        pool.install(|| driver.go(&mut (), Until::default(), None))?;
         let seconds = start.elapsed().as_secs_f64();
-        let after = engine.counters();
+        let after = driver.engine().counters();
         rates.push((after.collisions - before.collisions) as f64 / seconds);
         candidates += after.events - before.events;
         accepted += after.collisions - before.collisions;
-        bytes = engine.memory_bytes();
+        bytes = driver.engine().memory_bytes();
     }
     let [median, min, max] = median_min_max(rates);
     let candidates_per_collision = candidates as f64 / accepted.max(1) as f64;

@@ -21,7 +21,7 @@ struct EmdTiming {
 /// medians of repeats, and the engine's memory per particle. With `--calendar both` the
 /// repeats of the two calendars alternate, so that drifts of the machine hit both alike.
 pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
-    use gas::{init, Engine, EventDriven, SorterKind};
+    use gas::{init, Engine, SorterKind};
     let n = parse_count("--particles", &args.particles, 2, 100_000_000)?;
     let phi = super::packing_fraction(&args.packing_fraction)?;
     let width = crate::output::parse_number(
@@ -44,9 +44,12 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
                 .map_err(|e| CliError::argument("--particles", e))?;
             let law =
                 Box::new(restitution::Constant::new(1.0).map_err(|e| CliError::library("law", e))?);
-            let mut engine = EventDriven::with_cell_width(system, law, width)
+            let tuning = sim::engines::Tuning {
+                cell_width: width,
+                sorter: kind,
+            };
+            let mut engine = sim::engines::event_driven(system, law, tuning)
                 .map_err(|e| CliError::argument("--particles", e))?;
-            engine.set_sorter(kind);
             for _ in 0..events {
                 engine.step();
             }

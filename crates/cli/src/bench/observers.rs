@@ -8,7 +8,7 @@ use crate::output::{parse_count, significant, stdout, write_json, write_table, R
 use gas::structure::{
     coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor,
 };
-use gas::{init, Engine, EventDriven, System};
+use gas::{init, System};
 use serde::Serialize;
 use sim::space::{structure_resolution, StructureResolution, MODE_SHELLS};
 use std::io::Write;
@@ -151,8 +151,14 @@ fn measure<const D: usize>(
     let system: System<D> = init::monodisperse::<D>(n, phi, 1.0, 1.0, 1.0, 1)
         .map_err(|e| CliError::argument("--particles", e))?;
     let law = Box::new(restitution::Constant::new(1.0).map_err(|e| CliError::library("law", e))?);
-    let mut engine =
-        EventDriven::new(system, law).map_err(|e| CliError::argument("--particles", e))?;
+    let setup = sim::engines::Setup {
+        law,
+        packing_fraction: phi,
+        seed: 1,
+        baths: None,
+    };
+    let mut engine = sim::engines::build(&sim::engines::EngineSpec::EventDriven, system, setup)
+        .map_err(|e| CliError::argument("--particles", e))?;
     let per_particle = (n as u64).div_ceil(2);
     // warm-up: the calendar and the cell lists reach their steady state
     engine.run_collisions(per_particle);

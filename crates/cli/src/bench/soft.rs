@@ -5,7 +5,7 @@
 use super::median_min_max;
 use crate::error::{CliError, CliResult};
 use crate::output::{parse_count, stdout, ReportFormat};
-use gas::{Engine, SoftSphere};
+use gas::Engine;
 use sim::validate::EngineSpec;
 use std::io::Write;
 use std::path::Path;
@@ -38,7 +38,7 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
     }
     let steps = parse_count("--steps", &args.steps, 1, 1_000_000_000)? as u64;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
-    let (diameter, mass) = (s.diameter.unwrap_or(1.0), s.mass.unwrap_or(1.0));
+    let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
     let mut per_particle_step = Vec::new();
     let (mut dt, mut builds, mut contacts) = (0.0, 0, 0);
     for repeat in 0..repeats {
@@ -51,7 +51,7 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
             s.seed + repeat as u64,
         )
         .map_err(|e| CliError::argument("RUN_FILE", e))?;
-        let mut engine = SoftSphere::new(system, material, options)
+        let mut engine = sim::engines::soft_sphere(system, options, material)
             .map_err(|e| CliError::argument("RUN_FILE", e))?;
         engine.run_steps(steps);
         let before = engine.counters().collisions;
