@@ -1,6 +1,6 @@
 //! The coefficient of restitution: `eps`, `eps_v`, `beta`, `dashpot_eps`, `validity`.
 
-use crate::{config_error, out_of_range};
+use crate::{bounds, config_error, out_of_range, within};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use rayon::prelude::*;
@@ -9,11 +9,8 @@ use restitution::exact::VSTAR_MAX;
 use restitution::material::{
     material_by_name, speed_from_vstar, ContactPair, Material, Sphere, UnitSystem,
 };
+use restitution::ranges::{Range, BETA, VSTAR};
 use restitution::{Restitution, ScaledForm, Viscoelastic};
-
-/// The beta (any unit system) `eps_v` accepts, as `haff cor eps --beta`: beyond it the
-/// speeds of v* <= 1e6 underflow or overflow f64.
-const BETA_RANGE: (f64, f64) = (1e-30, 1e30);
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(eps, m)?)?;
@@ -41,7 +38,7 @@ fn evaluated<'py>(
     py: Python<'py>,
     key: &str,
     values: &[f64],
-    range: (f64, f64),
+    range: Range,
     f: impl Fn(&[f64], &mut [f64]) + Sync,
     valid: impl Fn(f64) -> bool + Sync,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, usize)> {
@@ -56,17 +53,17 @@ fn evaluated<'py>(
 }
 
 /// `f` (a law over a slice) at every value into `out`, in pieces on both cores for large
-/// arrays, counting the values where `valid` is false; a value outside `low ..= high` (or
-/// NaN) is an error naming `key[index]` (and its piece is not evaluated).
+/// arrays, counting the values where `valid` is false; a value outside `range` (or NaN) is
+/// an error naming `key[index]` (and its piece is not evaluated).
 fn evaluate(
     key: &str,
     values: &[f64],
     out: &mut [f64],
-    (low, high): (f64, f64),
+    range: Range,
     f: impl Fn(&[f64], &mut [f64]) + Sync,
     valid: impl Fn(f64) -> bool + Sync,
 ) -> PyResult<usize> {
-    let in_range = |x: f64| (low..=high).contains(&x);
+    let in_range = |x: f64| range.contains(x);
     let piece = |(xs, ys): (&[f64], &mut [f64])| {
         let bad = xs.iter().any(|&x| !in_range(x));
         let beyond = xs.iter().filter(|&&x| !valid(x)).count();
@@ -89,7 +86,7 @@ fn evaluate(
         return Err(out_of_range(
             &format!("{key}[{i}]"),
             values[i],
-            &format!("{low} <= {key} <= {high}"),
+            &bounds(key, range),
         ));
     }
     Ok(beyond)
@@ -111,7 +108,7 @@ fn eps<'py>(
         py,
         "vstar",
         values,
-        (0.0, VSTAR_MAX),
+        VSTAR,
         |xs, ys| form.eps_slice(xs, ys),
         |v| validity.contains(v),
     )?;
@@ -127,13 +124,7 @@ fn eps_v<'py>(
     beta: f64,
     law: &str,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, usize, String)> {
-    if !(BETA_RANGE.0..=BETA_RANGE.1).contains(&beta) {
-        return Err(out_of_range(
-            "beta",
-            beta,
-            &format!("{} <= beta <= {}", BETA_RANGE.0, BETA_RANGE.1),
-        ));
-    }
+    let beta = within("beta", beta, BETA)?;
     let form = parse_law(law)?;
     let v_max = speed_from_vstar(beta, VSTAR_MAX).map_err(|e| config_error("beta", e))?;
     let speeds = v.as_slice()?;
@@ -150,7 +141,7 @@ fn eps_v<'py>(
         py,
         "v",
         speeds,
-        (0.0, v_max),
+        Range::closed("v", 0.0, v_max),
         |xs, ys| {
             for (y, &x) in ys.iter_mut().zip(xs) {
                 *y = viscoelastic.eps(x);

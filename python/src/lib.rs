@@ -10,6 +10,7 @@
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use restitution::ranges::Range;
 
 mod algebra;
 mod cor;
@@ -34,6 +35,22 @@ pub(crate) fn config_error(key: &str, message: impl std::fmt::Display) -> PyErr 
 /// `key: value is out of range; allowed: ...` as a [`ConfigError`].
 pub(crate) fn out_of_range(key: &str, value: impl std::fmt::Display, allowed: &str) -> PyErr {
     config_error(key, format!("{value} is out of range; allowed: {allowed}"))
+}
+
+/// `low <= key <= high`: the bounds of a library range (`restitution::ranges`,
+/// `rods::ranges`) in the wording of the bindings' messages (the argument's Python name,
+/// the bounds written out).
+pub(crate) fn bounds(key: &str, range: Range) -> String {
+    format!("{} <= {key} <= {}", range.low, range.high)
+}
+
+/// `x` if `range` contains it, else an out-of-range error naming `key`.
+pub(crate) fn within(key: &str, x: f64, range: Range) -> PyResult<f64> {
+    if range.contains(x) {
+        Ok(x)
+    } else {
+        Err(out_of_range(key, x, &bounds(key, range)))
+    }
 }
 
 /// A run-driver error as the Python exception of its kind: input errors as

@@ -2,13 +2,14 @@
 //! bath) and stochastic (thermal noise, Eq. (5)), as `haff rods deterministic` and
 //! `haff rods collide` compute them (same ranges, same bound on the work of one call).
 
-use crate::{config_error, out_of_range};
+use crate::{config_error, out_of_range, within};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use rods::deterministic::{
     eps_closed_form, eps_closed_form_general, eps_numeric, estimated_work, WORK_LIMIT,
     WORK_PER_SECOND,
 };
+use rods::ranges::{BATH_RATIO, GAMMA, KAPPA, REALIZATIONS, STEP};
 use rods::stochastic::{sample_eps, Resolution};
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -16,15 +17,6 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rods_closed_form, m)?)?;
     m.add_function(wrap_pyfunction!(rods_collide, m)?)?;
     Ok(())
-}
-
-/// `x` within `low ..= high`, else an error naming `key`.
-fn within(key: &str, x: f64, low: f64, high: f64) -> PyResult<f64> {
-    if (low..=high).contains(&x) {
-        Ok(x)
-    } else {
-        Err(out_of_range(key, x, &format!("{low} <= {key} <= {high}")))
-    }
 }
 
 /// Refuses work beyond [`WORK_LIMIT`], naming `key`.
@@ -46,10 +38,11 @@ fn bounded(key: &str, work: f64) -> PyResult<()> {
 /// eps of Eq. (3) at T_bath = 0 (the solved value), step h = `step` / kappa.
 #[pyfunction]
 fn rods_deterministic(py: Python<'_>, gamma: f64, kappa: f64, step: f64) -> PyResult<f64> {
-    let gamma = within("gamma", gamma, 1e-3, 1e3)?;
-    let kappa = within("kappa", kappa, 1.0, 1e5)?;
-    if !(step > 0.0 && step < 1.0) {
-        return Err(out_of_range("step", step, "0 < step < 1 (h kappa)"));
+    let gamma = within("gamma", gamma, GAMMA)?;
+    let kappa = within("kappa", kappa, KAPPA)?;
+    if !STEP.contains(step) {
+        let allowed = format!("{} < step < {} ({})", STEP.low, STEP.high, STEP.name);
+        return Err(out_of_range("step", step, &allowed));
     }
     bounded("gamma", estimated_work(gamma, kappa, step / kappa))?;
     Ok(py.detach(|| eps_numeric(gamma, kappa, step / kappa)))
@@ -59,8 +52,8 @@ fn rods_deterministic(py: Python<'_>, gamma: f64, kappa: f64, step: f64) -> PyRe
 /// (gamma = 1).
 #[pyfunction]
 fn rods_closed_form(gamma: f64, kappa: f64, general: bool) -> PyResult<f64> {
-    let gamma = within("gamma", gamma, 1e-3, 1e3)?;
-    let kappa = within("kappa", kappa, 1.0, 1e5)?;
+    let gamma = within("gamma", gamma, GAMMA)?;
+    let kappa = within("kappa", kappa, KAPPA)?;
     let eps = if general {
         eps_closed_form_general(gamma, kappa)
     } else {
@@ -80,19 +73,17 @@ fn rods_collide<'py>(
     realizations: i64,
     seed: u64,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let gamma = within("gamma", gamma, 1e-3, 1e3)?;
-    let kappa = within("kappa", kappa, 1.0, 1e5)?;
-    if !(bath_ratio == f64::INFINITY || (1e-4..=1e6).contains(&bath_ratio)) {
-        return Err(out_of_range(
-            "bath_ratio",
-            bath_ratio,
-            "1e-4 <= E_tr/T_bath <= 1e6, or None (a cold bath)",
-        ));
+    let gamma = within("gamma", gamma, GAMMA)?;
+    let kappa = within("kappa", kappa, KAPPA)?;
+    if !(bath_ratio == f64::INFINITY || BATH_RATIO.contains(bath_ratio)) {
+        let (low, name, high) = (BATH_RATIO.low, BATH_RATIO.name, BATH_RATIO.high);
+        let allowed = format!("{low:e} <= {name} <= {high:e}, or None (a cold bath)");
+        return Err(out_of_range("bath_ratio", bath_ratio, &allowed));
     }
     let realizations = usize::try_from(realizations)
         .ok()
-        .filter(|r| (1..=10_000_000).contains(r))
-        .ok_or_else(|| out_of_range("realizations", realizations, "1 <= realizations <= 1e7"))?;
+        .filter(|&r| REALIZATIONS.contains(r as f64))
+        .ok_or_else(|| out_of_range("realizations", realizations, &REALIZATIONS.describe()))?;
     let h = Resolution::default().h(kappa, bath_ratio);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as f64;
     bounded(

@@ -13,6 +13,7 @@ use restitution::exact::{self, Collision, Criterion, TrajectoryPoint, VSTAR_MAX}
 use restitution::material::{
     material_by_name, speed_from_vstar, ContactPair, Material, Sphere, UnitSystem,
 };
+use restitution::ranges;
 use restitution::{Restitution, ScaledForm, Viscoelastic};
 use serde::Serialize;
 use std::io::Write;
@@ -20,17 +21,14 @@ use std::io::Write;
 /// Most trajectory points `cor collision` writes.
 const MAX_POINTS: usize = 1_000_000;
 
-/// The beta (any unit system) `cor eps --v` accepts: beyond it the speeds of v* <= 1e6,
-/// v <= (1e6 / beta^(1/2))^10, underflow (or overflow) f64.
-const BETA_RANGE: (f64, f64) = (1e-30, 1e30);
-
+/// The beta (any unit system) `cor eps --v` accepts (`restitution::ranges::BETA`).
 fn beta_range() -> Allowed {
-    Allowed::between("beta", BETA_RANGE.0, BETA_RANGE.1)
+    Allowed::from(ranges::BETA)
 }
 
-/// The scaled speeds every law accepts.
+/// The scaled speeds every law accepts (`restitution::ranges::VSTAR`).
 fn vstar_range() -> Allowed {
-    Allowed::between("v*", 0.0, VSTAR_MAX)
+    Allowed::from(ranges::VSTAR)
 }
 
 /// One row of `cor eps`.
@@ -125,13 +123,14 @@ fn physical_eps(args: &EpsArgs, speeds: &str) -> CliResult<EpsTable> {
         Some(text) => parse_number("--beta", text, beta_range())?,
         None => {
             let beta = units.beta_from_si(material_beta(args)?);
-            if !(BETA_RANGE.0..=BETA_RANGE.1).contains(&beta) {
+            if !ranges::BETA.contains(beta) {
                 return Err(CliError::argument(
                     "--dissipative-constant",
                     format!(
                         "with this material and radius beta = {beta:e}; allowed: {} <= beta <= {} \
                          (so that v* = 1e6 is reached at a speed v > 0)",
-                        BETA_RANGE.0, BETA_RANGE.1
+                        ranges::BETA.low,
+                        ranges::BETA.high
                     ),
                 ));
             }

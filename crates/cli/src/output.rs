@@ -99,6 +99,18 @@ impl Allowed {
     }
 }
 
+impl From<restitution::ranges::Range> for Allowed {
+    /// The range of a library quantity (`restitution::ranges`, `rods::ranges`), with its
+    /// name and wording.
+    fn from(range: restitution::ranges::Range) -> Self {
+        if range.open {
+            Allowed::open(range.name, range.low, range.high)
+        } else {
+            Allowed::between(range.name, range.low, range.high)
+        }
+    }
+}
+
 /// A range bound for messages: `1e6` rather than `1000000`.
 fn bound(x: f64) -> String {
     if x.abs() >= 1e4 {
@@ -250,6 +262,27 @@ mod tests {
             Allowed::between("v*", 0.0, 1e6).describe(),
             "0 <= v* <= 1e6"
         );
+    }
+
+    /// The library's ranges read and describe as the command's own (same values, same
+    /// wording after `allowed:`).
+    #[test]
+    fn library_ranges_are_described_alike() {
+        let all = restitution::ranges::ALL
+            .into_iter()
+            .chain(rods::ranges::ALL);
+        for range in all {
+            let allowed = Allowed::from(range);
+            assert_eq!(allowed.describe(), range.describe());
+            for x in [
+                range.low,
+                range.high,
+                0.5 * (range.low + range.high),
+                f64::NAN,
+            ] {
+                assert_eq!(allowed.admits(x), range.contains(x), "{range:?} {x}");
+            }
+        }
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! `haff reproduce ID|all [--out DIR] [--quick]`, `haff reproduce --list`: the figures and
-//! tables of the papers, recomputed by `sim::reproduce` (this file holds only the
+//! tables of the papers, recomputed by the `reproduce` crate (this file holds only the
 //! arguments, the progress bar and the report).
 
 use crate::error::{CliError, CliResult};

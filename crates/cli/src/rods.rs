@@ -5,13 +5,12 @@ use crate::error::{CliError, CliResult};
 use crate::output::{number, parse_count, parse_list, parse_number, stdout, write_csv, Allowed};
 use crate::progress::Bar;
 use crate::{RodsCollideArgs, RodsDeterministicArgs, RodsTableArgs, RunArgs};
-use rods::chain::TwoRodSummary;
 use rods::deterministic::{
     eps_closed_form, eps_closed_form_general, eps_numeric, estimated_work, WORK_PER_SECOND,
 };
+use rods::ranges;
 use rods::stochastic::{eps2_histogram, eps2_summary, sample_eps, Eps2Bin, Resolution, Table};
 use sim::outdir::{run_hash, OutputDir, RunState};
-use sim::output::{write_csv_file, write_json_file};
 use sim::plot::{self, Axes};
 use sim::rod_ring::{RingDescription, RingRun};
 use std::io::Write;
@@ -27,9 +26,9 @@ const DETERMINISTIC_WORK_LIMIT: f64 = rods::deterministic::WORK_LIMIT;
 /// `haff rods deterministic`: eps of Eq. (3) at T_bath = 0 for every (gamma, kappa), with
 /// the paper's closed form and the generalized one beside it (solved value last).
 pub fn deterministic(args: &RodsDeterministicArgs) -> CliResult {
-    let gammas = parse_list("--gamma", &args.gamma, Allowed::between("gamma", 1e-3, 1e3))?;
-    let kappas = parse_list("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e5))?;
-    let step = parse_number("--step", &args.step, Allowed::open("h kappa", 0.0, 1.0))?;
+    let gammas = parse_list("--gamma", &args.gamma, Allowed::from(ranges::GAMMA))?;
+    let kappas = parse_list("--kappa", &args.kappa, Allowed::from(ranges::KAPPA))?;
+    let step = parse_number("--step", &args.step, Allowed::from(ranges::STEP))?;
     let work: f64 = gammas
         .iter()
         .flat_map(|&g| kappas.iter().map(move |&k| estimated_work(g, k, step / k)))
@@ -88,25 +87,28 @@ pub fn deterministic(args: &RodsDeterministicArgs) -> CliResult {
     Ok(out.flush()?)
 }
 
+/// The whole numbers of `rods::ranges::REALIZATIONS`, for `--realizations`.
+fn realizations_range() -> (usize, usize) {
+    let r = ranges::REALIZATIONS;
+    (r.low as usize, r.high as usize)
+}
+
 /// The energy ratio of `--bath-ratio` ("inf" for a cold bath).
 fn bath_ratio(text: &Option<String>) -> CliResult<f64> {
     match text.as_deref().map(str::trim) {
         None | Some("inf") => Ok(f64::INFINITY),
-        Some(t) => parse_number(
-            "--bath-ratio",
-            t,
-            Allowed::between("E_tr/T_bath", 1e-4, 1e6),
-        ),
+        Some(t) => parse_number("--bath-ratio", t, Allowed::from(ranges::BATH_RATIO)),
     }
 }
 
 /// `haff rods collide`: eps from realizations of Eq. (3) with the noise of Eq. (5):
 /// one row per realization, or the histogram of eps^2 with its distribution function.
 pub fn collide(args: &RodsCollideArgs) -> CliResult {
-    let gamma = parse_number("--gamma", &args.gamma, Allowed::between("gamma", 1e-3, 1e3))?;
-    let kappa = parse_number("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e5))?;
+    let gamma = parse_number("--gamma", &args.gamma, Allowed::from(ranges::GAMMA))?;
+    let kappa = parse_number("--kappa", &args.kappa, Allowed::from(ranges::KAPPA))?;
     let ratio = bath_ratio(&args.bath_ratio)?;
-    let realizations = parse_count("--realizations", &args.realizations, 1, 10_000_000)?;
+    let (fewest, most) = realizations_range();
+    let realizations = parse_count("--realizations", &args.realizations, fewest, most)?;
     let seed = parse_count("--seed", &args.seed, 0, usize::MAX)? as u64;
     if let Some(plot) = &args.plot {
         let parent = plot.parent().filter(|p| !p.as_os_str().is_empty());
@@ -184,13 +186,9 @@ fn plot_distribution(path: &Path, title: &str, histogram: &[Eps2Bin]) -> CliResu
 /// `haff rods table`: the quantiles of eps^2 on a log grid of E_tr/T_bath, as JSON for
 /// `law = "stochastic"`, `distribution = "tabulated"`.
 pub fn table(args: &RodsTableArgs) -> CliResult {
-    let gamma = parse_number("--gamma", &args.gamma, Allowed::between("gamma", 1e-3, 1e3))?;
-    let kappa = parse_number("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e5))?;
-    let grid = parse_list(
-        "--ratios",
-        &args.ratios,
-        Allowed::between("E_tr/T_bath", 1e-4, 1e6),
-    )?;
+    let gamma = parse_number("--gamma", &args.gamma, Allowed::from(ranges::GAMMA))?;
+    let kappa = parse_number("--kappa", &args.kappa, Allowed::from(ranges::KAPPA))?;
+    let grid = parse_list("--ratios", &args.ratios, Allowed::from(ranges::BATH_RATIO))?;
     let [min, max, count] = grid[..] else {
         return Err(CliError::argument(
             "--ratios",
@@ -203,7 +201,9 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
             "need MIN < MAX and an integer 2 <= COUNT <= 1000",
         ));
     }
-    let realizations = parse_count("--realizations", &args.realizations, 2, 10_000_000)?;
+    // Quantiles need two realizations at least.
+    let (_, most) = realizations_range();
+    let realizations = parse_count("--realizations", &args.realizations, 2, most)?;
     let seed = parse_count("--seed", &args.seed, 0, usize::MAX)? as u64;
     let ratios = Table::log_grid(min, max, count as usize);
     let progress = indicatif::ProgressBar::new(ratios.len() as u64);
@@ -223,134 +223,42 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
 }
 
 /// `haff rods two-rods`: Figs. 1 and 2 of Giese — two cold rods on a ring, E_tr, eps and
-/// the spectral entropy after every collision, and the mean modal spectrum.
+/// the spectral entropy after every collision, and the mean modal spectrum
+/// (`reproduce::giese::two_rods` runs the experiments and writes the files).
 pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
-    use rods::chain::*;
-    let gamma = parse_number("--gamma", &args.gamma, Allowed::between("gamma", 1e-2, 1e2))?;
-    let kappa = parse_number("--kappa", &args.kappa, Allowed::between("kappa", 1.0, 1e6))?;
-    let modes: Vec<usize> = parse_list(
-        "--modes",
-        &args.modes,
-        Allowed::between("modes", 1.0, 2000.0),
-    )?
-    .into_iter()
-    .map(|m| m as usize)
-    .collect();
+    use ::reproduce::giese::two_rods::{run, TwoRodsError, TwoRodsSettings};
+    let gamma = parse_number(
+        "--gamma",
+        &args.gamma,
+        Allowed::from(ranges::TWO_RODS_GAMMA),
+    )?;
+    let kappa = parse_number(
+        "--kappa",
+        &args.kappa,
+        Allowed::from(ranges::TWO_RODS_KAPPA),
+    )?;
+    let modes: Vec<usize> = parse_list("--modes", &args.modes, Allowed::from(ranges::MODES))?
+        .into_iter()
+        .map(|m| m as usize)
+        .collect();
     let collisions = parse_count("--collisions", &args.collisions, 1, 10_000_000)?;
     let transient = parse_count("--transient", &args.transient, 0, collisions - 1)?;
-    let c_h = parse_number("--step", &args.step, Allowed::between("c_h", 1e-4, 1.0))?;
+    let c_h = parse_number("--step", &args.step, Allowed::from(ranges::C_H))?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::argument("--out", format!("{}: {e}", args.out.display())))?;
-    let mut rows = Vec::new();
-    let mut spectra = Vec::new();
-    let mut summaries = Vec::new();
-    let mut last_spectrum = Vec::new();
-    let (mut energy, mut entropy) = (Vec::new(), Vec::new());
-    for &m in &modes {
-        let setup = TwoRodSetup {
-            gamma,
-            kappa,
-            modes: m,
-            gap: 1.0,
-            c_h,
-        };
-        let run = run_two_rods(&setup, collisions, transient).map_err(library("--modes"))?;
-        let summary = run.summary();
-        let (eq, plateau) = (summary.eta_equilibrium, summary.equipartition_per_collision);
-        summaries.push(summary);
-        for r in &run.records {
-            rows.push(vec![
-                m.to_string(),
-                r.collision.to_string(),
-                number(r.e_tr),
-                number(r.eps),
-                number(r.eta),
-            ]);
-        }
-        last_spectrum = run.mean_spectrum();
-        for (j, w) in last_spectrum.iter().enumerate() {
-            spectra.push(vec![
-                m.to_string(),
-                (j / m + 1).to_string(),
-                (j % m + 1).to_string(),
-                number(*w),
-            ]);
-        }
-        let label = format!("M = {m}");
-        energy.push((
-            label.clone(),
-            run.records
-                .iter()
-                .map(|r| (r.collision as f64, r.e_tr))
-                .collect(),
-        ));
-        energy.push((
-            format!("equilibrium 1/(2M+1), M = {m}"),
-            vec![(1.0, plateau), (collisions as f64, plateau)],
-        ));
-        let window = RUNNING_WINDOW.min(run.records.len());
-        let running = running_mean_e_tr(&run.records, window);
-        energy.push((
-            format!("M = {m}, mean of {window} collisions"),
-            running.iter().map(|&(k, e)| (k as f64, e)).collect(),
-        ));
-        entropy.push((
-            label,
-            run.records
-                .iter()
-                .map(|r| (r.collision as f64, r.eta))
-                .collect(),
-        ));
-        entropy.push((
-            format!("equilibrium eta_eq, M = {m}"),
-            vec![(1.0, eq), (collisions as f64, eq)],
-        ));
-    }
-    let file = |name: &str| args.out.join(name);
-    write_csv_file(
-        &file("two_rods.csv"),
-        &["modes", "collision", "e_tr", "eps", "eta"],
-        rows,
-    )?;
-    write_csv_file(
-        &file("spectrum.csv"),
-        &["modes", "rod", "mode", "w"],
-        spectra,
-    )?;
-    write_json_file(&file("summary.json"), &summaries)?;
-    let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: E_tr/E0 after each collision");
-    let axes = Axes {
-        title: &title,
-        x: "collision",
-        y: "E_tr / E0",
-        log_x: true,
-        log_y: true,
+    let settings = TwoRodsSettings {
+        gamma,
+        kappa,
+        modes,
+        collisions,
+        transient,
+        c_h,
+        out: args.out.clone(),
     };
-    // Per-collision values thin, their running means and the equilibria on top.
-    let mut figure = plot::Figure::new(axes.title, axes.x, axes.y).log(axes.log_x, axes.log_y);
-    for (name, points) in &energy {
-        let kind = if name.starts_with("equilibrium") {
-            plot::Kind::Theory
-        } else if name.contains("mean of") {
-            plot::Kind::Line
-        } else {
-            plot::Kind::Noisy
-        };
-        figure = figure.curve(kind, name.as_str(), points.clone());
-    }
-    figure.write_png(&file("energy.png"))?;
-    let title = format!("two rods, gamma = {gamma}, kappa = {kappa}: spectral entropy");
-    let axes = Axes {
-        title: &title,
-        x: "collision",
-        y: "eta = 1 - h / ln(2M)",
-        log_x: true,
-        log_y: false,
-    };
-    plot::lines(&file("entropy.png"), axes, &entropy)?;
-    if let Some(last) = summaries.last() {
-        plot_spectrum(&file("spectrum.png"), last, &last_spectrum)?;
-    }
+    let summaries = run(&settings).map_err(|e| match e {
+        TwoRodsError::Run(e) => library("--modes")(e),
+        TwoRodsError::Output(e) => CliError::from(e),
+    })?;
     for s in &summaries {
         eprintln!(
             "M = {}: <E_tr>/E0 = {:.5} (E0/(2M+1) = {:.5}), time mean {:.5} (E0/(4M+1) = {:.5}), <eta> = {:.4} (eta_eq = {:.4}), eta relaxed at collision {:?}; energy drift {:.1e}; {:.1} s",
@@ -359,42 +267,6 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         );
     }
     Ok(())
-}
-
-/// The mean modal spectrum `w` (rod 1 modes 1..M, then rod 2) of the run summarized by
-/// `last` as w(mode) per rod (inset of Fig. 1).
-fn plot_spectrum(path: &Path, last: &TwoRodSummary, spectrum: &[f64]) -> CliResult {
-    let per_rod = |rod: usize| -> Vec<(f64, f64)> {
-        let modes = spectrum.iter().skip(rod * last.modes).take(last.modes);
-        modes
-            .enumerate()
-            .map(|(j, w)| ((j + 1) as f64, *w))
-            .collect()
-    };
-    let rods = [per_rod(0), per_rod(1)];
-    let flat = rods::chain::equipartition_mode_share(last.modes);
-    let title = format!(
-        "mean modal energies w after collision {} (M = {})",
-        last.transient, last.modes
-    );
-    let axes = Axes {
-        title: &title,
-        x: "mode nu",
-        y: "<w>",
-        log_x: false,
-        log_y: false,
-    };
-    let [a, b] = rods;
-    let equal = vec![(1.0, flat), (last.modes as f64, flat)];
-    Ok(plot::lines(
-        path,
-        axes,
-        &[
-            ("rod 1".into(), a),
-            ("rod 2".into(), b),
-            ("equilibrium 1/(2M)".into(), equal),
-        ],
-    )?)
 }
 
 /// `haff rods chain RUN.toml`, `haff rods chain --resume DIR`: the rod-chain MD on a ring

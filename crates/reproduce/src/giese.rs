@@ -2,12 +2,12 @@
 //! granular media* (vibrating rods with internal modes): Figs. 1, 2 (two rods of the
 //! Hamiltonian MD, `rods::chain`), Fig. 3 (p(eps^2) from realizations of Eq. (3),
 //! `rods::stochastic`) and the deterministic limit of Eq. (3) against the paper's closed
-//! form and the generalized one (`rods::deterministic`). See docs/giese.md.
+//! form and the generalized one (`rods::deterministic`). See docs/giese.md. The two-rod
+//! experiment of `haff rods two-rods` (any gamma, kappa and mode counts) is [`two_rods`],
+//! which draws its curves as Figs. 1 and 2 do.
 
 use super::{logspace, numerical, sig, Context, Entry, Outcome};
-use rods::chain::{
-    eta_within, run_two_rods, running_mean_e_tr, TwoRodRun, TwoRodSetup, RUNNING_WINDOW,
-};
+use rods::chain::{eta_within, run_two_rods, TwoRodRun, TwoRodSetup};
 use rods::deterministic::{eps_closed_form, eps_closed_form_general, eps_numeric};
 use rods::stochastic::{eps2_histogram, eps2_quantiles, eps2_summary, sample_eps, Resolution};
 use sim::error::Result;
@@ -17,8 +17,13 @@ use std::fmt::Write as _;
 
 mod deterministic;
 mod fig3;
+pub mod two_rods;
 use deterministic::deterministic;
 use fig3::fig3;
+use two_rods::{
+    e_tr_curve, eta_curve, over_collisions, over_modes, rod_spectrum, running_curve, running_mean,
+    spectrum_entries,
+};
 
 const PAPER: &str = "Giese";
 
@@ -69,7 +74,8 @@ fn rods_error(e: rods::Error) -> sim::Error {
     numerical("rods", e)
 }
 
-fn two_rods(kappa: f64, modes: usize, collisions: usize, transient: usize) -> Result<TwoRodRun> {
+/// The two-rod experiment of Figs. 1 and 2 (gamma = [`GAMMA`], c_h = [`C_H`]).
+fn experiment(kappa: f64, modes: usize, collisions: usize, transient: usize) -> Result<TwoRodRun> {
     let setup = TwoRodSetup {
         gamma: GAMMA,
         kappa,
@@ -111,10 +117,9 @@ fn fig1(ctx: &Context) -> Result<Outcome> {
     } else {
         (4000.0, 75, 4500, 500)
     };
-    let run = two_rods(kappa, modes, collisions, transient)?;
+    let run = experiment(kappa, modes, collisions, transient)?;
     let s = run.summary();
-    let window = RUNNING_WINDOW.min(run.records.len());
-    let running = running_mean_e_tr(&run.records, window);
+    let (window, running) = running_mean(&run.records);
     let mut rows = Vec::new();
     for r in &run.records {
         let mean = running
@@ -144,10 +149,8 @@ fn fig1(ctx: &Context) -> Result<Outcome> {
     )?];
     let spectrum = run.mean_spectrum();
     let flat = rods::chain::equipartition_mode_share(modes);
-    let spectrum_rows: Vec<Vec<f64>> = spectrum
-        .iter()
-        .enumerate()
-        .map(|(j, w)| vec![(j / modes + 1) as f64, (j % modes + 1) as f64, *w, flat])
+    let spectrum_rows: Vec<Vec<f64>> = spectrum_entries(&spectrum, modes)
+        .map(|(rod, mode, w)| vec![rod as f64, mode as f64, w, flat])
         .collect();
     files.push(ctx.csv(
         &format!("{id}-spectrum"),
@@ -155,39 +158,26 @@ fn fig1(ctx: &Context) -> Result<Outcome> {
         &spectrum_rows,
     )?);
 
-    let n = collisions as f64;
     let fig = Figure::new(
         format!("Giese Fig. 1: two rods, gamma = {GAMMA}, kappa = {kappa}, M = {modes}"),
         "collision n",
         "E_tr / E0 after collision n",
     )
     .log(true, true)
-    .noisy(
-        "E_tr after each collision",
-        run.records
-            .iter()
-            .map(|r| (r.collision as f64, r.e_tr))
-            .collect(),
-    )
+    .noisy("E_tr after each collision", e_tr_curve(&run.records))
     .line(
         format!("mean of {window} collisions"),
-        running.iter().map(|&(k, e)| (k as f64, e)).collect(),
+        running_curve(&running),
     )
     .theory(
         "equipartition per collision E0/(2M+1)",
-        level(s.equipartition_per_collision, 1.0, n),
+        over_collisions(s.equipartition_per_collision, collisions),
     );
     files.push(ctx.figure(id, &fig)?);
-    let per_rod = |rod: usize| -> Vec<(f64, f64)> {
-        spectrum
-            .iter()
-            .skip(rod * modes)
-            .take(modes)
-            .enumerate()
-            .map(|(j, w)| ((j + 1) as f64, *w))
-            .collect()
-    };
-    let (rod1, rod2) = (per_rod(0), per_rod(1));
+    let (rod1, rod2) = (
+        rod_spectrum(&spectrum, modes, 0),
+        rod_spectrum(&spectrum, modes, 1),
+    );
     let fig = Figure::new(
         format!(
             "Giese Fig. 1 inset: mean modal energies, collisions {}..{collisions}",
@@ -198,7 +188,7 @@ fn fig1(ctx: &Context) -> Result<Outcome> {
     )
     .line("rod 1 (shorter)", rod1.clone())
     .line("rod 2 (longer)", rod2.clone())
-    .theory("equipartition 1/(2M)", level(flat, 1.0, modes as f64));
+    .theory("equipartition 1/(2M)", over_modes(flat, modes));
     files.push(ctx.figure(&format!("{id}-spectrum"), &fig)?);
 
     let w_min = spectrum.iter().copied().fold(f64::INFINITY, f64::min);
@@ -317,19 +307,13 @@ fn fig2(ctx: &Context) -> Result<Outcome> {
     let mut summary = Vec::new();
     let (mut worst, mut relaxations, mut withins) = (0.0f64, Vec::new(), Vec::new());
     for (k, &m) in modes.iter().enumerate() {
-        let run = two_rods(kappa, m, collisions, transient)?;
+        let run = experiment(kappa, m, collisions, transient)?;
         let s = run.summary();
         let eq = s.eta_equilibrium;
         for r in &run.records {
             rows.push(vec![m as f64, r.collision as f64, r.eta, eq]);
         }
-        fig = fig.line(
-            format!("M = {m}"),
-            run.records
-                .iter()
-                .map(|r| (r.collision as f64, r.eta / eq))
-                .collect(),
-        );
+        fig = fig.line(format!("M = {m}"), eta_curve(&run.records, eq));
         let relax = or_none(s.eta_relaxation_collision);
         let within = or_none(s.eta_within_20_percent_collision);
         debug_assert_eq!(
@@ -350,10 +334,7 @@ fn fig2(ctx: &Context) -> Result<Outcome> {
         values.extend([(a, s.mean_eta), (b, relax), (c, within)]);
     }
     values.push(("worst_relative_eta_deviation", worst));
-    fig = fig.theory(
-        "equilibrium eta = eta_eq",
-        level(1.0, 1.0, collisions as f64),
-    );
+    fig = fig.theory("equilibrium eta = eta_eq", over_collisions(1.0, collisions));
     let files = vec![
         ctx.csv(id, &["modes", "collision", "eta", "eta_equilibrium"], &rows)?,
         ctx.figure(id, &fig)?,

@@ -1,4 +1,4 @@
-//! `sim::reproduce`: the numbers each item reports (and prints in its ID.md) agree with the
+//! `reproduce`: the numbers each item reports (and prints in its ID.md) agree with the
 //! values the library tests pin (crates/restitution/tests/laws.rs, crates/series tests,
 //! docs/errata.md).
 

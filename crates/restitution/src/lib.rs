@@ -21,6 +21,7 @@ pub mod material;
 pub mod ode;
 pub mod pade;
 pub mod pairwise;
+pub mod ranges;
 pub mod series;
 pub mod stochastic;
 mod taylor;

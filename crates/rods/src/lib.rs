@@ -3,6 +3,7 @@ pub mod chain;
 pub mod deterministic;
 pub mod engine;
 mod error;
+pub mod ranges;
 pub mod ring;
 pub mod stochastic;
 

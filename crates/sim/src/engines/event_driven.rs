@@ -93,13 +93,12 @@ pub(super) fn restore<const D: usize>(
     Ok(Box::new(engine))
 }
 
-/// Drives the engine as the plan says, at its interval, with kicks drawn from the run's
-/// seed.
+/// Drives the engine as the plan says, at its interval (resolved by validation), with
+/// kicks drawn from the run's seed.
 fn drive<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
-    let interval = plan.driving_interval.unwrap_or(1.0);
     let drive = plan.driving.map(|driving| Drive {
         driving,
-        interval: Some(interval),
+        interval: plan.driving_interval,
         seed: plan.description.system.seed,
     });
     engine
