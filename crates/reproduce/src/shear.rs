@@ -60,12 +60,15 @@ fn shear(ctx: &Context) -> Result<Outcome> {
     Ok(outcome(&growth, &below, &haff, files))
 }
 
+/// A case's label and its points ((k/k_c)^2, lambda / (zeta/omega), error).
+type Series = (String, Vec<(f64, f64, f64)>);
+
 /// The growth rates of every case: the rows of `ID.csv`, the tables of `ID.md`, the
 /// figure's series, the modes' energies of `ID-modes.csv` and the counts against theory.
 struct Growth {
     rows: Vec<Vec<f64>>,
-    /// (label, points (k/k_c)^2, lambda / (zeta/omega), error) of each case.
-    series: Vec<(String, Vec<(f64, f64, f64)>)>,
+    /// The figure's points of each case.
+    series: Vec<Series>,
     summary_table: String,
     table: String,
     worst: f64,
