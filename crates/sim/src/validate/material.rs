@@ -102,13 +102,16 @@ pub(crate) fn material(description: &RunDescription) -> Result<Option<Viscoelast
     let (young, poisson, a) = (keys[0].1.unwrap(), keys[1].1.unwrap(), keys[2].1.unwrap());
     ViscoelasticMaterial::new(young, poisson, a)
         .map(Some)
-        .map_err(|e| {
-            let key = ["young", "poisson", "dissipative_constant"]
-                .into_iter()
-                .find(|k| e.to_string().starts_with(k))
-                .unwrap_or("young");
-            Error::input(format!("collision.{key}"), e)
-        })
+        .map_err(|e| Error::input(format!("collision.{}", parameter(&e)), e))
+}
+
+/// The material parameter (`young`, `poisson`, `dissipative_constant`) a material's error
+/// names.
+fn parameter(error: &gas::Error) -> &str {
+    match error {
+        gas::Error::OutOfRange { name, .. } => name,
+        _ => "young",
+    }
 }
 
 /// beta of the viscoelastic law of one kind of spheres (a mixture with a material takes
@@ -211,11 +214,7 @@ pub(crate) fn species_materials(
             }
             let [y, nu, a] = keys.map(|k| k.1.unwrap());
             ViscoelasticMaterial::new(y, nu, a).map_err(|e| {
-                let key = ["young", "poisson", "dissipative_constant"]
-                    .into_iter()
-                    .find(|k| e.to_string().starts_with(k))
-                    .unwrap_or("young");
-                Error::input(format!("system.species[{i}].{key}"), e)
+                Error::input(format!("system.species[{i}].{}", parameter(&e)), e)
             })
         })
         .collect::<Result<Vec<_>>>()
