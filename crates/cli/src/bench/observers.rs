@@ -10,6 +10,8 @@ use gas::structure::{
 };
 use gas::{init, System};
 use serde::Serialize;
+use sim::driver::{Driver, Until};
+use sim::schedule::{Measure, Schedule};
 use sim::space::{structure_resolution, StructureResolution, MODE_SHELLS};
 use std::io::Write;
 use std::time::Instant;
@@ -157,12 +159,19 @@ fn measure<const D: usize>(
         seed: 1,
         baths: None,
     };
-    let mut engine = sim::engines::build(&sim::engines::EngineSpec::EventDriven, system, setup)
+    let engine = sim::engines::build(&sim::engines::EngineSpec::EventDriven, system, setup)
         .map_err(|e| CliError::argument("--particles", e))?;
-    let per_particle = (n as u64).div_ceil(2);
-    // warm-up: the calendar and the cell lists reach their steady state
-    engine.run_collisions(per_particle);
-    let resolution = structure_resolution(engine.system());
+    // One collision per particle of warm-up (the calendar and the cell lists reach their
+    // steady state), then one per repeat, through the run driver.
+    let targets: Vec<f64> = (1..=repeats + 1).map(|k| k as f64).collect();
+    let schedule = Schedule::samples_at(&targets, Measure::CollisionsPerParticle);
+    let mut driver = Driver::new(engine, Vec::new(), schedule);
+    let until = |samples: usize| Until {
+        samples: Some(samples),
+        point: None,
+    };
+    driver.go(&mut (), until(1), None)?;
+    let resolution = structure_resolution(driver.engine_mut().system());
     // the fields module's advice: about 10 particles per cell
     let field_grid =
         field_grid.unwrap_or_else(|| ((n as f64 / 10.0).powf(1.0 / D as f64) as usize).max(3));
@@ -173,14 +182,18 @@ fn measure<const D: usize>(
         task();
         seconds.push(clock.elapsed().as_secs_f64());
     };
-    for _ in 0..repeats {
-        time(&mut seconds[0], &mut || engine.run_collisions(per_particle));
+    for repeat in 0..repeats {
+        let mut advanced = Ok(());
+        time(&mut seconds[0], &mut || {
+            advanced = driver.go(&mut (), until(repeat + 2), None);
+        });
+        advanced?;
         // the engine synchronizes its state (what a run does per sample); the copy that the
         // observers read here is not timed
         time(&mut seconds[1], &mut || {
-            std::hint::black_box(engine.system());
+            std::hint::black_box(driver.engine_mut().system());
         });
-        let system = engine.system().clone();
+        let system = driver.engine_mut().system().clone();
         time(&mut seconds[2], &mut || {
             std::hint::black_box(hydrodynamic_modes(&system, mode_shells, structure_factor0));
         });

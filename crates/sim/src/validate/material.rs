@@ -213,9 +213,8 @@ pub(crate) fn species_materials(
                 ));
             }
             let [y, nu, a] = keys.map(|k| k.1.unwrap());
-            ViscoelasticMaterial::new(y, nu, a).map_err(|e| {
-                Error::input(format!("system.species[{i}].{}", parameter(&e)), e)
-            })
+            ViscoelasticMaterial::new(y, nu, a)
+                .map_err(|e| Error::input(format!("system.species[{i}].{}", parameter(&e)), e))
         })
         .collect::<Result<Vec<_>>>()
         .map(Some)
