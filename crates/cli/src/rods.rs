@@ -226,7 +226,7 @@ pub fn table(args: &RodsTableArgs) -> CliResult {
 /// the spectral entropy after every collision, and the mean modal spectrum
 /// (`reproduce::giese::two_rods` runs the experiments and writes the files).
 pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
-    use ::reproduce::giese::two_rods::{run, TwoRodsError, TwoRodsSettings};
+    use ::reproduce::giese::two_rods::{run_reporting, TwoRodsError, TwoRodsSettings};
     let gamma = parse_number(
         "--gamma",
         &args.gamma,
@@ -255,7 +255,10 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         c_h,
         out: args.out.clone(),
     };
-    let summaries = run(&settings).map_err(|e| match e {
+    let mut bar = crate::progress::Steps::new(settings.modes.len(), "experiments");
+    let result = run_reporting(&settings, &mut |_| bar.step());
+    bar.finish();
+    let summaries = result.map_err(|e| match e {
         TwoRodsError::Run(e) => library("--modes")(e),
         TwoRodsError::Output(e) => CliError::from(e),
     })?;

@@ -76,6 +76,15 @@ impl From<sim::Error> for TwoRodsError {
 /// (the mean spectrum of the last experiment, Fig. 1's inset). Returns the summaries, in
 /// the order of `settings.modes`.
 pub fn run(settings: &TwoRodsSettings) -> Result<Vec<TwoRodSummary>, TwoRodsError> {
+    run_reporting(settings, &mut |_| {})
+}
+
+/// [`run`], calling `done` with the number of experiments finished after each (a progress
+/// bar).
+pub fn run_reporting(
+    settings: &TwoRodsSettings,
+    done: &mut dyn FnMut(usize),
+) -> Result<Vec<TwoRodSummary>, TwoRodsError> {
     let TwoRodsSettings {
         gamma,
         kappa,
@@ -105,6 +114,7 @@ pub fn run(settings: &TwoRodsSettings) -> Result<Vec<TwoRodSummary>, TwoRodsErro
         let summary = run.summary();
         let (eq, plateau) = (summary.eta_equilibrium, summary.equipartition_per_collision);
         summaries.push(summary);
+        done(summaries.len());
         for r in &run.records {
             rows.push(vec![
                 m.to_string(),
