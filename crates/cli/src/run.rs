@@ -26,6 +26,11 @@ pub fn run(args: &RunArgs) -> CliResult {
         sim::parallel::world().sum_i64(&mut [0]);
         e.silenced()
     })?;
+    if root {
+        for note in &simulation.plan().notes {
+            eprintln!("haff run: note: {note}");
+        }
+    }
     // Rank 0 alone opens the output directory; all ranks learn whether it could.
     let opened = if root {
         let hash = run_hash(simulation.description());

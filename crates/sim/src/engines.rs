@@ -230,6 +230,94 @@ pub(crate) fn restore<const D: usize>(
     }
 }
 
+pub use event_driven::Work;
+
+/// The estimated work of an event-driven run ([`event_driven::work`]); None for the other
+/// engines.
+pub fn work(plan: &Plan) -> Option<Work> {
+    if plan.engine != EngineSpec::EventDriven {
+        return None;
+    }
+    Some(match plan.description.system.dimension {
+        1 => event_driven::work::<1>(plan),
+        2 => event_driven::work::<2>(plan),
+        _ => event_driven::work::<3>(plan),
+    })
+}
+
+/// Events beyond which an event-driven run is refused: about a day at 1e6 events per
+/// second.
+const MAX_EVENTS: f64 = 1e11;
+/// Events beyond which a run is announced with its estimate before it starts (a quarter of
+/// an hour).
+const ANNOUNCED_EVENTS: f64 = 1e9;
+
+/// The work of the run of `plan` told in advance: refused (naming the key that makes it
+/// absurd) beyond [`MAX_EVENTS`], noted in `plan.notes` beyond [`ANNOUNCED_EVENTS`]. The
+/// event-driven engine's estimate is [`event_driven::work`]; soft-sphere MD and DSMC bound
+/// their steps when their keys are read.
+pub(crate) fn check_work(plan: &mut Plan) -> Result<()> {
+    let Some(work) = work(plan) else {
+        return Ok(());
+    };
+    let events = work.events();
+    let hours = events / 1e6 / 3600.0;
+    let told = format!(
+        "{} {events:.1e} events: {:.1e} collisions x {:.3} events per collision{} (~{} h at \
+         1e6 events/s)",
+        if work.estimated { "about" } else { "at most" },
+        work.collisions,
+        work.events_per_collision,
+        if work.driving_events > 0.0 {
+            format!(
+                " + {:.1e} for the applications of the driving",
+                work.driving_events
+            )
+        } else {
+            String::new()
+        },
+        if hours < 100.0 {
+            format!("{hours:.1}")
+        } else {
+            format!("{hours:.1e}")
+        }
+    );
+    let collision_events = work.collisions * work.events_per_collision;
+    if work.driving_events > MAX_EVENTS.max(collision_events) {
+        // The applications alone are too many: the interval that keeps to the bound.
+        let interval = plan.driving_interval.unwrap_or(f64::NAN);
+        let shortest =
+            interval * work.driving_events / (MAX_EVENTS - collision_events.min(0.5 * MAX_EVENTS));
+        return Err(Error::out_of_range(
+            "driving.interval",
+            interval,
+            &format!(
+                "{told}; at most {MAX_EVENTS:e} events: interval >= {shortest:.3e} (each \
+                 application re-predicts every particle's events)"
+            ),
+        ));
+    }
+    if events > MAX_EVENTS && work.estimated {
+        let (key, advice) = if work.events_per_collision > 100.0 {
+            (
+                "system.packing_fraction",
+                "a denser gas (its cell crossings dominate), fewer particles per box, or \
+                 run.engine = \"dsmc\"",
+            )
+        } else {
+            (plan.stop.key(), "a shorter run")
+        };
+        return Err(Error::input(
+            key,
+            format!("{told}; allowed: at most {MAX_EVENTS:e} events: {advice}"),
+        ));
+    }
+    if events > ANNOUNCED_EVENTS {
+        plan.notes.push(told);
+    }
+    Ok(())
+}
+
 /// What an engine built for a system set up in code needs besides the particles.
 pub struct Setup {
     pub law: Box<dyn Restitution>,

@@ -342,6 +342,16 @@ fn steady<const D: usize>(
 /// particle's velocity between two of its collisions by a tenth of the kick of one mean
 /// free time; `tests/driving.rs` shows the steady state converged there.
 pub(crate) fn default_driving_interval(plan: &Plan) -> f64 {
+    match fastest_collision_frequency(plan) {
+        Some(nu) if nu > 0.0 && nu.is_finite() => 0.1 / nu,
+        _ => 1.0,
+    }
+}
+
+/// The largest species' collision frequency (Enskog, Maxwellian) at the larger of the
+/// initial temperature and the steady one the driving aims at (see
+/// [`default_driving_interval`]): an upper bound of the collision rate of a run.
+pub(crate) fn fastest_collision_frequency(plan: &Plan) -> Option<f64> {
     let s = &plan.description.system;
     let table = Kinds::of(plan);
     let kinds = table.masses.len();
@@ -365,14 +375,10 @@ pub(crate) fn default_driving_interval(plan: &Plan) -> f64 {
         None => {}
     }
     let elastic = vec![vec![1.0; kinds]; kinds];
-    let fastest = match s.dimension {
+    match s.dimension {
         1 => fastest_frequency::<1>(&table, &elastic, s.packing_fraction, &reference),
         2 => fastest_frequency::<2>(&table, &elastic, s.packing_fraction, &reference),
         _ => fastest_frequency::<3>(&table, &elastic, s.packing_fraction, &reference),
-    };
-    match fastest {
-        Some(nu) if nu > 0.0 && nu.is_finite() => 0.1 / nu,
-        _ => 1.0,
     }
 }
 

@@ -84,6 +84,8 @@ pub struct Plan {
     /// The time between applications of the driving of an engine that drives at discrete
     /// times (given, or the default of [`crate::species::default_driving_interval`]).
     pub driving_interval: Option<f64>,
+    /// What a user should know before the run starts (its estimated work, when large).
+    pub notes: Vec<String>,
 }
 
 /// Checks every key of `description` and returns the plan of the run.
@@ -115,6 +117,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         tc: c.tc.filter(|&tc| tc > 0.0),
         driving,
         driving_interval,
+        notes: Vec::new(),
     };
     if plan.driving.is_some()
         && plan.driving_interval.is_none()
@@ -122,6 +125,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     {
         plan.driving_interval = Some(crate::species::default_driving_interval(&plan));
     }
+    engines::check_work(&mut plan)?;
     Ok(plan)
 }
 
