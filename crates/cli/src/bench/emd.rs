@@ -14,6 +14,11 @@ struct EmdTiming {
     collisions_per_second_min: f64,
     collisions_per_second_max: f64,
     events_per_second: f64,
+    /// Events per collision in the timed events (collisions, cell crossings, stale
+    /// predictions).
+    events_per_collision: f64,
+    /// Median nanoseconds per event.
+    ns_per_event: f64,
     bytes_per_particle: f64,
 }
 
@@ -36,9 +41,10 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         CalendarChoice::Buckets => vec![("buckets", SorterKind::Buckets)],
         CalendarChoice::Both => vec![("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)],
     };
-    let mut rates = vec![(vec![], vec![], 0usize); calendars.len()];
+    let mut rates = vec![(vec![], vec![], 0usize, 0.0f64); calendars.len()];
     for repeat in 0..repeats {
-        for (&(_, kind), (collision_rates, event_rates, bytes)) in calendars.iter().zip(&mut rates)
+        for (&(_, kind), (collision_rates, event_rates, bytes, per_collision)) in
+            calendars.iter().zip(&mut rates)
         {
             let system = init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1 + repeat as u64)
                 .map_err(|e| CliError::argument("--particles", e))?;
@@ -63,19 +69,24 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
             collision_rates.push((after.collisions - before.collisions) as f64 / seconds);
             event_rates.push((after.events - before.events) as f64 / seconds);
             *bytes = engine.memory_bytes();
+            *per_collision = (after.events - before.events) as f64
+                / (after.collisions - before.collisions).max(1) as f64;
         }
     }
     let timings: Vec<EmdTiming> = calendars
         .iter()
         .zip(rates)
-        .map(|(&(calendar, _), (collision_rates, event_rates, bytes))| {
+        .map(|(&(calendar, _), (collision_rates, event_rates, bytes, per_collision))| {
             let [collisions, min, max] = median_min_max(collision_rates);
+            let events_per_second = median_min_max(event_rates)[0];
             EmdTiming {
                 calendar,
                 collisions_per_second: collisions,
                 collisions_per_second_min: min,
                 collisions_per_second_max: max,
-                events_per_second: median_min_max(event_rates)[0],
+                events_per_second,
+                events_per_collision: per_collision,
+                ns_per_event: 1e9 / events_per_second,
                 bytes_per_particle: bytes as f64 / n as f64,
             }
         })
@@ -92,6 +103,8 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         "collisions_per_second_min": first.collisions_per_second_min,
         "collisions_per_second_max": first.collisions_per_second_max,
         "events_per_second": first.events_per_second,
+        "events_per_collision": first.events_per_collision,
+        "ns_per_event": first.ns_per_event,
         "bytes_per_particle": first.bytes_per_particle,
         "calendars": timings,
     });
@@ -102,12 +115,14 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
             for t in &timings {
                 writeln!(
                     out,
-                    "N = {n}, phi = {phi}, calendar {}: {:.3e} collisions/s (min {:.3e}, max {:.3e}), {:.3e} events/s, {:.0} bytes/particle (median of {repeats})",
+                    "N = {n}, phi = {phi}, calendar {}: {:.3e} collisions/s (min {:.3e}, max {:.3e}), {:.3e} events/s ({:.1} ns/event, {:.2} events/collision), {:.0} bytes/particle (median of {repeats})",
                     t.calendar,
                     t.collisions_per_second,
                     t.collisions_per_second_min,
                     t.collisions_per_second_max,
                     t.events_per_second,
+                    t.ns_per_event,
+                    t.events_per_collision,
                     t.bytes_per_particle
                 )?;
             }
