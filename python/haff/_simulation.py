@@ -319,6 +319,15 @@ class Simulation:
         return self._sim.contact_statistics()
 
     @property
+    def initial_state(self) -> Optional[Dict[str, Any]]:
+        """How a dense start was made, the ``initial_state`` of summary.json: above the
+        lattice limit (phi 0.45 in 3D, 0.7 in 2D) the spheres are grown by event-driven MD
+        (Lubachevsky-Stillinger) from ``start_fraction``; ``method`` ("growth"),
+        ``collisions``, ``events`` and ``seconds`` give its cost. None otherwise."""
+        raw = self._sim.initial_state_json()
+        return None if raw is None else json.loads(raw)
+
+    @property
     def complete(self) -> bool:
         """Whether every sample of the run has been taken."""
         return self._sim.complete

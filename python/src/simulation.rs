@@ -402,6 +402,13 @@ impl PySimulation {
         (c.collisions, c.events, c.energy_lost, c.tc_elastic)
     }
 
+    /// How a dense start was grown (`initial_state` of summary.json) as JSON, or None.
+    fn initial_state_json(&self) -> Option<String> {
+        self.get()
+            .initial_state()
+            .map(|s| serde_json::to_string(s).expect("plain numbers serialize"))
+    }
+
     /// The contacts of a soft-sphere run (the keys of `contacts` in summary.json), or None.
     fn contact_statistics<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let report = self.get().report();

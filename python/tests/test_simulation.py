@@ -206,6 +206,22 @@ def test_save_and_load_continue_bit_for_bit(tmp_path, cli):
     assert_equals_csv(c.timeseries, out / "timeseries.csv")
 
 
+def test_dense_starts_tell_their_growth(tmp_path):
+    dense = {"system": {"particles": 1500, "packing_fraction": 0.55, "seed": 2},
+             "collision": {"law": "constant", "restitution": 0.9},
+             "run": {"collisions_per_particle": 5.0, "samples": 3}}
+    a = haff.Simulation(dense)
+    state = a.initial_state
+    assert state["method"] == "growth" and state["start_fraction"] == 0.3
+    assert state["events"] >= state["collisions"] > 0
+    a.save(tmp_path / "dense.bin")
+    assert haff.Simulation.load(tmp_path / "dense.bin").initial_state == state
+    a.run(progress=False)
+    a.write(tmp_path / "out")
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["initial_state"] == state
+    assert haff.Simulation(CONFIGS["event-driven"]).initial_state is None
+
+
 def test_write_gives_the_files_of_the_command(tmp_path, cli):
     config = CONFIGS["event-driven"]
     sim = haff.Simulation(config).run(progress=False)

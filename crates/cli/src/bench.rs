@@ -37,16 +37,17 @@ pub enum DsmcSchemeChoice {
     Spatial,
 }
 
-/// [median, min, max] of a non-empty sample.
-/// `--packing-fraction` of the bench gases, 1e-6 ..= 0.45.
+/// `--packing-fraction` of the bench gases (3D), 1e-6 ..= 0.6: above 0.45 the spheres of a
+/// start are grown (`gas::init`).
 pub(crate) fn packing_fraction(text: &str) -> crate::CliResult<f64> {
     crate::output::parse_number(
         "--packing-fraction",
         text,
-        crate::output::Allowed::between("phi", 1e-6, 0.45),
+        crate::output::Allowed::between("phi", 1e-6, gas::init::packing_limit(3)),
     )
 }
 
+/// [median, min, max] of a non-empty sample.
 pub(crate) fn median_min_max(mut sample: Vec<f64>) -> [f64; 3] {
     sample.sort_by(f64::total_cmp);
     let n = sample.len();

@@ -301,7 +301,7 @@ pub struct BenchObserversArgs {
     /// Number of particles, 2 <= N <= 1e8.
     #[arg(long, default_value = "100000", allow_hyphen_values = true)]
     pub particles: String,
-    /// Packing fraction, 0 < phi <= 0.45.
+    /// Packing fraction, 0 < phi <= 0.6 (above 0.45 the spheres of the start are grown).
     #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
     pub packing_fraction: String,
     /// Dimension, 2 or 3.
@@ -363,7 +363,7 @@ pub struct BenchEmdArgs {
     /// Number of particles, 2 <= N <= 1e8.
     #[arg(long, default_value = "100000", allow_hyphen_values = true)]
     pub particles: String,
-    /// Packing fraction, 0 < phi <= 0.45.
+    /// Packing fraction, 0 < phi <= 0.6 (above 0.45 the spheres of the start are grown).
     #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
     pub packing_fraction: String,
     /// Events timed per repeat (after as many events of warm-up).
@@ -391,7 +391,7 @@ pub struct BenchDsmcArgs {
     /// set-up of the SPARTA comparison).
     #[arg(long, allow_hyphen_values = true)]
     pub particles: Option<String>,
-    /// Packing fraction (sets the Enskog factor and the time scale), 0 < phi <= 0.45.
+    /// Packing fraction (sets the Enskog factor and the time scale), 0 < phi <= 0.6.
     #[arg(long, default_value = "0.05", allow_hyphen_values = true)]
     pub packing_fraction: String,
     /// Collisions per particle timed per repeat (after 1 of warm-up).

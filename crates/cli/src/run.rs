@@ -30,6 +30,13 @@ pub fn run(args: &RunArgs) -> CliResult {
         for note in &simulation.plan().notes {
             eprintln!("haff run: note: {note}");
         }
+        if let Some(g) = simulation.initial_state() {
+            eprintln!(
+                "haff run: dense start: spheres grown from packing fraction {} in {} \
+                 collisions ({} events, {:.2} s; summary.json: initial_state)",
+                g.start_fraction, g.collisions, g.events, g.seconds
+            );
+        }
     }
     // Rank 0 alone opens the output directory; all ranks learn whether it could.
     let opened = if root {

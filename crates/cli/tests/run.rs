@@ -95,7 +95,7 @@ fn run_writes_timeseries_and_summary() {
     assert!(summary["events_per_second"].as_f64().unwrap() > 0.0);
     for (bad, key) in [
         ("restitution = 0.9", "restitution = 1.5"),
-        ("packing_fraction = 0.05", "packing_fraction = 0.6"),
+        ("packing_fraction = 0.05", "packing_fraction = 0.65"),
         ("seed = 3", "seed = 3\ncolour = 1"),
         (
             "collisions_per_particle = 10",
@@ -320,7 +320,7 @@ fn bad_species_tc_and_histograms_are_rejected() {
         ("fraction = 0.5 }, ", "}, ", "fraction"),
         (
             "packing_fraction = 0.05",
-            "packing_fraction = 0.4",
+            "packing_fraction = 0.65",
             "packing_fraction",
         ),
         ("tc = 1e-4", "tc = -1e-4", "collision.tc"),

@@ -246,6 +246,15 @@ impl<const D: usize> CellGrid<D> {
         self.insert(i, c);
     }
 
+    /// Calls f for every particle in the cell with linear index `cell`.
+    pub fn for_each_in_cell(&self, cell: usize, mut f: impl FnMut(usize)) {
+        let mut j = self.head[cell];
+        while j != NONE {
+            f(j as usize);
+            j = self.next[j as usize];
+        }
+    }
+
     /// Calls f for every particle in the cells adjacent to (and including) cell c.
     pub fn for_each_neighbor(&self, c: &[u32; D], mut f: impl FnMut(usize)) {
         let (cells, count) = self.grid.neighbor_cells(c);

@@ -36,6 +36,15 @@ pub enum Error {
         spacing: f64,
         max_phi: f64,
     },
+    /// Growing spheres (a dense start) jammed before they reached their size.
+    #[error(
+        "the spheres jammed at packing fraction {phi:.4} while growing (more than \
+         {collisions_per_particle:e} collisions per particle); ask for a lower packing fraction"
+    )]
+    Jammed {
+        phi: f64,
+        collisions_per_particle: f64,
+    },
     /// Random sequential addition found no free place.
     #[error("could not place particle {particle} by random addition")]
     Placement { particle: usize },

@@ -1,6 +1,14 @@
 //! Initial states: non-overlapping random positions at a given packing fraction and
 //! Maxwellian velocities at a given temperature with zero total momentum, for one kind of
-//! sphere ([`monodisperse`]) or a mixture of several ([`polydisperse`]).
+//! sphere ([`monodisperse`]) or a mixture of several ([`polydisperse`]). Positions: random
+//! sequential addition up to [`RANDOM_ADDITION_LIMIT`], a melted lattice up to
+//! [`lattice_limit`], above it (to [`packing_limit`]: 0.60 in 3D, 0.80 in 2D) spheres grown
+//! from the random addition's density by event-driven MD ([`growth`], Lubachevsky &
+//! Stillinger), whose cost the `_reporting` forms return.
+
+mod growth;
+
+pub use growth::{GrowthReport, GROWTH_RATE};
 
 use crate::cells::CellGrid;
 use crate::error::{require_positive, Error, Result};
@@ -24,9 +32,37 @@ pub fn monodisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>> {
+    monodisperse_reporting(n, phi, diameter, mass, temperature, seed).map(|(system, _)| system)
+}
+
+/// [`monodisperse`], and the report of the growth of a dense start (above
+/// [`lattice_limit`]).
+pub fn monodisperse_reporting<const D: usize>(
+    n: usize,
+    phi: f64,
+    diameter: f64,
+    mass: f64,
+    temperature: f64,
+    seed: u64,
+) -> Result<(System<D>, Option<GrowthReport>)> {
     check_count_and_packing::<D>(n, phi)?;
     let length = monodisperse_box_side::<D>(n, diameter, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
+    if phi > lattice_limit(D) {
+        let diameters = vec![diameter; n];
+        let (positions, report) = grown::<D>(length, phi, &diameters, &vec![mass; n], &mut rng)?;
+        let order = space_order(&positions, length, diameter);
+        let positions = order.iter().map(|&i| positions[i]).collect();
+        let velocities = maxwellian::<D>(n, mass, temperature, &mut rng);
+        let system = System {
+            length,
+            positions,
+            velocities,
+            radii: vec![0.5 * diameter; n],
+            masses: vec![mass; n],
+        };
+        return Ok((system, Some(report)));
+    }
     let positions = if phi <= RANDOM_ADDITION_LIMIT {
         random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?
     } else {
@@ -45,10 +81,35 @@ pub fn monodisperse<const D: usize>(
         masses: vec![mass; n],
     };
     if phi <= RANDOM_ADDITION_LIMIT {
-        Ok(system)
+        Ok((system, None))
     } else {
-        melt(system, MELTING_COLLISIONS_PER_PARTICLE)
+        Ok((melt(system, MELTING_COLLISIONS_PER_PARTICLE)?, None))
     }
+}
+
+/// Positions of spheres of `diameters` at packing fraction `phi` in the box of side `length`,
+/// grown ([`growth`]) from random sequential addition at [`RANDOM_ADDITION_LIMIT`]
+/// (scaled down by s0 = (0.3 / phi)^(1/D)), with velocities from `rng` at unit temperature.
+fn grown<const D: usize>(
+    length: f64,
+    phi: f64,
+    diameters: &[f64],
+    masses: &[f64],
+    rng: &mut Pcg64,
+) -> Result<(Vec<Vector<D>>, GrowthReport)> {
+    let s0 = (RANDOM_ADDITION_LIMIT / phi).powf(1.0 / D as f64);
+    let small: Vec<f64> = diameters.iter().map(|d| d * s0).collect();
+    let largest = small.iter().copied().fold(0.0, f64::max);
+    let positions = random_addition::<D>(length, &small, largest, rng)?;
+    let velocities: Vec<Vector<D>> = masses
+        .iter()
+        .map(|&m| std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal) / m.sqrt()))
+        .collect();
+    let radii: Vec<f64> = diameters.iter().map(|d| 0.5 * d).collect();
+    let (positions, mut report) =
+        growth::grow::<D>(length, positions, velocities, &radii, masses, s0, 1.0)?;
+    report.start_fraction = RANDOM_ADDITION_LIMIT;
+    Ok((positions, report))
 }
 
 /// One kind of sphere in a mixture: diameter, mass and number fraction.
@@ -130,7 +191,8 @@ pub fn species_counts(n: usize, species: &[Species]) -> Result<Vec<usize>> {
 /// is `temperature` (both up to round-off). Up to [`RANDOM_ADDITION_LIMIT`] the spheres are
 /// placed by random sequential addition (largest first, contact distance
 /// (d_i + d_j) / 2); above it on a simple lattice with spacing at least the largest
-/// diameter (species on random sites), melted by elastic collisions ([`melt`]). Particles
+/// diameter (species on random sites), melted by elastic collisions ([`melt`]), or, where
+/// that lattice does not fit or above [`lattice_limit`], grown ([`growth`]). Particles
 /// are ordered in space, so the species are mixed in memory.
 pub fn polydisperse<const D: usize>(
     n: usize,
@@ -139,6 +201,18 @@ pub fn polydisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>> {
+    polydisperse_reporting(n, phi, species, temperature, seed).map(|(system, _)| system)
+}
+
+/// [`polydisperse`], and the report of the growth of a dense start (above
+/// [`lattice_limit`]).
+pub fn polydisperse_reporting<const D: usize>(
+    n: usize,
+    phi: f64,
+    species: &[Species],
+    temperature: f64,
+    seed: u64,
+) -> Result<(System<D>, Option<GrowthReport>)> {
     check_count_and_packing::<D>(n, phi)?;
     require_positive("temperature", temperature)?;
     for (s, x) in species.iter().enumerate() {
@@ -163,12 +237,17 @@ pub fn polydisperse<const D: usize>(
     let length = box_side::<D>(volume, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
     let dense = phi > RANDOM_ADDITION_LIMIT;
-    let positions = if dense {
-        let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
-        let spacing = length / side as f64;
-        if spacing < max_diameter {
-            return Err(lattice_too_dense::<D>(phi, max_diameter, spacing));
-        }
+    let mut report = None;
+    let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
+    let lattice_fits = length / side as f64 >= max_diameter;
+    let positions = if phi > lattice_limit(D) || (dense && !lattice_fits) {
+        kind.shuffle(&mut rng);
+        let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
+        let masses: Vec<f64> = kind.iter().map(|&s| species[s].mass).collect();
+        let (positions, grew) = grown::<D>(length, phi, &diameters, &masses, &mut rng)?;
+        report = Some(grew);
+        positions
+    } else if dense {
         kind.shuffle(&mut rng);
         lattice::<D>(n, length, max_diameter)?
     } else {
@@ -194,13 +273,13 @@ pub fn polydisperse<const D: usize>(
         radii: kind.iter().map(|&s| 0.5 * species[s].diameter).collect(),
         masses,
     };
-    if !dense {
-        return Ok(system);
+    if !dense || report.is_some() {
+        return Ok((system, report));
     }
     let mut system = melt(system, MELTING_COLLISIONS_PER_PARTICLE)?;
     // Melting conserves both up to round-off; restore them exactly.
     set_momentum_and_temperature(&mut system.velocities, &system.masses, temperature);
-    Ok(system)
+    Ok((system, None))
 }
 
 /// Removes the total momentum, then rescales the velocities so that
@@ -266,8 +345,20 @@ pub fn max_packing<const D: usize>() -> f64 {
 }
 
 /// Packing fractions the initializer accepts in `dimension` dimensions (1, 2, 3): 0.9,
-/// 0.7, 0.45 (the lattice start then melts within [`MELTING_COLLISIONS_PER_PARTICLE`]).
+/// 0.8, 0.6 — below random close packing (0.64 in 3D, 0.84 for disks), which growing
+/// spheres reach only by jamming.
 pub fn packing_limit(dimension: usize) -> f64 {
+    match dimension {
+        1 => 0.9,
+        2 => 0.8,
+        _ => 0.6,
+    }
+}
+
+/// The packing fraction up to which a dense start is a melted simple lattice (0.9, 0.7,
+/// 0.45 in 1, 2, 3 dimensions: the lattice then melts within
+/// [`MELTING_COLLISIONS_PER_PARTICLE`]); above it the spheres are grown.
+pub fn lattice_limit(dimension: usize) -> f64 {
     match dimension {
         1 => 0.9,
         2 => 0.7,

@@ -262,6 +262,17 @@ impl Records {
         serde_json::from_str(raw.get()).map_err(|e| format!("records: {key}: {e}"))
     }
 
+    /// The record under `key` as `T`, taken out, if there is one.
+    pub fn take_optional<T: DeserializeOwned>(
+        &mut self,
+        key: &str,
+    ) -> std::result::Result<Option<T>, String> {
+        match self.entries.contains_key(key) {
+            true => self.take(key).map(Some),
+            false => Ok(None),
+        }
+    }
+
     /// Fails if a record was not taken: the check-point holds what this run does not have.
     pub fn finish(self) -> std::result::Result<(), String> {
         match self.entries.keys().next() {

@@ -6,7 +6,8 @@
 //! [system]
 //! dimension = 3            # 1, 2 or 3
 //! particles = 4000         # >= 2
-//! packing_fraction = 0.05  # 0 < phi <= 0.45 (3D), 0.7 (2D), 0.9 (1D)
+//! packing_fraction = 0.05  # 0 < phi <= 0.6 (3D), 0.8 (2D), 0.9 (1D); above 0.45 (3D),
+//!                          # 0.7 (2D) the spheres are grown (Lubachevsky-Stillinger)
 //! diameter = 1.0
 //! mass = 1.0
 //! # or, instead of diameter and mass, a mixture (number fractions, normalized):

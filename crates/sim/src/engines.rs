@@ -197,21 +197,23 @@ pub(crate) fn kinds_that(can: impl Fn(&Abilities) -> bool) -> String {
     names.join(" or ")
 }
 
-/// A fresh engine at time 0, from the `[system]` section.
+/// A fresh engine at time 0, from the `[system]` section, and the report of a grown dense
+/// start (`gas::init::GrowthReport`).
 pub(crate) fn start<const D: usize>(
     plan: &Plan,
     law: Box<dyn Restitution>,
     comm: &Arc<dyn Communicator>,
-) -> Result<Box<dyn Driven<D>>> {
-    let system = initial::system::<D>(plan)?;
-    match plan.engine {
+) -> Result<(Box<dyn Driven<D>>, Option<gas::init::GrowthReport>)> {
+    let (system, grown) = initial::system::<D>(plan)?;
+    let engine = match plan.engine {
         EngineSpec::EventDriven => event_driven::start(plan, system, law),
         EngineSpec::HomogeneousDsmc(scheme) => {
             dsmc::start_homogeneous(plan, system, law, scheme, comm)
         }
         EngineSpec::SpatialDsmc(options) => dsmc::start_spatial(plan, system, law, options, comm),
         EngineSpec::SoftSphere(options, material) => soft_sphere::start(system, options, material),
-    }
+    }?;
+    Ok((engine, grown))
 }
 
 /// The engine of the check-point `sections`, after checking that its state belongs to the

@@ -44,5 +44,5 @@ pub mod vtk;
 pub use description::RunDescription;
 pub use driver::{Point, Progress, PIECE_COLLISIONS};
 pub use error::{Error, Result};
-pub use simulation::{Outcome, Particles, Simulation};
+pub use simulation::{InitialMethod, InitialState, Outcome, Particles, Simulation};
 pub use validate::{validate, Plan};

@@ -43,10 +43,44 @@ pub struct Particles {
     pub masses: Vec<f64>,
 }
 
+/// How a grown dense start was made (`summary.json`: `initial_state`; kept in check-points).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialState {
+    /// `growth`: spheres grown by event-driven MD (Lubachevsky–Stillinger).
+    pub method: InitialMethod,
+    /// The packing fraction the spheres grew from.
+    pub start_fraction: f64,
+    pub collisions: u64,
+    pub events: u64,
+    pub seconds: f64,
+}
+
+/// How initial positions were made (only dense starts are recorded).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InitialMethod {
+    Growth,
+}
+
+impl InitialState {
+    fn of(report: &gas::init::GrowthReport) -> Self {
+        InitialState {
+            method: InitialMethod::Growth,
+            start_fraction: report.start_fraction,
+            collisions: report.collisions,
+            events: report.events,
+            seconds: report.seconds,
+        }
+    }
+}
+
 /// A run: its plan, and its engine and observers in the driver.
 pub struct Simulation {
     plan: Plan,
     run: Dimensioned,
+    /// How its dense start was grown, if it was.
+    grown: Option<InitialState>,
     /// Check-points every this many samples into `checkpoint_dir`.
     checkpoint_every: Option<usize>,
     checkpoint_dir: Option<PathBuf>,
@@ -131,14 +165,16 @@ impl Simulation {
         let plan = validate(description)?;
         parallel::check_ranks(&plan, comm.size())?;
         let law = law::build(&plan.law, plan.max_impact_speed())?;
-        let run = in_dimension!(plan.description.system.dimension, D => Ok::<_, Error>(Driver::<D>::new(
-            engines::start::<D>(&plan, law, &comm)?,
-            observer::for_plan::<D>(&plan),
-            schedule_of(&plan),
-        )));
+        let grown;
+        let run = in_dimension!(plan.description.system.dimension, D => {
+            let (engine, report) = engines::start::<D>(&plan, law, &comm)?;
+            grown = report;
+            Ok::<_, Error>(Driver::<D>::new(engine, observer::for_plan::<D>(&plan), schedule_of(&plan)))
+        });
         Ok(Simulation {
             plan,
             run,
+            grown: grown.map(|r| InitialState::of(&r)),
             checkpoint_every: None,
             checkpoint_dir: None,
             output_dir: None,
@@ -197,6 +233,7 @@ impl Simulation {
         let mut records: checkpoint::Records = sections.records()?;
         let description: RunDescription = records.take("description").map_err(fail)?;
         let every: Option<usize> = records.take("every").map_err(fail)?;
+        let grown: Option<InitialState> = records.take_optional("initial_state").map_err(fail)?;
         let plan = validate(&description).map_err(|e| sections.error(e))?;
         parallel::check_ranks(&plan, comm.size())?;
         if description != plan.description {
@@ -217,6 +254,7 @@ impl Simulation {
         Ok(Simulation {
             plan,
             run,
+            grown,
             checkpoint_every: every,
             checkpoint_dir: None,
             output_dir: None,
@@ -228,11 +266,23 @@ impl Simulation {
 
     /// The records of a check-point besides the driver's: the run description and the
     /// check-point interval.
-    fn preamble(plan: &Plan, every: Option<usize>) -> Result<RecordsOut> {
+    fn preamble(
+        plan: &Plan,
+        every: Option<usize>,
+        grown: Option<&InitialState>,
+    ) -> Result<RecordsOut> {
         let mut records = RecordsOut::new();
         records.push("description", &plan.description)?;
         records.push("every", &every)?;
+        if let Some(grown) = grown {
+            records.push("initial_state", grown)?;
+        }
         Ok(records)
+    }
+
+    /// How the dense start of the run was grown, if it was.
+    pub fn initial_state(&self) -> Option<&InitialState> {
+        self.grown.as_ref()
     }
 
     /// Writes the state now as a check-point: the file `path`, or `checkpoint.bin` in the
@@ -245,7 +295,7 @@ impl Simulation {
         } else {
             path.to_path_buf()
         };
-        let preamble = Self::preamble(&self.plan, self.checkpoint_every)?;
+        let preamble = Self::preamble(&self.plan, self.checkpoint_every, self.grown.as_ref())?;
         let root = self.is_root();
         each!(&mut self.run, r => r.write_checkpoint(&file, checkpoint::RUN, preamble, root))
     }
@@ -422,8 +472,8 @@ impl Simulation {
     fn go(&mut self, progress: &mut dyn Progress, until: Until) -> Result<()> {
         let clock = Instant::now();
         let root = self.is_root();
-        let (plan, every) = (&self.plan, self.checkpoint_every);
-        let preamble = || Self::preamble(plan, every);
+        let (plan, every, grown) = (&self.plan, self.checkpoint_every, self.grown);
+        let preamble = || Self::preamble(plan, every, grown.as_ref());
         let file = self
             .checkpoint_dir
             .as_ref()
@@ -480,6 +530,9 @@ impl Simulation {
         }
         if let Some(rows) = self.species_samples() {
             summary["species"] = crate::species::summary(&self.plan, rows);
+        }
+        if let Some(grown) = &self.grown {
+            summary["initial_state"] = serde_json::json!(grown);
         }
         for section in self.report().sections {
             summary[section.name] = serde_json::json!(section);

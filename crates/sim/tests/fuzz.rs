@@ -80,7 +80,7 @@ const KEYS: [&str; 31] = [
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 30] = [
+const VALUES: [&str; 32] = [
     "0",
     "1",
     "-1",
@@ -94,6 +94,9 @@ const VALUES: [&str; 30] = [
     "inf",
     "-inf",
     "0.5",
+    // Dense starts: grown spheres (3D 0.55, 2D 0.75) or refused (box too small for N).
+    "0.55",
+    "0.75",
     "1.5",
     "1e9",
     "100000000000",

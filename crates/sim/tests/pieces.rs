@@ -160,3 +160,39 @@ fn points_outside_the_run_are_refused() {
     assert!(!run.advance(Point::Time(1e12), &mut ()).unwrap());
     assert!(run.is_complete());
 }
+
+/// A dense start (spheres grown: `gas::init`) is told in `summary.json` and kept through
+/// check-points; the run goes on from a loaded one as from the saved one, bit for bit.
+#[test]
+fn dense_starts_are_reported_and_kept_in_checkpoints() {
+    let text = "[system]\nparticles = 1500\npacking_fraction = 0.55\nseed = 4\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.95\n\
+                [run]\ncollisions_per_particle = 20\nsamples = 5\n";
+    let mut run = Simulation::from_toml(text, "dense.toml".as_ref()).unwrap();
+    let grown = *run.initial_state().expect("a grown start");
+    assert_eq!(grown.method, sim::InitialMethod::Growth);
+    assert_eq!(grown.start_fraction, gas::init::RANDOM_ADDITION_LIMIT);
+    assert!(grown.collisions > 0 && grown.events >= grown.collisions);
+    assert!(run
+        .advance(Point::CollisionsPerParticle(7.5), &mut ())
+        .unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-dense-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("dense.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    assert_eq!(loaded.initial_state(), Some(&grown));
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    loaded.write(&dir).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let told = &summary["initial_state"];
+    assert_eq!(told["method"], "growth");
+    assert_eq!(told["collisions"], grown.collisions);
+    // A lattice or random start is not a growth: no record.
+    let dilute = Simulation::from_toml(&runs()[0], "test.toml".as_ref()).unwrap();
+    assert_eq!(dilute.initial_state(), None);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

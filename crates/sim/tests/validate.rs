@@ -28,7 +28,7 @@ fn errors_name_the_key() {
         ("particles = 300", "particles = 1", "system.particles"),
         (
             "packing_fraction = 0.05",
-            "packing_fraction = 0.6",
+            "packing_fraction = 0.65",
             "system.packing_fraction",
         ),
         (

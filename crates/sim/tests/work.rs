@@ -57,8 +57,8 @@ fn absurd_runs_are_refused_naming_the_key() {
 #[test]
 fn events_per_collision_as_estimated() {
     for (phi, tolerance) in [(1e-4, 0.1), (0.05, 0.1), (0.3, 0.3)] {
-        let mut run = Simulation::from_toml(&gas(2000, phi, 5.0, ""), "work.toml".as_ref())
-            .unwrap();
+        let mut run =
+            Simulation::from_toml(&gas(2000, phi, 5.0, ""), "work.toml".as_ref()).unwrap();
         let estimate = sim::engines::work(run.plan()).unwrap().events_per_collision;
         run.run(&mut (), None).unwrap();
         let c = run.counters();

@@ -76,20 +76,22 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
     let timings: Vec<EmdTiming> = calendars
         .iter()
         .zip(rates)
-        .map(|(&(calendar, _), (collision_rates, event_rates, bytes, per_collision))| {
-            let [collisions, min, max] = median_min_max(collision_rates);
-            let events_per_second = median_min_max(event_rates)[0];
-            EmdTiming {
-                calendar,
-                collisions_per_second: collisions,
-                collisions_per_second_min: min,
-                collisions_per_second_max: max,
-                events_per_second,
-                events_per_collision: per_collision,
-                ns_per_event: 1e9 / events_per_second,
-                bytes_per_particle: bytes as f64 / n as f64,
-            }
-        })
+        .map(
+            |(&(calendar, _), (collision_rates, event_rates, bytes, per_collision))| {
+                let [collisions, min, max] = median_min_max(collision_rates);
+                let events_per_second = median_min_max(event_rates)[0];
+                EmdTiming {
+                    calendar,
+                    collisions_per_second: collisions,
+                    collisions_per_second_min: min,
+                    collisions_per_second_max: max,
+                    events_per_second,
+                    events_per_collision: per_collision,
+                    ns_per_event: 1e9 / events_per_second,
+                    bytes_per_particle: bytes as f64 / n as f64,
+                }
+            },
+        )
         .collect();
     let first = &timings[0];
     let report = serde_json::json!({

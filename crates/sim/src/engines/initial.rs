@@ -5,21 +5,27 @@
 use crate::description::species;
 use crate::error::{Error, Result};
 use crate::validate::{LawSpec, Plan, Species};
+use gas::init::GrowthReport;
 use gas::System;
 
 /// The initial particles of the `[system]` section: a mixture placed at the packing
-/// fraction (in the wider box of weighted particles), spheres of one kind on a melted
-/// lattice, or (point particles) points placed independently.
-pub(super) fn system<const D: usize>(plan: &Plan) -> Result<System<D>> {
+/// fraction (in the wider box of weighted particles), spheres of one kind (randomly added,
+/// a melted lattice, or grown: `gas::init`), or (point particles) points placed
+/// independently; and the report of a growth.
+pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<GrowthReport>)> {
     let s = &plan.description.system;
     let phi = s.packing_fraction;
     let weight = plan.particle_weight;
     let Species { diameter, mass, .. } = plan.species[0];
     match &s.species {
-        Some(entries) => {
-            gas::init::polydisperse::<D>(s.particles, phi, &species(entries), s.temperature, s.seed)
-                .map(|system| widened(system, phi, weight))
-        }
+        Some(entries) => gas::init::polydisperse_reporting::<D>(
+            s.particles,
+            phi,
+            &species(entries),
+            s.temperature,
+            s.seed,
+        )
+        .map(|(system, report)| (widened(system, phi, weight), report)),
         // Points need not be placed without overlaps.
         None if plan.engine.abilities().point_particles => gas::dsmc::point_gas::<D>(
             s.particles,
@@ -28,10 +34,16 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<System<D>> {
             mass,
             s.temperature,
             s.seed,
+        )
+        .map(|system| (system, None)),
+        None => gas::init::monodisperse_reporting::<D>(
+            s.particles,
+            phi,
+            diameter,
+            mass,
+            s.temperature,
+            s.seed,
         ),
-        None => {
-            gas::init::monodisperse::<D>(s.particles, phi, diameter, mass, s.temperature, s.seed)
-        }
     }
     .map_err(|e| Error::input("system", e))
 }
