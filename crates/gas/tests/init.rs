@@ -148,11 +148,9 @@ fn dense_starts_grow_the_spheres() {
         mass: 1.0,
         fraction: 1.0,
     }];
-    let runs: Vec<(
-        &str,
-        f64,
-        Box<dyn Fn() -> (Option<gas::init::GrowthReport>, f64)>,
-    )> = vec![
+    /// A dense start run a little: its growth report and the time of 3000 collisions.
+    type Run<'a> = Box<dyn Fn() -> (Option<gas::init::GrowthReport>, f64) + 'a>;
+    let runs: Vec<(&str, f64, Run)> = vec![
         (
             "3D, phi = 0.60",
             0.6,

@@ -342,9 +342,9 @@ impl<const D: usize> Grower<D> {
         let a = (self.radius[i] + self.radius[j]) * self.rate;
         let change = 2.0 * (a - u);
         let (mi, mj) = (self.mass[i], self.mass[j]);
-        for k in 0..D {
-            self.velocity[i][k] -= change * mj / (mi + mj) * normal[k];
-            self.velocity[j][k] += change * mi / (mi + mj) * normal[k];
+        for (k, n) in normal.iter().enumerate() {
+            self.velocity[i][k] -= change * mj / (mi + mj) * n;
+            self.velocity[j][k] += change * mi / (mi + mj) * n;
         }
         self.count[i] = self.count[i].wrapping_add(1);
         self.count[j] = self.count[j].wrapping_add(1);
