@@ -82,6 +82,7 @@ impl<const D: usize> EventDriven<D> {
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
         let (cells, count) = self.grid.layer_cells(&self.particles[i].cell, dim, up);
+        self.prefetch_heads(&cells[..count]);
         for &cell in &cells[..count] {
             self.for_each_in_cell(cell, |j| self.consider(i, &pi, &vi, j, &mut best));
         }
@@ -105,8 +106,22 @@ impl<const D: usize> EventDriven<D> {
     #[inline]
     pub(super) fn for_each_neighbor(&self, i: usize, mut f: impl FnMut(usize)) {
         let (cells, count) = self.grid.neighbor_cells(&self.particles[i].cell);
+        self.prefetch_heads(&cells[..count]);
         for &cell in &cells[..count] {
             self.for_each_in_cell(cell, &mut f);
+        }
+    }
+
+    /// Fetches the record of the first particle of each occupied cell of `cells` before a
+    /// scan visits them, so that the cache misses overlap instead of following each other
+    /// (in a dense gas, waiting for each neighbour's record was a third of the run time;
+    /// docs/event-driven.md).
+    #[inline]
+    pub(super) fn prefetch_heads(&self, cells: &[usize]) {
+        for &cell in cells {
+            if self.occupied[cell / 64] & (1 << (cell % 64)) != 0 {
+                super::prefetch_first_line(&self.particles[self.heads[cell] as usize]);
+            }
         }
     }
 
@@ -168,8 +183,9 @@ impl<const D: usize> EventDriven<D> {
         }
     }
 
-    /// Updates `best` with the collision of i (now at `pi` with velocity `vi`) and j.
-    #[inline]
+    /// Updates `best` with the collision of i (now at `pi` with velocity `vi`) and j
+    /// (inlined into the scans: as a call it cost 8 % at phi = 0.45).
+    #[inline(always)]
     pub(super) fn consider(
         &self,
         i: usize,
