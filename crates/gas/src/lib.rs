@@ -18,6 +18,7 @@ pub mod exact_sum;
 pub mod init;
 pub mod observe;
 pub mod parallel;
+mod prefetch;
 pub(crate) mod rng;
 mod serde_util;
 pub mod soft;

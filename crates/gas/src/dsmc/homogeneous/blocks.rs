@@ -11,6 +11,7 @@ use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTa
 use crate::dsmc::reduce;
 use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP};
 use crate::parallel::Communicator;
+use crate::prefetch::prefetch;
 use crate::rng::{Purpose, Stream};
 use crate::system::{dot, Vector};
 use crate::theory;
@@ -310,31 +311,6 @@ fn exchange_lanes<const D: usize, R: HomogeneousRecord<D>>(
 
 /// Lanes ahead of the one being copied whose source [`gather`] asks the processor for.
 const PREFETCH_LANES: usize = 4;
-
-/// Asks the processor to bring every cache line of `records` into cache (a hint: results
-/// never depend on it).
-#[inline(always)]
-fn prefetch<R>(records: &[R]) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let base = records.as_ptr().cast::<i8>();
-        let bytes = std::mem::size_of_val(records);
-        let mut offset = 0;
-        while offset < bytes {
-            // SAFETY: prefetching is a hint that never faults; every address lies in
-            // `records`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(offset)) };
-            offset += 64;
-        }
-        if bytes > 0 {
-            // SAFETY: as above; the last byte of `records`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(base.add(bytes - 1)) };
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = records;
-}
 
 /// Copies a lane as a fixed-size array (inline moves rather than a call to memmove).
 #[inline(always)]
