@@ -48,25 +48,15 @@ pub fn monodisperse_reporting<const D: usize>(
     check_count_and_packing::<D>(n, phi)?;
     let length = monodisperse_box_side::<D>(n, diameter, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
-    if phi > lattice_limit(D) {
-        let diameters = vec![diameter; n];
-        let (positions, report) = grown::<D>(length, phi, &diameters, &vec![mass; n], &mut rng)?;
-        let order = space_order(&positions, length, diameter);
-        let positions = order.iter().map(|&i| positions[i]).collect();
-        let velocities = maxwellian::<D>(n, mass, temperature, &mut rng);
-        let system = System {
-            length,
-            positions,
-            velocities,
-            radii: vec![0.5 * diameter; n],
-            masses: vec![mass; n],
-        };
-        return Ok((system, Some(report)));
-    }
-    let positions = if phi <= RANDOM_ADDITION_LIMIT {
-        random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?
+    let (positions, grown_report) = if phi > lattice_limit(D) {
+        let (positions, report) =
+            grown::<D>(length, phi, &vec![diameter; n], &vec![mass; n], &mut rng)?;
+        (positions, Some(report))
+    } else if phi <= RANDOM_ADDITION_LIMIT {
+        let positions = random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?;
+        (positions, None)
     } else {
-        lattice::<D>(n, length, diameter)?
+        (lattice::<D>(n, length, diameter)?, None)
     };
     let positions = space_order(&positions, length, diameter)
         .into_iter()
@@ -80,8 +70,9 @@ pub fn monodisperse_reporting<const D: usize>(
         radii: vec![0.5 * diameter; n],
         masses: vec![mass; n],
     };
-    if phi <= RANDOM_ADDITION_LIMIT {
-        Ok((system, None))
+    // A lattice is melted; random and grown positions are already disordered.
+    if phi <= RANDOM_ADDITION_LIMIT || grown_report.is_some() {
+        Ok((system, grown_report))
     } else {
         Ok((melt(system, MELTING_COLLISIONS_PER_PARTICLE)?, None))
     }

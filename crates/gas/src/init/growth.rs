@@ -58,6 +58,18 @@ struct Next {
     exit_up: bool,
 }
 
+impl Next {
+    /// No event predicted.
+    const NONE: Next = Next {
+        collision: f64::INFINITY,
+        partner: NONE,
+        partner_count: 0,
+        crossing: f64::INFINITY,
+        exit_dim: 0,
+        exit_up: false,
+    };
+}
+
 /// The spheres while they grow.
 struct Grower<const D: usize> {
     length: f64,
@@ -105,14 +117,6 @@ pub(crate) fn grow<const D: usize>(
         });
     }
     let rate = GROWTH_RATE * (temperature / lightest).sqrt() / (2.0 * largest);
-    let none = Next {
-        collision: f64::INFINITY,
-        partner: NONE,
-        partner_count: 0,
-        crossing: f64::INFINITY,
-        exit_dim: 0,
-        exit_up: false,
-    };
     let mut g = Grower {
         length,
         position: positions
@@ -124,7 +128,7 @@ pub(crate) fn grow<const D: usize>(
         radius: radii.to_vec(),
         mass: masses.to_vec(),
         count: vec![0; n],
-        next: vec![none; n],
+        next: vec![Next::NONE; n],
         cells,
         queue: Sorter::new(SorterKind::Heap, n),
         time: 0.0,
@@ -276,14 +280,7 @@ impl<const D: usize> Grower<D> {
     /// i's next cell crossing, no collision.
     fn crossing(&self, i: usize) -> Next {
         let (p, v) = (self.unwrapped(i), self.velocity[i]);
-        let mut next = Next {
-            collision: f64::INFINITY,
-            partner: NONE,
-            partner_count: 0,
-            crossing: f64::INFINITY,
-            exit_dim: 0,
-            exit_up: false,
-        };
+        let mut next = Next::NONE;
         if let Some((dt, dim, up)) = self.cells.grid.exit(&self.cells.coords[i], &p, &v) {
             next.crossing = self.time + dt;
             next.exit_dim = dim as u8;
