@@ -20,6 +20,9 @@ struct EmdTiming {
     /// Median nanoseconds per event.
     ns_per_event: f64,
     bytes_per_particle: f64,
+    /// Whether the neighbour scans prefetched (the engine's choice by density).
+    neighbour_prefetch: bool,
+    particles_per_cell: f64,
 }
 
 /// `haff bench emd`: collisions and events per second of an elastic 3D gas (one core),
@@ -41,9 +44,9 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         CalendarChoice::Buckets => vec![("buckets", SorterKind::Buckets)],
         CalendarChoice::Both => vec![("heap", SorterKind::Heap), ("buckets", SorterKind::Buckets)],
     };
-    let mut rates = vec![(vec![], vec![], 0usize, 0.0f64); calendars.len()];
+    let mut rates = vec![(vec![], vec![], 0usize, 0.0f64, (false, 0.0)); calendars.len()];
     for repeat in 0..repeats {
-        for (&(_, kind), (collision_rates, event_rates, bytes, per_collision)) in
+        for (&(_, kind), (collision_rates, event_rates, bytes, per_collision, prefetch)) in
             calendars.iter().zip(&mut rates)
         {
             let system = init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1 + repeat as u64)
@@ -69,6 +72,7 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
             collision_rates.push((after.collisions - before.collisions) as f64 / seconds);
             event_rates.push((after.events - before.events) as f64 / seconds);
             *bytes = engine.memory_bytes();
+            *prefetch = engine.neighbour_prefetch();
             *per_collision = (after.events - before.events) as f64
                 / (after.collisions - before.collisions).max(1) as f64;
         }
@@ -77,7 +81,7 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         .iter()
         .zip(rates)
         .map(
-            |(&(calendar, _), (collision_rates, event_rates, bytes, per_collision))| {
+            |(&(calendar, _), (collision_rates, event_rates, bytes, per_collision, prefetch))| {
                 let [collisions, min, max] = median_min_max(collision_rates);
                 let events_per_second = median_min_max(event_rates)[0];
                 EmdTiming {
@@ -89,6 +93,8 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
                     events_per_collision: per_collision,
                     ns_per_event: 1e9 / events_per_second,
                     bytes_per_particle: bytes as f64 / n as f64,
+                    neighbour_prefetch: prefetch.0,
+                    particles_per_cell: prefetch.1,
                 }
             },
         )
@@ -108,6 +114,8 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         "events_per_collision": first.events_per_collision,
         "ns_per_event": first.ns_per_event,
         "bytes_per_particle": first.bytes_per_particle,
+        "neighbour_prefetch": first.neighbour_prefetch,
+        "particles_per_cell": first.particles_per_cell,
         "calendars": timings,
     });
     let mut out = stdout();
@@ -117,7 +125,7 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
             for t in &timings {
                 writeln!(
                     out,
-                    "N = {n}, phi = {phi}, calendar {}: {:.3e} collisions/s (min {:.3e}, max {:.3e}), {:.3e} events/s ({:.1} ns/event, {:.2} events/collision), {:.0} bytes/particle (median of {repeats})",
+                    "N = {n}, phi = {phi}, calendar {}: {:.3e} collisions/s (min {:.3e}, max {:.3e}), {:.3e} events/s ({:.1} ns/event, {:.2} events/collision), {:.0} bytes/particle, {:.2} particles per cell, neighbour prefetch {} (median of {repeats})",
                     t.calendar,
                     t.collisions_per_second,
                     t.collisions_per_second_min,
@@ -125,7 +133,9 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
                     t.events_per_second,
                     t.ns_per_event,
                     t.events_per_collision,
-                    t.bytes_per_particle
+                    t.bytes_per_particle,
+                    t.particles_per_cell,
+                    if t.neighbour_prefetch { "on" } else { "off" }
                 )?;
             }
         }

@@ -118,6 +118,9 @@ impl<const D: usize> EventDriven<D> {
     /// docs/event-driven.md).
     #[inline]
     pub(super) fn prefetch_heads(&self, cells: &[usize]) {
+        if !self.prefetch_scans {
+            return;
+        }
         for &cell in cells {
             if self.occupied[cell / 64] & (1 << (cell % 64)) != 0 {
                 super::prefetch_first_line(&self.particles[self.heads[cell] as usize]);
