@@ -203,6 +203,22 @@ class Simulation:
         a run without ``system.species``."""
         return self._sim.species_timeseries()
 
+    def walls(self):
+        """What the walls of a container (``[[wall]]``) have done: a pandas DataFrame with
+        the columns of ``walls.csv`` (time, collisions_per_particle, axis, side,
+        collisions, momentum, energy; one row per wall and sample, cumulative from the
+        start). None for a run in the periodic box. Needs pandas."""
+        columns = self._sim.walls()
+        if columns is None:
+            return None
+        try:
+            import pandas
+        except ImportError:  # pragma: no cover - depends on the environment
+            raise ImportError("walls needs pandas: pip install pandas") from None
+        order = ["time", "collisions_per_particle", "axis", "side", "collisions", "momentum",
+                 "energy"]
+        return pandas.DataFrame({name: columns[name] for name in order})
+
     def timeseries_frame(self):
         """The time series as a pandas DataFrame (needs pandas)."""
         try:

@@ -243,6 +243,35 @@ impl PySimulation {
         Ok(Some(out))
     }
 
+    /// The walls' rows (the columns of `walls.csv`); None for a run in the periodic box.
+    fn walls<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let simulation = self.get();
+        let Some(rows) = simulation.wall_samples() else {
+            return Ok(None);
+        };
+        let out = PyDict::new(py);
+        let floats: [(&str, Vec<f64>); 4] = [
+            ("time", rows.iter().map(|r| r.time).collect()),
+            (
+                "collisions_per_particle",
+                rows.iter().map(|r| r.collisions_per_particle).collect(),
+            ),
+            ("momentum", rows.iter().map(|r| r.momentum).collect()),
+            ("energy", rows.iter().map(|r| r.energy).collect()),
+        ];
+        for (name, values) in floats {
+            debug_assert!(sim::walls::WALLS_HEADER.contains(&name));
+            out.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        let axes: Vec<&str> = rows.iter().map(|r| r.axis.as_str()).collect();
+        out.set_item("axis", axes)?;
+        let sides: Vec<&str> = rows.iter().map(|r| r.side.name()).collect();
+        out.set_item("side", sides)?;
+        let collisions: Vec<i64> = rows.iter().map(|r| r.collisions as i64).collect();
+        out.set_item("collisions", PyArray1::from_vec(py, collisions))?;
+        Ok(Some(out))
+    }
+
     /// The velocity histograms taken at `run.histogram_at`: (target, time,
     /// collisions_per_particle, bin centres c, densities) each.
     #[allow(clippy::type_complexity)]

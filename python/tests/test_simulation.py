@@ -222,6 +222,30 @@ def test_dense_starts_tell_their_growth(tmp_path):
     assert haff.Simulation(CONFIGS["event-driven"]).initial_state is None
 
 
+def test_walls_as_a_frame_like_walls_csv(tmp_path):
+    boxed = {"system": {"dimension": 2, "particles": 200, "packing_fraction": 0.1, "seed": 7},
+             "collision": {"law": "constant", "restitution": 1.0},
+             "run": {"collisions_per_particle": 10.0, "samples": 4},
+             "wall": [{"axis": "y", "side": "low", "kind": "thermal", "temperature": 2.0},
+                      {"axis": "y", "side": "high", "kind": "elastic"}]}
+    sim = haff.Simulation(boxed).run(progress=False)
+    frame = sim.walls()
+    assert list(frame.columns) == ["time", "collisions_per_particle", "axis", "side",
+                                   "collisions", "momentum", "energy"]
+    assert len(frame) == 2 * len(sim.timeseries["time"])
+    assert set(frame["side"]) == {"low", "high"} and set(frame["axis"]) == {"y"}
+    high = frame[frame["side"] == "high"]
+    assert (high["energy"] == 0.0).all() and high["collisions"].iloc[-1] > 0
+    sim.write(tmp_path / "out")
+    csv = (tmp_path / "out" / "walls.csv").read_text().splitlines()
+    assert csv[0] == "time,collisions_per_particle,axis,side,collisions,momentum,energy"
+    assert len(csv) == 1 + len(frame)
+    assert haff.Simulation(CONFIGS["event-driven"]).walls() is None
+    with pytest.raises(haff.ConfigError, match=r"wall\[1\]\.temperature"):
+        bad = dict(boxed, wall=[boxed["wall"][0], dict(boxed["wall"][1], temperature=1.0)])
+        haff.Simulation(bad)
+
+
 def test_write_gives_the_files_of_the_command(tmp_path, cli):
     config = CONFIGS["event-driven"]
     sim = haff.Simulation(config).run(progress=False)

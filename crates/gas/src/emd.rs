@@ -13,6 +13,7 @@ use crate::engine::Counters;
 use crate::error::{Error, Result};
 use crate::sorter::{Sorter, SorterKind};
 use crate::system::{dot, wrap, System, Vector};
+use crate::walls::{Side, Walls, WallsState};
 use restitution::Restitution;
 
 mod driving;
@@ -47,9 +48,14 @@ struct Particle<const D: usize> {
     partner_count: u32,
     prev_in_cell: u32,
     cell: [u32; D],
-    /// Dimension and direction of the predicted cell crossing.
+    /// Dimension and direction of the predicted cell crossing; a dimension k + D stands
+    /// for the contact with the wall on that side of axis k.
     exit_dim: u8,
     exit_up: bool,
+    /// Contacts with walls, modulo 2^32: `count` advances with them too (a wall changes
+    /// the velocity, so predictions with this particle go stale), and the collisions are
+    /// `count - wall_hits`.
+    wall_hits: u32,
     radius: f64,
     mass: f64,
 }
@@ -113,6 +119,12 @@ pub struct EventDriven<const D: usize> {
     collapsed: Option<f64>,
     /// Driving applied at discrete times ([`EventDriven::set_driving`]).
     kicks: Option<driving::Kicks>,
+    /// The walls of a closed container ([`EventDriven::set_walls`]); None: periodic.
+    walls: Option<Walls<D>>,
+    /// Walls' state from a check-point, taken up by the next [`EventDriven::set_walls`].
+    saved_walls: Option<WallsState>,
+    /// Per axis: periodic (no walls), so that separations take the nearest image.
+    periodic: [bool; D],
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -180,6 +192,7 @@ impl<const D: usize> EventDriven<D> {
                 cell: [0; D],
                 exit_dim: 0,
                 exit_up: false,
+                wall_hits: 0,
                 radius,
                 mass,
             })
@@ -246,6 +259,9 @@ impl<const D: usize> EventDriven<D> {
             stall: (0.0, 0),
             collapsed: None,
             kicks: None,
+            walls: None,
+            saved_walls: None,
+            periodic: [true; D],
         };
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
@@ -316,9 +332,9 @@ impl<const D: usize> EventDriven<D> {
         let half = 0.5 * length;
         std::array::from_fn(|k| {
             let d = b[k] - a[k];
-            if d > half {
+            if d > half && self.periodic[k] {
                 d - length
-            } else if d < -half {
+            } else if d < -half && self.periodic[k] {
                 d + length
             } else {
                 d
@@ -378,7 +394,10 @@ impl<const D: usize> EventDriven<D> {
             prefetch(&self.particles[k]);
         }
         let next = self.particles[i];
-        if next.crossing <= next.collision {
+        if next.crossing <= next.collision && next.exit_dim as usize >= D {
+            self.hit_wall(i, next.exit_dim as usize - D, next.exit_up);
+            self.predict(i);
+        } else if next.crossing <= next.collision {
             let (dim, up) = (next.exit_dim as usize, next.exit_up);
             self.bring_to_now(i);
             self.remove(i);
@@ -438,6 +457,67 @@ impl<const D: usize> EventDriven<D> {
         self.watch_for_collapse();
         self.tally.energy_lost += lost;
         self.tally.virial += impulse * distance;
+    }
+
+    /// The contact of i with the wall on the high (`up`) or low side of axis k, now.
+    fn hit_wall(&mut self, i: usize, k: usize, up: bool) {
+        self.bring_to_now(i);
+        let side = if up { Side::High } else { Side::Low };
+        let Some(walls) = self.walls.as_mut() else {
+            return;
+        };
+        let Some(index) = walls.at(k, side) else {
+            return;
+        };
+        let p = &mut self.particles[i];
+        walls.bounce(index, p.mass, &mut p.velocity);
+        p.count = p.count.wrapping_add(1);
+        p.wall_hits = p.wall_hits.wrapping_add(1);
+    }
+
+    /// Puts the gas into a container with `walls` (None: periodic again) and predicts
+    /// every event anew. Fails if a sphere is not inside the walls (its centre at least
+    /// its radius from each) or an axis holds fewer than 4 cells. Takes up the walls'
+    /// tallies from a restored check-point (then the walls must be as many).
+    pub fn set_walls(&mut self, walls: Option<Walls<D>>) -> Result<()> {
+        let mut walls = walls;
+        if let Some(w) = walls.as_mut() {
+            let length = self.system.length;
+            for (i, p) in self.particles.iter().enumerate() {
+                let x = p.position_at(self.time);
+                for k in (0..D).filter(|&k| w.closed(k)) {
+                    if x[k] < p.radius || x[k] > length - p.radius {
+                        return Err(Error::out_of_range(
+                            "wall",
+                            format!("sphere {i} at {} on axis {k}, radius {}", x[k], p.radius),
+                            format!(
+                                "spheres inside the walls ({} .. {})",
+                                p.radius,
+                                length - p.radius
+                            ),
+                        ));
+                    }
+                }
+            }
+            if let Some(saved) = self.saved_walls.take() {
+                w.set_state(saved)?;
+            }
+        } else if self.saved_walls.is_some() {
+            return Err(Error::out_of_range(
+                "walls",
+                "none",
+                "the walls the check-point was saved with",
+            ));
+        }
+        self.periodic = std::array::from_fn(|k| walls.as_ref().is_none_or(|w| !w.closed(k)));
+        self.walls = walls;
+        self.synchronize();
+        Ok(())
+    }
+
+    /// The walls, if the gas is in a container.
+    pub fn walls(&self) -> Option<&Walls<D>> {
+        self.walls.as_ref()
     }
 
     /// Counts collisions at a standing time; declares collapse after too many.

@@ -119,6 +119,12 @@ pub trait Engine<const D: usize> {
         None
     }
 
+    /// The walls of a closed container with what each has done so far (None: periodic, or
+    /// an engine without walls).
+    fn walls(&self) -> Option<Vec<crate::walls::WallRecord>> {
+        None
+    }
+
     /// Bath temperature of each particle, if the law is stochastic (Giese).
     fn bath_temperatures(&self) -> Option<&[f64]> {
         None

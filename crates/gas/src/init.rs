@@ -32,11 +32,13 @@ pub fn monodisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>> {
-    monodisperse_reporting(n, phi, diameter, mass, temperature, seed).map(|(system, _)| system)
+    monodisperse_reporting(n, phi, diameter, mass, temperature, seed, [false; D])
+        .map(|(system, _)| system)
 }
 
-/// [`monodisperse`], and the report of the growth of a dense start (above
-/// [`lattice_limit`]).
+/// [`monodisperse`] in a box whose axes `closed` have walls (every centre at least its
+/// radius from them; the same random numbers as the periodic start), and the report of
+/// the growth of a dense start (above [`lattice_limit`]; not in a container yet).
 pub fn monodisperse_reporting<const D: usize>(
     n: usize,
     phi: f64,
@@ -44,16 +46,19 @@ pub fn monodisperse_reporting<const D: usize>(
     mass: f64,
     temperature: f64,
     seed: u64,
+    closed: [bool; D],
 ) -> Result<(System<D>, Option<GrowthReport>)> {
     check_count_and_packing::<D>(n, phi)?;
     let length = monodisperse_box_side::<D>(n, diameter, phi);
     let mut rng = Pcg64::seed_from_u64(seed);
     let (positions, grown_report) = if phi > lattice_limit(D) {
+        refuse_growth_in_container(phi, &closed)?;
         let (positions, report) =
             grown::<D>(length, phi, &vec![diameter; n], &vec![mass; n], &mut rng)?;
         (positions, Some(report))
     } else if phi <= RANDOM_ADDITION_LIMIT {
-        let positions = random_addition::<D>(length, &vec![diameter; n], diameter, &mut rng)?;
+        let positions =
+            random_addition::<D>(length, &vec![diameter; n], diameter, closed, &mut rng)?;
         (positions, None)
     } else {
         (lattice::<D>(n, length, diameter)?, None)
@@ -74,8 +79,24 @@ pub fn monodisperse_reporting<const D: usize>(
     if phi <= RANDOM_ADDITION_LIMIT || grown_report.is_some() {
         Ok((system, grown_report))
     } else {
-        Ok((melt(system, MELTING_COLLISIONS_PER_PARTICLE)?, None))
+        Ok((
+            melt_in(system, MELTING_COLLISIONS_PER_PARTICLE, closed)?,
+            None,
+        ))
     }
+}
+
+/// Dense starts are grown in the periodic box only (for now): refused in a container.
+fn refuse_growth_in_container(phi: f64, closed: &[bool]) -> Result<()> {
+    if closed.iter().any(|&c| c) {
+        return Err(Error::out_of_range(
+            "packing_fraction",
+            phi,
+            "up to the lattice limit in a container with walls (dense starts are grown in \
+             the periodic box only)",
+        ));
+    }
+    Ok(())
 }
 
 /// Positions of spheres of `diameters` at packing fraction `phi` in the box of side `length`,
@@ -91,7 +112,7 @@ fn grown<const D: usize>(
     let s0 = (RANDOM_ADDITION_LIMIT / phi).powf(1.0 / D as f64);
     let small: Vec<f64> = diameters.iter().map(|d| d * s0).collect();
     let largest = small.iter().copied().fold(0.0, f64::max);
-    let positions = random_addition::<D>(length, &small, largest, rng)?;
+    let positions = random_addition::<D>(length, &small, largest, [false; D], rng)?;
     let velocities: Vec<Vector<D>> = masses
         .iter()
         .map(|&m| std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal) / m.sqrt()))
@@ -192,17 +213,18 @@ pub fn polydisperse<const D: usize>(
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>> {
-    polydisperse_reporting(n, phi, species, temperature, seed).map(|(system, _)| system)
+    polydisperse_reporting(n, phi, species, temperature, seed, [false; D]).map(|(system, _)| system)
 }
 
-/// [`polydisperse`], and the report of the growth of a dense start (above
-/// [`lattice_limit`]).
+/// [`polydisperse`] in a box whose axes `closed` have walls (as
+/// [`monodisperse_reporting`]), and the report of the growth of a dense start.
 pub fn polydisperse_reporting<const D: usize>(
     n: usize,
     phi: f64,
     species: &[Species],
     temperature: f64,
     seed: u64,
+    closed: [bool; D],
 ) -> Result<(System<D>, Option<GrowthReport>)> {
     check_count_and_packing::<D>(n, phi)?;
     require_positive("temperature", temperature)?;
@@ -232,6 +254,7 @@ pub fn polydisperse_reporting<const D: usize>(
     let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
     let lattice_fits = length / side as f64 >= max_diameter;
     let positions = if phi > lattice_limit(D) || (dense && !lattice_fits) {
+        refuse_growth_in_container(phi, &closed)?;
         kind.shuffle(&mut rng);
         let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
         let masses: Vec<f64> = kind.iter().map(|&s| species[s].mass).collect();
@@ -243,7 +266,7 @@ pub fn polydisperse_reporting<const D: usize>(
         lattice::<D>(n, length, max_diameter)?
     } else {
         let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
-        random_addition::<D>(length, &diameters, max_diameter, &mut rng)?
+        random_addition::<D>(length, &diameters, max_diameter, closed, &mut rng)?
     };
     let order = space_order(&positions, length, max_diameter);
     let positions: Vec<Vector<D>> = order.iter().map(|&i| positions[i]).collect();
@@ -267,7 +290,7 @@ pub fn polydisperse_reporting<const D: usize>(
     if !dense || report.is_some() {
         return Ok((system, report));
     }
-    let mut system = melt(system, MELTING_COLLISIONS_PER_PARTICLE)?;
+    let mut system = melt_in(system, MELTING_COLLISIONS_PER_PARTICLE, closed)?;
     // Melting conserves both up to round-off; restore them exactly.
     set_momentum_and_temperature(&mut system.velocities, &system.masses, temperature);
     Ok((system, None))
@@ -307,10 +330,33 @@ pub const MELTING_COLLISIONS_PER_PARTICLE: u64 = 10;
 /// momentum are conserved exactly up to round-off, so T stays the initial temperature)
 /// and returns the state: the lattice order is gone, the velocities are Maxwellian.
 pub fn melt<const D: usize>(system: System<D>, per_particle: u64) -> Result<System<D>> {
+    melt_in(system, per_particle, [false; D])
+}
+
+/// [`melt`] between elastic walls on the axes `closed`.
+fn melt_in<const D: usize>(
+    system: System<D>,
+    per_particle: u64,
+    closed: [bool; D],
+) -> Result<System<D>> {
+    use crate::walls::{Side, Wall, WallKind, Walls};
     use crate::Engine;
     let n = system.len() as u64;
     let elastic = restitution::Constant::new(1.0)?;
     let mut engine = crate::EventDriven::new(system, Box::new(elastic))?;
+    if closed.iter().any(|&c| c) {
+        let walls = (0..D)
+            .filter(|&k| closed[k])
+            .flat_map(|axis| {
+                [Side::Low, Side::High].map(|side| Wall {
+                    axis,
+                    side,
+                    kind: WallKind::Elastic,
+                })
+            })
+            .collect();
+        engine.set_walls(Some(Walls::new(walls, 0)?))?;
+    }
     engine.run_collisions(per_particle * n / 2);
     Ok(engine.system().clone())
 }
@@ -370,11 +416,13 @@ fn lattice_too_dense<const D: usize>(phi: f64, diameter: f64, spacing: f64) -> E
 }
 
 /// Places spheres of the given diameters one after the other at random positions where
-/// they overlap no sphere placed before (cells at least `max_diameter` wide).
+/// they overlap no sphere placed before (cells at least `max_diameter` wide); on the axes
+/// `closed` (walls) within their radius of neither face, with no periodic image.
 fn random_addition<const D: usize>(
     length: f64,
     diameters: &[f64],
     max_diameter: f64,
+    closed: [bool; D],
     rng: &mut Pcg64,
 ) -> Result<Vec<Vector<D>>> {
     let n = diameters.len();
@@ -390,11 +438,21 @@ fn random_addition<const D: usize>(
     for (i, &di) in diameters.iter().enumerate() {
         let mut placed = false;
         for _ in 0..100_000 {
-            let p: Vector<D> = std::array::from_fn(|_| rng.random::<f64>() * length);
+            let p: Vector<D> = std::array::from_fn(|k| {
+                let u = rng.random::<f64>();
+                if closed[k] {
+                    0.5 * di + u * (length - di)
+                } else {
+                    u * length
+                }
+            });
             let c = grid.coords_of(&p);
             let mut free = true;
             grid.for_each_neighbor(&c, |j| {
-                let d = system.separation(&p, &positions[j]);
+                let mut d = system.separation(&p, &positions[j]);
+                for k in (0..D).filter(|&k| closed[k]) {
+                    d[k] = positions[j][k] - p[k];
+                }
                 let sigma = contact(di, diameters[j]);
                 free &= dot(&d, &d) >= sigma * sigma;
             });

@@ -26,6 +26,7 @@ pub mod sorter;
 pub mod structure;
 pub mod system;
 pub mod theory;
+pub mod walls;
 
 pub use dsmc::{HomogeneousDsmc, SpatialDsmc};
 pub use emd::{BathState, EventDriven, EventDrivenState};

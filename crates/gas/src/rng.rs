@@ -27,6 +27,8 @@ pub(crate) enum Purpose {
     Baths = 5,
     /// The white-noise kicks of the event-driven engine at one application.
     Driving = 6,
+    /// The velocities thermal walls give the spheres that touch them.
+    Walls = 7,
 }
 
 /// A counted PCG-64 stream.

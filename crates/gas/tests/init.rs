@@ -130,7 +130,7 @@ fn dense_binary_mixture_from_a_melted_lattice() {
     let s = polydisperse::<3>(1000, 0.35, &species, 1.0, 5).unwrap();
     check_mixture(&s, 0.35, 1.0, &species);
     // At 0.4 the simple lattice of the largest diameter no longer fits: the spheres grow.
-    let (s, report) = polydisperse_reporting::<3>(1000, 0.4, &species, 1.0, 5).unwrap();
+    let (s, report) = polydisperse_reporting::<3>(1000, 0.4, &species, 1.0, 5, [false; 3]).unwrap();
     check_mixture(&s, 0.4, 1.0, &species);
     assert!(report.is_some());
 }
@@ -148,13 +148,13 @@ fn dense_starts_grow_the_spheres() {
         fraction: 1.0,
     }];
     let species = binary();
-    let (s, r) = monodisperse_reporting::<3>(1500, 0.6, 1.0, 1.0, 1.0, 3).unwrap();
+    let (s, r) = monodisperse_reporting::<3>(1500, 0.6, 1.0, 1.0, 1.0, 3, [false; 3]).unwrap();
     check_mixture(&s, 0.6, 1.0, &one);
     check_grown("3D, phi = 0.60", 0.6, r, s);
-    let (s, r) = monodisperse_reporting::<2>(1500, 0.8, 1.0, 1.0, 1.0, 4).unwrap();
+    let (s, r) = monodisperse_reporting::<2>(1500, 0.8, 1.0, 1.0, 1.0, 4, [false; 2]).unwrap();
     check_mixture(&s, 0.8, 1.0, &one);
     check_grown("2D, phi = 0.80", 0.8, r, s);
-    let (s, r) = polydisperse_reporting::<3>(1500, 0.6, &species, 1.0, 5).unwrap();
+    let (s, r) = polydisperse_reporting::<3>(1500, 0.6, &species, 1.0, 5, [false; 3]).unwrap();
     check_mixture(&s, 0.6, 1.0, &species);
     check_grown("3D binary, phi = 0.60", 0.6, r, s);
 }
@@ -188,7 +188,7 @@ fn check_grown<const D: usize>(
 fn grown_starts_are_the_equilibrium_fluid() {
     use gas::{Engine, EventDriven};
     let (n, phi) = (2000, 0.48);
-    let (s, report) = monodisperse_reporting::<3>(n, phi, 1.0, 1.0, 1.0, 11).unwrap();
+    let (s, report) = monodisperse_reporting::<3>(n, phi, 1.0, 1.0, 1.0, 11, [false; 3]).unwrap();
     assert!(report.is_some());
     let volume = s.length.powi(3);
     let mut e = EventDriven::new(s, law()).unwrap();

@@ -63,6 +63,89 @@ pub struct RunDescription {
     /// `[driving]`: energy fed in, for a steady state instead of free cooling.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub driving: Option<DrivingSection>,
+    /// `[[wall]]`: the walls of a container (none: the periodic box).
+    #[serde(default, rename = "wall", skip_serializing_if = "Vec::is_empty")]
+    pub walls: Vec<WallSection>,
+}
+
+/// One `[[wall]]`: a flat wall on one side of one axis (`gas::walls`); an axis is periodic
+/// unless both its sides have a wall.
+///
+/// ```toml
+/// [[wall]]
+/// axis = "z"           # x | y | z
+/// side = "low"         # low | high
+/// kind = "restitution" # elastic | restitution | thermal | vibrating
+/// restitution = 0.9    # restitution walls (default 1)
+/// # temperature = 2.0  # thermal: diffuse re-emission from the wall's Maxwellian
+/// ```
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallSection {
+    pub axis: AxisName,
+    pub side: WallSide,
+    pub kind: WallKindName,
+    /// Restitution and vibrating walls: the coefficient of restitution (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+    /// Thermal walls: the wall's temperature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    /// Vibrating walls: the amplitude of the wall's motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub amplitude: Option<f64>,
+    /// Vibrating walls: the frequency of the wall's motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<f64>,
+    /// Vibrating walls: the waveform of the wall's motion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub waveform: Option<Waveform>,
+}
+
+/// `wall.axis`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisName {
+    X,
+    Y,
+    Z,
+}
+
+impl AxisName {
+    pub fn index(self) -> usize {
+        self as usize
+    }
+
+    pub fn name(self) -> &'static str {
+        ["x", "y", "z"][self as usize]
+    }
+}
+
+/// `wall.side`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum WallSide {
+    Low,
+    High,
+}
+
+/// `wall.kind`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum WallKindName {
+    Elastic,
+    Restitution,
+    Thermal,
+    Vibrating,
+}
+
+/// `wall.waveform`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Waveform {
+    Sine,
+    Triangle,
+    Sawtooth,
 }
 
 /// `[driving]`: energy fed in for a steady state (`gas::driving`). White noise

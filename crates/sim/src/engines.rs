@@ -78,6 +78,8 @@ pub struct Abilities {
     pub baths: bool,
     /// Species of their own viscoelastic materials.
     pub species_materials: bool,
+    /// The walls of a container (`[[wall]]`).
+    pub walls: bool,
 }
 
 /// The name of an engine kind in the run file.

@@ -40,6 +40,7 @@ pub mod space;
 pub mod species;
 pub mod validate;
 pub mod vtk;
+pub mod walls;
 
 pub use description::RunDescription;
 pub use driver::{Point, Progress, PIECE_COLLISIONS};

@@ -91,6 +91,9 @@ pub fn for_plan<const D: usize>(plan: &Plan) -> Vec<Box<dyn Observer<D>>> {
     if let Some(species) = crate::species::SpeciesSeries::of(plan) {
         list.push(Box::new(species));
     }
+    if let Some(walls) = crate::walls::WallSeries::of(plan) {
+        list.push(Box::new(walls));
+    }
     list
 }
 

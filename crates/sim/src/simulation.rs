@@ -374,6 +374,11 @@ impl Simulation {
         each!(&self.run, r => r.observer::<SpeciesSeries>().map(|s| s.samples.as_slice()))
     }
 
+    /// The walls' rows taken so far (`walls.csv`); None for a run in the periodic box.
+    pub fn wall_samples(&self) -> Option<&[crate::walls::WallSample]> {
+        each!(&self.run, r => r.observer::<crate::walls::WallSeries>().map(|s| s.samples.as_slice()))
+    }
+
     /// The velocity histograms taken so far.
     pub fn histograms(&self) -> &[Histogram] {
         each!(&self.run, r => r.observer::<VelocityHistograms>().map_or(&[][..], |h| &h.histograms))
@@ -533,6 +538,9 @@ impl Simulation {
         }
         if let Some(grown) = &self.grown {
             summary["initial_state"] = serde_json::json!(grown);
+        }
+        if let Some(walls) = each!(&self.run, r => r.observer::<crate::walls::WallSeries>()) {
+            summary["walls"] = crate::walls::summary(walls);
         }
         for section in self.report().sections {
             summary[section.name] = serde_json::json!(section);

@@ -3,21 +3,24 @@
 //! every key in range, the keys each law and engine needs present and the keys of other
 //! laws and engines refused. One module per concern: `[system]` ([`system`]), `[collision]`
 //! ([`law`], the materials in [`material`]), `[run]` ([`run`]; the engine's own keys in
-//! [`crate::engines`]), `[driving]` ([`driving`]); `[output]` in [`crate::space`]. What an
-//! engine can do comes from [`crate::engines::Abilities`]. The law's own parameter ranges
-//! (restitution, damping ratio, beta, modes, the form's order, the table) are checked by
-//! the law itself when [`crate::law::build`] builds it, which [`crate::Simulation::new`]
-//! does before anything runs. Errors name the key and the allowed range.
+//! [`crate::engines`]), `[driving]` ([`driving`]), `[[wall]]` ([`walls`]); `[output]` in
+//! [`crate::space`]. What an engine can do comes from [`crate::engines::Abilities`]. The
+//! law's own parameter ranges (restitution, damping ratio, beta, modes, the form's order,
+//! the table) are checked by the law itself when [`crate::law::build`] builds it, which
+//! [`crate::Simulation::new`] does before anything runs. Errors name the key and the
+//! allowed range.
 
 mod driving;
 mod law;
 pub(crate) mod material;
 mod run;
 mod system;
+mod walls;
 
 pub use crate::engines::EngineSpec;
 pub use law::{LawSpec, StochasticTable};
 pub(crate) use material::material;
+pub use walls::{WallSpec, WallSpecKind};
 
 use crate::description::{RunDescription, Spacing};
 use crate::engines::{self, DrivingTimes};
@@ -84,6 +87,8 @@ pub struct Plan {
     /// The time between applications of the driving of an engine that drives at discrete
     /// times (given, or the default of [`crate::species::default_driving_interval`]).
     pub driving_interval: Option<f64>,
+    /// The walls of a container (`[[wall]]`; empty: the periodic box).
+    pub walls: Vec<WallSpec>,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
@@ -104,6 +109,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     crate::space::check_output(description, &abilities)?;
     run::check_ranks(r, &abilities)?;
     let (driving, driving_interval) = driving::driving_spec(description, &abilities, &law)?;
+    let walls = walls::walls_spec(description, &abilities)?;
     let c = &description.collision;
     let mut description = description.clone();
     description.normalize();
@@ -117,6 +123,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         tc: c.tc.filter(|&tc| tc > 0.0),
         driving,
         driving_interval,
+        walls,
         notes: Vec::new(),
     };
     if plan.driving.is_some()

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 8] = [
+const SEEDS: [&str; 9] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -42,10 +42,15 @@ const SEEDS: [&str; 8] = [
     "[system]\nparticles = 40\npacking_fraction = 0.1\ndiameter = 2e-3\ntemperature = 1e-5\n\
      [collision]\nlaw = \"viscoelastic\"\nmaterial = \"ice\"\ndissipative_constant = 1e-9\n\
      [run]\nengine = \"soft-sphere\"\nend_time = 1e-4\nsamples = 3\ntime_step = 2e-7\n",
+    "[system]\ndimension = 2\nparticles = 60\npacking_fraction = 0.1\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+     [run]\ncollisions_per_particle = 5\nsamples = 4\n\
+     [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"thermal\"\ntemperature = 1.5\n\
+     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"restitution\"\nrestitution = 0.8\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 31] = [
+const KEYS: [&str; 37] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -77,10 +82,16 @@ const KEYS: [&str; 31] = [
     "time_step",
     "ranks",
     "colour",
+    "axis",
+    "side",
+    "kind",
+    "amplitude",
+    "frequency",
+    "waveform",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 32] = [
+const VALUES: [&str; 37] = [
     "0",
     "1",
     "-1",
@@ -114,6 +125,11 @@ const VALUES: [&str; 32] = [
     "{ a = 1 }",
     "[{ diameter = 1.0, mass = 1.0, fraction = 0 }]",
     "18446744073709551615",
+    "\"z\"",
+    "\"low\"",
+    "\"high\"",
+    "\"elastic\"",
+    "\"vibrating\"",
 ];
 
 /// One mutation of a run file's text.

@@ -55,7 +55,7 @@ impl<const D: usize> EventDriven<D> {
             .into_par_iter()
             .map(|i| {
                 let (pi, vi) = this.now(i);
-                let exit = this.grid.exit(&this.particles[i].cell, &pi, &vi);
+                let exit = this.exit_of(i, &pi, &vi);
                 let mut best = Best::NONE;
                 this.for_each_neighbor(i, |j| this.consider(i, &pi, &vi, j, &mut best));
                 (exit, best)
@@ -172,9 +172,44 @@ impl<const D: usize> EventDriven<D> {
         (p.position_at(self.time), p.velocity)
     }
 
+    /// The first of i's cell crossing and, in a container, its contact with a wall (as
+    /// dimension k + D): delay from now, dimension, direction.
+    #[inline]
+    fn exit_of(&self, i: usize, p: &Vector<D>, v: &Vector<D>) -> Option<(f64, usize, bool)> {
+        let cell = &self.particles[i].cell;
+        let exit = self.grid.exit(cell, p, v);
+        let Some(walls) = &self.walls else {
+            return exit;
+        };
+        // A wall can only be touched from the cell along it (a cell is at least a diameter
+        // wide), before the particle would leave that cell through the wall's face.
+        let (radius, length, last) = (
+            self.particles[i].radius,
+            self.system.length,
+            self.grid.per_side as u32 - 1,
+        );
+        let mut first = exit;
+        for k in (0..D).filter(|&k| walls.closed(k)) {
+            let contact = if cell[k] == 0 && v[k] < 0.0 {
+                Some(((p[k] - radius) / -v[k], false))
+            } else if cell[k] == last && v[k] > 0.0 {
+                Some(((length - radius - p[k]) / v[k], true))
+            } else {
+                None
+            };
+            if let Some((dt, up)) = contact {
+                let dt = dt.max(0.0);
+                if first.is_none_or(|f| dt <= f.0) {
+                    first = Some((dt, k + D, up));
+                }
+            }
+        }
+        first
+    }
+
     pub(super) fn predict_crossing(&mut self, i: usize) {
         let (p, v) = self.now(i);
-        let exit = self.grid.exit(&self.particles[i].cell, &p, &v);
+        let exit = self.exit_of(i, &p, &v);
         let next = &mut self.particles[i];
         match exit {
             Some((dt, dim, up)) => {

@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::serde_util;
 use crate::sorter::SorterKind;
 use crate::system::{wrap, System, Vector};
+use crate::walls::{WallRecord, WallsState};
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
 
@@ -31,9 +32,13 @@ impl<const D: usize> EventDriven<D> {
         self.predict_all();
     }
 
-    /// Collision counts per particle modulo 2^32 (for snapshots).
+    /// Collision counts per particle modulo 2^32 (for snapshots; contacts with walls
+    /// are not collisions).
     pub fn counts(&self) -> Vec<u64> {
-        self.particles.iter().map(|p| p.count as u64).collect()
+        self.particles
+            .iter()
+            .map(|p| p.count.wrapping_sub(p.wall_hits) as u64)
+            .collect()
     }
 }
 
@@ -69,6 +74,9 @@ pub struct EventDrivenState<const D: usize> {
     /// Collisions without time advancing since `stall_since` (collapse detection).
     pub stall_since: f64,
     pub stall_collisions: u64,
+    /// The walls' tallies, in a container (absent from periodic runs' states).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub walls: Option<WallsState>,
 }
 
 impl<const D: usize> EventDrivenState<D> {
@@ -131,7 +139,16 @@ impl<const D: usize> EventDrivenState<D> {
 
 impl<const D: usize> Engine<D> for EventDriven<D> {
     fn collision_counts(&self) -> Option<Vec<u32>> {
-        Some(self.particles.iter().map(|p| p.count).collect())
+        Some(
+            self.particles
+                .iter()
+                .map(|p| p.count.wrapping_sub(p.wall_hits))
+                .collect(),
+        )
+    }
+
+    fn walls(&self) -> Option<Vec<WallRecord>> {
+        self.walls.as_ref().map(|w| w.records())
     }
 
     /// Runs until the time reaches `t` (events at later times stay pending), or stops at
@@ -244,6 +261,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             baths: self.bath_state(),
             stall_since: self.stall.0,
             stall_collisions: self.stall.1,
+            walls: self.walls.as_ref().map(|w| w.state()),
         }
     }
 
@@ -262,6 +280,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             baths,
             stall_since,
             stall_collisions,
+            walls,
         } = state;
         if counts.len() != system.len() {
             return Err(Error::LengthMismatch {
@@ -278,6 +297,8 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         }
         engine.tally = counters;
         engine.stall = (stall_since, stall_collisions);
+        // Taken up when the walls are set again (they are not part of the state).
+        engine.saved_walls = walls;
         if sorter != SorterKind::default() {
             engine.set_sorter(sorter);
         }

@@ -35,6 +35,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         collapse: false,
         baths: false,
         species_materials: true,
+        walls: false,
     }
 }
 

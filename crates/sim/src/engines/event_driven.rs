@@ -22,6 +22,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     collapse: true,
     baths: true,
     species_materials: true,
+    walls: true,
 };
 
 /// The engine's keys: none beyond the common ones.
@@ -75,7 +76,24 @@ pub(super) fn start<const D: usize>(
             .map_err(|e| Error::input("collision.tc", e))?;
     }
     drive(&mut engine, plan)?;
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
+}
+
+/// Puts the engine's gas into the plan's walls, if any (their thermal velocities drawn
+/// from the run's seed).
+fn enclose<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
+    if plan.walls.is_empty() {
+        return Ok(());
+    }
+    let walls = gas::walls::Walls::new(
+        plan.walls.iter().map(|w| w.build()).collect(),
+        plan.description.system.seed,
+    )
+    .map_err(|e| Error::input("wall", e))?;
+    engine
+        .set_walls(Some(walls))
+        .map_err(|e| Error::input("wall", e))
 }
 
 /// The engine of a check-point, its state checked against the plan, driven as the plan
@@ -90,6 +108,7 @@ pub(super) fn restore<const D: usize>(
     let mut engine =
         EventDriven::restore(state, law).map_err(|e| state_error(sections)(e.to_string()))?;
     drive(&mut engine, plan)?;
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
 }
 
@@ -121,6 +140,11 @@ fn check_state<const D: usize>(
         Some(b) if stochastic && b.seed == plan.description.system.seed => {}
         None if !stochastic => {}
         _ => return Err("the baths do not belong to collision.law".into()),
+    }
+    match &state.walls {
+        Some(w) if w.tallies.len() == plan.walls.len() => {}
+        None if plan.walls.is_empty() => {}
+        _ => return Err("the walls differ from [[wall]]".into()),
     }
     if state.min_cell_width != 0.0 || state.sorter != gas::SorterKind::default() {
         return Err("cells or sorter differ from a run's".into());

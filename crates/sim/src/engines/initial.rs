@@ -17,6 +17,7 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
     let phi = s.packing_fraction;
     let weight = plan.particle_weight;
     let Species { diameter, mass, .. } = plan.species[0];
+    let closed: [bool; D] = std::array::from_fn(|k| plan.walls.iter().any(|w| w.axis == k));
     match &s.species {
         Some(entries) => gas::init::polydisperse_reporting::<D>(
             s.particles,
@@ -24,6 +25,7 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
             &species(entries),
             s.temperature,
             s.seed,
+            closed,
         )
         .map(|(system, report)| (widened(system, phi, weight), report)),
         // Points need not be placed without overlaps.
@@ -43,6 +45,7 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
             mass,
             s.temperature,
             s.seed,
+            closed,
         ),
     }
     .map_err(|e| Error::input("system", e))
@@ -161,8 +164,8 @@ pub(super) fn no_energy_gained<const D: usize>(
     system: &System<D>,
     bath_temperatures: Option<&[f64]>,
 ) -> std::result::Result<(), String> {
-    if plan.driving.is_some() {
-        // A driven gas gains energy.
+    if plan.driving.is_some() || plan.walls.iter().any(|w| w.kind.can_heat()) {
+        // A driven gas, or one touching a thermal wall, gains energy.
         return Ok(());
     }
     let s = &plan.description.system;

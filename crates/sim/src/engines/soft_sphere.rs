@@ -21,6 +21,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     collapse: false,
     baths: false,
     species_materials: false,
+    walls: false,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).

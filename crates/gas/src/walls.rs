@@ -1,0 +1,263 @@
+//! Walls of a container: flat walls at the faces of the box, each on one side of one axis,
+//! and what happens to a sphere that touches one. An axis with walls on both sides is
+//! closed; the others stay periodic.
+//!
+//! A sphere of radius r touches the wall on the low side of axis k at x_k = r and the one on
+//! the high side at x_k = L - r. The wall is infinitely massive; with u > 0 the normal
+//! speed towards it and v_n' >= 0 the normal speed away from it after the contact:
+//! - **elastic**: specular reflection, v_n' = u;
+//! - **restitution**: v_n' = eps(u) u with eps from a law of [`restitution`] (the
+//!   tangential velocity is kept: smooth spheres);
+//! - **thermal** (Maxwell's diffuse wall at temperature T_w): the sphere leaves with a
+//!   velocity drawn from the flux of a Maxwellian at rest at T_w through the wall: the
+//!   tangential components Gaussian with variance T_w / m, the normal one with density
+//!   (m v / T_w) exp(-m v^2 / (2 T_w)), drawn as sqrt(-2 (T_w / m) ln U) (Cercignani,
+//!   *The Boltzmann Equation and Its Applications*, 1988, Sec. III.5).
+//!
+//! Each wall counts its contacts, the normal momentum the spheres gave it, m (u + v_n'),
+//! and the energy it gave the gas, m (|v'|^2 - |v|^2) / 2 (negative where it takes energy).
+
+use crate::error::{Error, Result};
+use crate::rng::Stream;
+use restitution::Restitution;
+use serde::{Deserialize, Serialize};
+
+/// Which face of an axis a wall closes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    Low,
+    High,
+}
+
+impl Side {
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Low => "low",
+            Side::High => "high",
+        }
+    }
+}
+
+/// What a wall does to a sphere that touches it (see the [module](self) documentation).
+pub enum WallKind {
+    Elastic,
+    Restitution(Box<dyn Restitution>),
+    Thermal { temperature: f64 },
+}
+
+impl std::fmt::Debug for WallKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            WallKind::Elastic => write!(f, "Elastic"),
+            WallKind::Restitution(_) => write!(f, "Restitution(law)"),
+            WallKind::Thermal { temperature } => write!(f, "Thermal {{ {temperature} }}"),
+        }
+    }
+}
+
+/// A flat wall on one side of one axis.
+#[derive(Debug)]
+pub struct Wall {
+    pub axis: usize,
+    pub side: Side,
+    pub kind: WallKind,
+}
+
+/// What a wall has done since the start of the run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallTally {
+    /// Contacts with spheres.
+    pub collisions: u64,
+    /// Normal momentum the spheres gave the wall.
+    pub momentum: f64,
+    /// Energy the wall gave the gas (negative where it took energy).
+    pub energy: f64,
+}
+
+/// A wall and its tally, as an engine reports it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallRecord {
+    pub axis: usize,
+    pub side: Side,
+    pub tally: WallTally,
+}
+
+/// The walls' part of an engine's saved state: their tallies and the position of the
+/// thermal walls' random stream.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallsState {
+    pub tallies: Vec<WallTally>,
+    pub draws: u64,
+}
+
+/// The walls of a container, with their tallies and the random stream of the thermal ones.
+#[derive(Debug)]
+pub struct Walls<const D: usize> {
+    walls: Vec<Wall>,
+    /// `at[k][side]`: the index in `walls` of the wall on that side of axis k.
+    at: [[Option<usize>; 2]; D],
+    tallies: Vec<WallTally>,
+    seed: u64,
+    stream: Stream,
+}
+
+impl<const D: usize> Walls<D> {
+    /// Walls of a box; fails if an axis beyond the dimension is named, a side is given
+    /// twice, an axis has a wall on one side only, or a thermal wall's temperature is not
+    /// positive and finite. `seed` draws the thermal walls' velocities.
+    pub fn new(walls: Vec<Wall>, seed: u64) -> Result<Self> {
+        let mut at = [[None; 2]; D];
+        for (index, wall) in walls.iter().enumerate() {
+            if wall.axis >= D {
+                return Err(Error::out_of_range(
+                    "wall.axis",
+                    wall.axis,
+                    format!("an axis of the {D}-dimensional box"),
+                ));
+            }
+            let slot = &mut at[wall.axis][wall.side as usize];
+            if slot.is_some() {
+                return Err(Error::out_of_range(
+                    "wall.side",
+                    format!("{} twice on axis {}", wall.side.name(), wall.axis),
+                    "one wall per side of an axis",
+                ));
+            }
+            *slot = Some(index);
+            if let WallKind::Thermal { temperature } = wall.kind {
+                if !(temperature.is_finite() && temperature > 0.0) {
+                    return Err(Error::out_of_range(
+                        "wall.temperature",
+                        temperature,
+                        "a finite temperature > 0",
+                    ));
+                }
+            }
+        }
+        if let Some(k) = (0..D).find(|&k| at[k][0].is_some() != at[k][1].is_some()) {
+            return Err(Error::out_of_range(
+                "wall.side",
+                format!("one side of axis {k} only"),
+                "walls on both sides of an axis (or none: periodic)",
+            ));
+        }
+        let tallies = vec![WallTally::default(); walls.len()];
+        Ok(Walls {
+            walls,
+            at,
+            tallies,
+            seed,
+            stream: Stream::new(seed, crate::rng::Purpose::Walls, 0, 0),
+        })
+    }
+
+    /// Whether axis k is closed by walls.
+    #[inline]
+    pub fn closed(&self, k: usize) -> bool {
+        self.at[k][0].is_some()
+    }
+
+    /// The wall on `side` of axis k, if any.
+    #[inline]
+    pub fn at(&self, k: usize, side: Side) -> Option<usize> {
+        self.at[k][side as usize]
+    }
+
+    pub fn walls(&self) -> &[Wall] {
+        &self.walls
+    }
+
+    pub fn tallies(&self) -> &[WallTally] {
+        &self.tallies
+    }
+
+    /// Each wall with its tally, in the order they were given.
+    pub fn records(&self) -> Vec<WallRecord> {
+        self.walls
+            .iter()
+            .zip(&self.tallies)
+            .map(|(w, &tally)| WallRecord {
+                axis: w.axis,
+                side: w.side,
+                tally,
+            })
+            .collect()
+    }
+
+    /// The tallies and stream position, to be saved.
+    pub fn state(&self) -> WallsState {
+        WallsState {
+            tallies: self.tallies.clone(),
+            draws: self.stream.draws(),
+        }
+    }
+
+    /// Takes up a saved state; fails if it holds another number of walls.
+    pub fn set_state(&mut self, state: WallsState) -> Result<()> {
+        if state.tallies.len() != self.walls.len() {
+            return Err(Error::LengthMismatch {
+                what: "saved wall tallies and walls".into(),
+            });
+        }
+        if let Some(t) = state
+            .tallies
+            .iter()
+            .find(|t| !(t.momentum.is_finite() && t.energy.is_finite()))
+        {
+            return Err(Error::out_of_range(
+                "walls.tallies",
+                format!("{t:?}"),
+                "finite momentum and energy",
+            ));
+        }
+        self.tallies = state.tallies;
+        self.stream = Stream::at(self.seed, crate::rng::Purpose::Walls, 0, 0, state.draws);
+        Ok(())
+    }
+
+    /// The contact of a sphere of mass m and velocity v with wall `index`: sets the
+    /// velocity after it and tallies the wall.
+    pub fn bounce(&mut self, index: usize, mass: f64, v: &mut [f64; D]) {
+        let Wall { axis, side, kind } = &self.walls[index];
+        let k = *axis;
+        // +1: the gas lies above the wall (low side).
+        let inward = match side {
+            Side::Low => 1.0,
+            Side::High => -1.0,
+        };
+        let u = (-inward * v[k]).max(0.0);
+        let before: f64 = v.iter().map(|x| x * x).sum();
+        let away = match kind {
+            WallKind::Elastic => u,
+            WallKind::Restitution(law) => law.eps(u) * u,
+            WallKind::Thermal { temperature } => {
+                let scale = (temperature / mass).sqrt();
+                for (j, x) in v.iter_mut().enumerate() {
+                    if j != k {
+                        *x = scale * gaussian(&mut self.stream);
+                    }
+                }
+                // 1 - U lies in (0, 1]: the logarithm is finite.
+                scale * (-2.0 * (1.0 - self.stream.uniform()).ln()).sqrt()
+            }
+        };
+        v[k] = inward * away;
+        let after: f64 = v.iter().map(|x| x * x).sum();
+        let energy = 0.5 * mass * (after - before);
+        let tally = &mut self.tallies[index];
+        tally.collisions += 1;
+        tally.momentum += mass * (u + away);
+        tally.energy += energy;
+    }
+}
+
+/// A standard normal variate (Box–Muller's cosine branch: one per two uniforms, so that
+/// the stream's position depends on the contacts alone).
+fn gaussian(stream: &mut Stream) -> f64 {
+    let u1 = 1.0 - stream.uniform();
+    let u2 = stream.uniform();
+    (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}

@@ -1,0 +1,185 @@
+//! `[[wall]]`: the walls of a container. Each names an axis of the box and a side; an axis
+//! is closed when both its sides have a wall and periodic when neither has. Each kind takes
+//! its own keys only.
+
+use crate::description::{RunDescription, WallKindName, WallSection, WallSide};
+use crate::engines::{kind_name, Abilities};
+use crate::error::{Error, Result};
+use gas::walls::Side;
+
+/// A checked wall.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallSpec {
+    pub axis: usize,
+    pub side: Side,
+    pub kind: WallSpecKind,
+}
+
+/// What a checked wall does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WallSpecKind {
+    Elastic,
+    /// A constant coefficient of restitution.
+    Restitution(f64),
+    /// Maxwell's diffuse wall at this temperature.
+    Thermal(f64),
+}
+
+impl WallSpecKind {
+    /// Whether the wall can give the gas energy.
+    pub fn can_heat(&self) -> bool {
+        matches!(self, WallSpecKind::Thermal(_))
+    }
+}
+
+impl WallSpec {
+    /// The wall as the engines take it.
+    pub fn build(&self) -> gas::walls::Wall {
+        use gas::walls::WallKind;
+        let kind = match self.kind {
+            WallSpecKind::Elastic => WallKind::Elastic,
+            WallSpecKind::Restitution(eps) => WallKind::Restitution(Box::new(
+                restitution::Constant::new(eps).expect("checked in validation"),
+            )),
+            WallSpecKind::Thermal(temperature) => WallKind::Thermal { temperature },
+        };
+        gas::walls::Wall {
+            axis: self.axis,
+            side: self.side,
+            kind,
+        }
+    }
+}
+
+/// The walls of the run, checked against the dimension and the engine.
+pub(crate) fn walls_spec(
+    description: &RunDescription,
+    engine: &Abilities,
+) -> Result<Vec<WallSpec>> {
+    let walls = &description.walls;
+    if walls.is_empty() {
+        return Ok(Vec::new());
+    }
+    if !engine.walls {
+        return Err(Error::input(
+            "wall",
+            format!(
+                "run.engine = \"{}\" has no walls yet; walls run in run.engine = \
+                 \"event-driven\"",
+                kind_name(description.run.engine)
+            ),
+        ));
+    }
+    let dimension = description.system.dimension as usize;
+    let mut specs: Vec<WallSpec> = Vec::with_capacity(walls.len());
+    for (i, wall) in walls.iter().enumerate() {
+        let key = |name: &str| format!("wall[{i}].{name}");
+        let axis = wall.axis.index();
+        if axis >= dimension {
+            let allowed = ["x", "y", "z"][..dimension].join(", ");
+            return Err(Error::out_of_range(
+                &key("axis"),
+                format!("{} in {dimension} dimensions", wall.axis.name()),
+                &allowed,
+            ));
+        }
+        let side = match wall.side {
+            WallSide::Low => Side::Low,
+            WallSide::High => Side::High,
+        };
+        if specs.iter().any(|s| s.axis == axis && s.side == side) {
+            return Err(Error::input(
+                key("side"),
+                format!(
+                    "a second wall on the {} side of axis {}; allowed: one wall per side",
+                    side.name(),
+                    wall.axis.name()
+                ),
+            ));
+        }
+        let kind = wall_kind(wall, &key)?;
+        specs.push(WallSpec { axis, side, kind });
+    }
+    for (i, wall) in walls.iter().enumerate() {
+        let sides = specs.iter().filter(|s| s.axis == wall.axis.index()).count();
+        if sides != 2 {
+            return Err(Error::input(
+                format!("wall[{i}].side"),
+                format!(
+                    "only the {} side of axis {} has a wall; allowed: walls on both sides of \
+                     an axis (or none: periodic)",
+                    specs[i].side.name(),
+                    wall.axis.name()
+                ),
+            ));
+        }
+    }
+    Ok(specs)
+}
+
+/// A wall's kind with its own keys, refusing the keys of the other kinds.
+fn wall_kind(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallSpecKind> {
+    let kind = wall.kind;
+    let refuse = |name: &str, present: bool, for_kinds: &str| -> Result<()> {
+        if present {
+            Err(Error::input(
+                key(name),
+                format!(
+                    "only for kind = {for_kinds}, not for kind = \"{}\"",
+                    kind_text(kind)
+                ),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    let restitution_kinds = "\"restitution\" or \"vibrating\"";
+    if !matches!(kind, WallKindName::Restitution | WallKindName::Vibrating) {
+        refuse("restitution", wall.restitution.is_some(), restitution_kinds)?;
+    }
+    if kind != WallKindName::Thermal {
+        refuse("temperature", wall.temperature.is_some(), "\"thermal\"")?;
+    }
+    if kind != WallKindName::Vibrating {
+        refuse("amplitude", wall.amplitude.is_some(), "\"vibrating\"")?;
+        refuse("frequency", wall.frequency.is_some(), "\"vibrating\"")?;
+        refuse("waveform", wall.waveform.is_some(), "\"vibrating\"")?;
+    }
+    match kind {
+        WallKindName::Elastic => Ok(WallSpecKind::Elastic),
+        WallKindName::Restitution => {
+            let eps = wall.restitution.unwrap_or(1.0);
+            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
+                return Err(Error::out_of_range(&key("restitution"), eps, "0 <= e <= 1"));
+            }
+            Ok(WallSpecKind::Restitution(eps))
+        }
+        WallKindName::Thermal => {
+            let t = wall
+                .temperature
+                .ok_or_else(|| Error::input(key("temperature"), "missing for a thermal wall"))?;
+            if !(t.is_finite() && t > 0.0) {
+                return Err(Error::out_of_range(
+                    &key("temperature"),
+                    t,
+                    "finite and > 0",
+                ));
+            }
+            Ok(WallSpecKind::Thermal(t))
+        }
+        WallKindName::Vibrating => Err(Error::input(
+            key("kind"),
+            "vibrating walls are not built yet (issue 34 is in progress); allowed now: \
+             \"elastic\", \"restitution\", \"thermal\"",
+        )),
+    }
+}
+
+fn kind_text(kind: WallKindName) -> &'static str {
+    match kind {
+        WallKindName::Elastic => "elastic",
+        WallKindName::Restitution => "restitution",
+        WallKindName::Thermal => "thermal",
+        WallKindName::Vibrating => "vibrating",
+    }
+}

@@ -1,0 +1,123 @@
+//! Runs in containers (`[[wall]]`) through the driver: `walls.csv`, `summary.json`'s
+//! `walls`, check-points, and the refusals of bad walls naming their key.
+
+use sim::{Point, Simulation};
+
+const BOX: &str = "[system]\ndimension = 2\nparticles = 200\npacking_fraction = 0.1\nseed = 7\n\
+                   [collision]\nlaw = \"constant\"\nrestitution = 1.0\n\
+                   [run]\ncollisions_per_particle = 40\nsamples = 9\nspacing = \"linear\"\n";
+
+const WALLS: &str = "[[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"thermal\"\ntemperature = 2.0\n\
+                     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"restitution\"\nrestitution = 0.5\n";
+
+fn run_text(walls: &str) -> String {
+    format!("{BOX}{walls}")
+}
+
+/// `walls.csv` has the issue's header and one row per wall per sample, cumulative;
+/// `summary.json` has each wall's pressure and energy flux; a check-point taken mid-run
+/// resumes bit for bit, walls included.
+#[test]
+fn walls_are_written_balanced_and_resumed() {
+    let text = run_text(WALLS);
+    let mut run = Simulation::from_toml(&text, "walls.toml".as_ref()).unwrap();
+    assert!(run
+        .advance(Point::CollisionsPerParticle(15.0), &mut ())
+        .unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-walls-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("walls.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    assert_eq!(loaded.wall_samples(), run.wall_samples());
+    let rows = run.wall_samples().unwrap();
+    assert_eq!(rows.len(), 2 * run.samples().len());
+    // Cumulative: the hot thermal wall (T_w = 2 > T = 1) has given energy, the
+    // restitution wall taken it (the exact balance is gas/tests/walls.rs's).
+    let last = &rows[rows.len() - 2..];
+    assert!(last[0].energy > 0.0 && last[1].energy < 0.0, "{last:?}");
+    for pair in rows.chunks(2).collect::<Vec<_>>().windows(2) {
+        assert!(pair[1][0].collisions >= pair[0][0].collisions);
+        assert!(pair[1][0].time > pair[0][0].time);
+    }
+    loaded.write(&dir).unwrap();
+    let csv = std::fs::read_to_string(dir.join("walls.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "time,collisions_per_particle,axis,side,collisions,momentum,energy"
+    );
+    assert_eq!(csv.lines().count(), 1 + rows.len());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let walls = summary["walls"].as_array().unwrap();
+    assert_eq!(walls.len(), 2);
+    assert!(walls[0]["pressure"].as_f64().unwrap() > 0.0);
+    assert_eq!(walls[1]["side"], "high");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A periodic run writes no `walls.csv` rows and no `walls` key.
+#[test]
+fn periodic_runs_have_no_walls() {
+    let run = Simulation::from_toml(&run_text(""), "periodic.toml".as_ref()).unwrap();
+    assert!(run.wall_samples().is_none());
+}
+
+/// Bad walls: exit 2 (an input error) naming the key.
+#[test]
+fn bad_walls_name_their_key() {
+    let one_side = "[[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"elastic\"\n";
+    let cases = [
+        (one_side.to_string(), "wall[0].side"),
+        (format!("{one_side}{one_side}"), "wall[1].side"),
+        (WALLS.replace("\"y\"", "\"z\""), "wall[0].axis"),
+        (
+            WALLS.replace("temperature = 2.0", "temperature = -1.0"),
+            "wall[0].temperature",
+        ),
+        (
+            WALLS.replace("restitution = 0.5", "restitution = 1.5"),
+            "wall[1].restitution",
+        ),
+        (
+            WALLS.replace("kind = \"restitution\"", "kind = \"elastic\""),
+            "wall[1].restitution",
+        ),
+        (
+            WALLS.replace("temperature = 2.0", "temperature = 2.0\namplitude = 0.1"),
+            "wall[0].amplitude",
+        ),
+        (
+            WALLS.replace(
+                "kind = \"thermal\"\ntemperature = 2.0",
+                "kind = \"vibrating\"",
+            ),
+            "wall[0].kind",
+        ),
+    ];
+    for (walls, key) in cases {
+        let text = run_text(&walls);
+        let error = Simulation::from_toml(&text, "bad.toml".as_ref())
+            .err()
+            .unwrap_or_else(|| panic!("accepted:\n{walls}"));
+        assert!(error.is_input(), "{error}");
+        assert!(error.to_string().contains(key), "{key}: {error}");
+    }
+    // Engines without walls refuse them, naming the section.
+    let soft = "[system]\nparticles = 40\npacking_fraction = 0.1\n\
+                [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
+                dissipative_constant = 0.01\n\
+                [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\n";
+    let dsmc = BOX.replace("[run]\n", "[run]\nengine = \"dsmc\"\n");
+    for base in [soft.to_string(), dsmc] {
+        let text = format!("{base}{WALLS}");
+        let error = Simulation::from_toml(&text, "bad.toml".as_ref())
+            .err()
+            .unwrap();
+        assert!(error.is_input(), "{error}");
+        assert!(error.to_string().starts_with("wall"), "{error}");
+    }
+}
