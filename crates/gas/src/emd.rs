@@ -123,8 +123,6 @@ pub struct EventDriven<const D: usize> {
     walls: Option<Walls<D>>,
     /// Walls' state from a check-point, taken up by the next [`EventDriven::set_walls`].
     saved_walls: Option<WallsState>,
-    /// Per axis: periodic (no walls), so that separations take the nearest image.
-    periodic: [bool; D],
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -261,7 +259,6 @@ impl<const D: usize> EventDriven<D> {
             kicks: None,
             walls: None,
             saved_walls: None,
-            periodic: [true; D],
         };
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
@@ -326,15 +323,17 @@ impl<const D: usize> EventDriven<D> {
 
     /// Minimum-image separation b - a of two positions less than 1.5 L apart per
     /// component (stored positions are in [0, L) and streamed less than a cell beyond).
+    /// In a container the scans never pair spheres across a wall ([`Self::keep_inside`]):
+    /// the pairs they see lie in adjacent cells, whose nearest image is the direct one.
     #[inline]
     fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
         let length = self.system.length;
         let half = 0.5 * length;
         std::array::from_fn(|k| {
             let d = b[k] - a[k];
-            if d > half && self.periodic[k] {
+            if d > half {
                 d - length
-            } else if d < -half && self.periodic[k] {
+            } else if d < -half {
                 d + length
             } else {
                 d
@@ -357,6 +356,9 @@ impl<const D: usize> EventDriven<D> {
         for i in 0..n {
             let (pi, vi) = self.now(i);
             for j in i + 1..n {
+                if self.across_a_wall(&pi, &self.particles[j].position_at(self.time)) {
+                    continue;
+                }
                 if let Some(dt) = self.collision_delay(&pi, &vi, j, self.sigma(i, j)) {
                     let t = self.time + dt;
                     let scheduled = self.queue.time_of(i).min(self.queue.time_of(j));
@@ -367,6 +369,15 @@ impl<const D: usize> EventDriven<D> {
             }
         }
         None
+    }
+
+    /// Whether the nearest image of b seen from a lies across a wall (then the two never
+    /// meet there).
+    fn across_a_wall(&self, a: &Vector<D>, b: &Vector<D>) -> bool {
+        let half = 0.5 * self.system.length;
+        self.walls
+            .as_ref()
+            .is_some_and(|w| (0..D).any(|k| w.closed(k) && (b[k] - a[k]).abs() > half))
     }
 
     /// Processes the next event; false if there is none (all particles at rest).
@@ -509,7 +520,6 @@ impl<const D: usize> EventDriven<D> {
                 "the walls the check-point was saved with",
             ));
         }
-        self.periodic = std::array::from_fn(|k| walls.as_ref().is_none_or(|w| !w.closed(k)));
         self.walls = walls;
         self.synchronize();
         Ok(())

@@ -74,7 +74,9 @@ pub struct EventDrivenState<const D: usize> {
     /// Collisions without time advancing since `stall_since` (collapse detection).
     pub stall_since: f64,
     pub stall_collisions: u64,
-    /// The walls' tallies, in a container (absent from periodic runs' states).
+    /// The walls' tallies, in a container (absent from periodic runs' states, which stay
+    /// as they were byte for byte; the last field, so that a reader of postcard can take
+    /// the end of the data for None: `sim::checkpoint::Sections::engine`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub walls: Option<WallsState>,
 }
