@@ -488,8 +488,8 @@ impl<const D: usize> EventDriven<D> {
 
     /// Puts the gas into a container with `walls` (None: periodic again) and predicts
     /// every event anew. Fails if a sphere is not inside the walls (its centre at least
-    /// its radius from each) or an axis holds fewer than 4 cells. Takes up the walls'
-    /// tallies from a restored check-point (then the walls must be as many).
+    /// its radius from each). Takes up the walls' tallies from a restored check-point
+    /// (then the walls must be as many).
     pub fn set_walls(&mut self, walls: Option<Walls<D>>) -> Result<()> {
         let mut walls = walls;
         if let Some(w) = walls.as_mut() {
