@@ -405,15 +405,17 @@ impl<const D: usize> EventDriven<D> {
             prefetch(&self.particles[k]);
         }
         let next = self.particles[i];
-        if next.crossing <= next.collision && next.exit_dim as usize >= D {
-            self.hit_wall(i, next.exit_dim as usize - D, next.exit_up);
-            self.predict(i);
-        } else if next.crossing <= next.collision {
+        if next.crossing <= next.collision {
             let (dim, up) = (next.exit_dim as usize, next.exit_up);
-            self.bring_to_now(i);
-            self.remove(i);
-            self.insert(i, self.grid.shifted(&next.cell, dim, up));
-            self.predict_after_crossing(i, dim, up);
+            if dim >= D {
+                self.hit_wall(i, dim - D, up);
+                self.predict(i);
+            } else {
+                self.bring_to_now(i);
+                self.remove(i);
+                self.insert(i, self.grid.shifted(&next.cell, dim, up));
+                self.predict_after_crossing(i, dim, up);
+            }
         } else {
             let j = next.partner as usize;
             if self.particles[j].count == next.partner_count {

@@ -111,13 +111,16 @@ pub enum AxisName {
     Z,
 }
 
+/// The names of the axes, by index.
+pub const AXIS_NAMES: [&str; 3] = ["x", "y", "z"];
+
 impl AxisName {
     pub fn index(self) -> usize {
         self as usize
     }
 
     pub fn name(self) -> &'static str {
-        ["x", "y", "z"][self as usize]
+        AXIS_NAMES[self as usize]
     }
 }
 
@@ -137,6 +140,18 @@ pub enum WallKindName {
     Restitution,
     Thermal,
     Vibrating,
+}
+
+impl WallKindName {
+    /// The name in the run file.
+    pub fn name(self) -> &'static str {
+        match self {
+            WallKindName::Elastic => "elastic",
+            WallKindName::Restitution => "restitution",
+            WallKindName::Thermal => "thermal",
+            WallKindName::Vibrating => "vibrating",
+        }
+    }
 }
 
 /// `wall.waveform`.

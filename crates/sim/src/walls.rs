@@ -3,6 +3,7 @@
 //! start, written to `walls.csv`; `summary.json` gets `walls`: each wall's pressure and
 //! energy flux per unit area over the second half of the run.
 
+use crate::description::AXIS_NAMES;
 use crate::error::Result;
 use crate::observer::{record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
@@ -133,12 +134,15 @@ impl<const D: usize> Observer<D> for WallSeries {
             return Ok(());
         };
         let (time, per_particle) = (engine.time(), engine.collisions_per_particle());
-        self.area = engine.system().length.powi(D as i32 - 1);
+        if self.area == 0.0 {
+            // Once: taking the engine's system copies every particle.
+            self.area = engine.system().length.powi(D as i32 - 1);
+        }
         for w in walls {
             self.samples.push(WallSample {
                 time,
                 collisions_per_particle: per_particle,
-                axis: ["x", "y", "z"][w.axis].to_string(),
+                axis: AXIS_NAMES[w.axis].to_string(),
                 side: w.side,
                 collisions: w.tally.collisions,
                 momentum: self.weight * w.tally.momentum,

@@ -83,8 +83,8 @@ impl<const D: usize> EventDriven<D> {
         let (pi, vi) = self.now(i);
         let cell = self.particles[i].cell;
         let (mut cells, mut count) = self.grid.layer_cells(&cell, dim, up);
-        if self.walls.is_some() {
-            count = self.keep_inside(&cell, &mut cells, count);
+        if let Some(walls) = &self.walls {
+            count = self.keep_inside(walls, &cell, &mut cells, count);
         }
         self.prefetch_heads(&cells[..count]);
         for &cell in &cells[..count] {
@@ -111,8 +111,8 @@ impl<const D: usize> EventDriven<D> {
     pub(super) fn for_each_neighbor(&self, i: usize, mut f: impl FnMut(usize)) {
         let cell = self.particles[i].cell;
         let (mut cells, mut count) = self.grid.neighbor_cells(&cell);
-        if self.walls.is_some() {
-            count = self.keep_inside(&cell, &mut cells, count);
+        if let Some(walls) = &self.walls {
+            count = self.keep_inside(walls, &cell, &mut cells, count);
         }
         self.prefetch_heads(&cells[..count]);
         for &cell in &cells[..count] {
@@ -124,10 +124,13 @@ impl<const D: usize> EventDriven<D> {
     /// wall (the periodic neighbours of a cell along a closed axis), so that no pair is
     /// predicted through a wall; returns how many are left at the front of `cells`.
     #[inline(never)]
-    pub(super) fn keep_inside(&self, c: &[u32; D], cells: &mut [usize], count: usize) -> usize {
-        let Some(walls) = &self.walls else {
-            return count;
-        };
+    pub(super) fn keep_inside(
+        &self,
+        walls: &crate::walls::Walls<D>,
+        c: &[u32; D],
+        cells: &mut [usize],
+        count: usize,
+    ) -> usize {
         let n = self.grid.per_side;
         let last = n as u32 - 1;
         if !(0..D).any(|k| walls.closed(k) && (c[k] == 0 || c[k] == last)) {

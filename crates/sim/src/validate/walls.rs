@@ -2,7 +2,7 @@
 //! is closed when both its sides have a wall and periodic when neither has. Each kind takes
 //! its own keys only.
 
-use crate::description::{RunDescription, WallKindName, WallSection, WallSide};
+use crate::description::{RunDescription, WallKindName, WallSection, WallSide, AXIS_NAMES};
 use crate::engines::{kind_name, Abilities};
 use crate::error::{Error, Result};
 use gas::walls::Side;
@@ -76,7 +76,7 @@ pub(crate) fn walls_spec(
         let key = |name: &str| format!("wall[{i}].{name}");
         let axis = wall.axis.index();
         if axis >= dimension {
-            let allowed = ["x", "y", "z"][..dimension].join(", ");
+            let allowed = AXIS_NAMES[..dimension].join(", ");
             return Err(Error::out_of_range(
                 &key("axis"),
                 format!("{} in {dimension} dimensions", wall.axis.name()),
@@ -126,7 +126,7 @@ fn wall_kind(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallSpe
                 key(name),
                 format!(
                     "only for kind = {for_kinds}, not for kind = \"{}\"",
-                    kind_text(kind)
+                    kind.name()
                 ),
             ))
         } else {
@@ -172,14 +172,5 @@ fn wall_kind(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallSpe
             "vibrating walls are not built yet (issue 34 is in progress); allowed now: \
              \"elastic\", \"restitution\", \"thermal\"",
         )),
-    }
-}
-
-fn kind_text(kind: WallKindName) -> &'static str {
-    match kind {
-        WallKindName::Elastic => "elastic",
-        WallKindName::Restitution => "restitution",
-        WallKindName::Thermal => "thermal",
-        WallKindName::Vibrating => "vibrating",
     }
 }
