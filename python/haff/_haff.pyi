@@ -57,6 +57,8 @@ class _Simulation:
     def walls(self) -> dict[str, Any] | None:
         """The columns of walls.csv: time, collisions_per_particle, axis, side, collisions,
         momentum, energy (one row per wall and sample)."""
+    def profiles(self) -> dict[str, Float1D] | None:
+        """The columns of profiles.csv (one row per slab and sample; NaN for empty cells)."""
     def velocity_histograms(self) -> list[tuple[float, float, float, Float1D, Float1D]]: ...
     def modes(self) -> dict[str, Float1D]:
         """The columns of modes.csv: time, collisions_per_particle, k, transverse_energy,

@@ -219,6 +219,25 @@ class Simulation:
                  "energy"]
         return pandas.DataFrame({name: columns[name] for name in order})
 
+    def profiles(self):
+        """Profiles along an axis (``[output] profiles = {axis, bins}``): a pandas DataFrame
+        with the columns of ``profiles.csv`` (time, collisions_per_particle, position,
+        density, packing_fraction, temperature, temperature_x/y/z, velocity_x/y/z; one row
+        per slab and sample; NaN where the CSV cell is empty: components a dimension lacks,
+        the velocity of an empty slab, temperatures below two particles). None without
+        ``output.profiles``. Needs pandas."""
+        columns = self._sim.profiles()
+        if columns is None:
+            return None
+        try:
+            import pandas
+        except ImportError:  # pragma: no cover - depends on the environment
+            raise ImportError("profiles needs pandas: pip install pandas") from None
+        order = ["time", "collisions_per_particle", "position", "density", "packing_fraction",
+                 "temperature", "temperature_x", "temperature_y", "temperature_z",
+                 "velocity_x", "velocity_y", "velocity_z"]
+        return pandas.DataFrame({name: columns[name] for name in order})
+
     def timeseries_frame(self):
         """The time series as a pandas DataFrame (needs pandas)."""
         try:

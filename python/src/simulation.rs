@@ -272,6 +272,50 @@ impl PySimulation {
         Ok(Some(out))
     }
 
+    /// The profiles' rows (the columns of `profiles.csv`, NaN for its empty cells); None
+    /// without `output.profiles`.
+    fn profiles<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let simulation = self.get();
+        let Some(rows) = simulation.profile_rows() else {
+            return Ok(None);
+        };
+        let out = PyDict::new(py);
+        let column = |f: &dyn Fn(&sim::profiles::ProfileRow) -> Option<f64>| -> Vec<f64> {
+            rows.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect()
+        };
+        let mut columns: Vec<(String, Vec<f64>)> = vec![
+            ("time".into(), column(&|r| Some(r.time))),
+            (
+                "collisions_per_particle".into(),
+                column(&|r| Some(r.collisions_per_particle)),
+            ),
+            ("position".into(), column(&|r| Some(r.position))),
+            ("density".into(), column(&|r| Some(r.density))),
+            (
+                "packing_fraction".into(),
+                column(&|r| Some(r.packing_fraction)),
+            ),
+            ("temperature".into(), column(&|r| r.temperature)),
+        ];
+        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            columns.push((
+                format!("temperature_{axis}"),
+                column(&|r| r.temperature_component(k)),
+            ));
+        }
+        for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            columns.push((
+                format!("velocity_{axis}"),
+                column(&|r| r.velocity_component(k)),
+            ));
+        }
+        for (name, values) in columns {
+            debug_assert!(sim::profiles::PROFILES_HEADER.contains(&name.as_str()));
+            out.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        Ok(Some(out))
+    }
+
     /// The velocity histograms taken at `run.histogram_at`: (target, time,
     /// collisions_per_particle, bin centres c, densities) each.
     #[allow(clippy::type_complexity)]

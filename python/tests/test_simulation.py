@@ -246,6 +246,32 @@ def test_walls_as_a_frame_like_walls_csv(tmp_path):
         haff.Simulation(bad)
 
 
+def test_profiles_as_a_frame_like_profiles_csv(tmp_path):
+    boxed = {"system": {"dimension": 2, "particles": 200, "packing_fraction": 0.1, "seed": 7},
+             "collision": {"law": "constant", "restitution": 1.0},
+             "run": {"collisions_per_particle": 10.0, "samples": 4},
+             "output": {"profiles": {"axis": "y", "bins": 8}},
+             "wall": [{"axis": "y", "side": "low", "kind": "elastic"},
+                      {"axis": "y", "side": "high", "kind": "elastic"}]}
+    sim = haff.Simulation(boxed).run(progress=False)
+    frame = sim.profiles()
+    header = ("time,collisions_per_particle,position,density,packing_fraction,temperature,"
+              "temperature_x,temperature_y,temperature_z,velocity_x,velocity_y,velocity_z")
+    assert list(frame.columns) == header.split(",")
+    assert len(frame) == 8 * len(sim.timeseries["time"])
+    # Every particle in one slab: the densities times the slab volumes sum to N.
+    side = (200 * np.pi / 4 / 0.1) ** 0.5
+    for _, sample in frame.groupby("time"):
+        assert sample["density"].sum() * side * side / 8 == pytest.approx(200, rel=1e-12)
+    assert frame["temperature_z"].isna().all() and frame["velocity_z"].isna().all()
+    sim.write(tmp_path / "out")
+    csv = (tmp_path / "out" / "profiles.csv").read_text().splitlines()
+    assert csv[0] == header and len(csv) == 1 + len(frame)
+    assert haff.Simulation(CONFIGS["event-driven"]).profiles() is None
+    with pytest.raises(haff.ConfigError, match=r"output\.profiles\.axis"):
+        haff.Simulation(dict(boxed, output={"profiles": {"axis": "z", "bins": 8}}))
+
+
 def test_write_gives_the_files_of_the_command(tmp_path, cli):
     config = CONFIGS["event-driven"]
     sim = haff.Simulation(config).run(progress=False)

@@ -192,14 +192,7 @@ impl<const D: usize, O> Snapshot<D, O> {
                 index: 0,
             });
         }
-        let c = &self.counters;
-        if !(c.energy_lost.is_finite() && c.virial.is_finite()) || c.events < c.collisions {
-            return Err(Error::out_of_range(
-                "counters",
-                format!("{c:?}"),
-                "finite sums and candidates >= collisions",
-            ));
-        }
+        self.counters.check("candidates")?;
         self.system.check(in_box)
     }
 

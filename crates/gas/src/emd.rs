@@ -116,6 +116,11 @@ pub struct EventDriven<const D: usize> {
     /// Time at which the current run of collisions without time advancing began, and
     /// their number (see [`COLLAPSE_COLLISIONS_PER_PARTICLE`]).
     stall: (f64, u64),
+    /// The same for the other events (cell crossings, wall contacts): a clock that no
+    /// longer resolves the events (times beyond ~1e16 mean free times) or a sphere
+    /// trapped against a wall would loop without colliding. Not saved: it only ever
+    /// stops a run that does not advance.
+    idle: (f64, u64),
     collapsed: Option<f64>,
     /// Driving applied at discrete times ([`EventDriven::set_driving`]).
     kicks: Option<driving::Kicks>,
@@ -255,6 +260,7 @@ impl<const D: usize> EventDriven<D> {
             tc: None,
             baths: law_is_stochastic.then(|| Baths::new(vec![0.0; n], 0)),
             stall: (0.0, 0),
+            idle: (0.0, 0),
             collapsed: None,
             kicks: None,
             walls: None,
@@ -406,6 +412,7 @@ impl<const D: usize> EventDriven<D> {
         }
         let next = self.particles[i];
         if next.crossing <= next.collision {
+            self.watch_for_idling();
             let (dim, up) = (next.exit_dim as usize, next.exit_up);
             if dim >= D {
                 self.hit_wall(i, dim - D, up);
@@ -541,6 +548,19 @@ impl<const D: usize> EventDriven<D> {
             self.collapsed = Some(self.time);
         } else {
             self.stall.1 = count + 1;
+        }
+    }
+
+    /// Counts crossings and wall contacts at a standing time; declares collapse (the run
+    /// stops there) after as many per particle as [`Self::watch_for_collapse`] allows.
+    fn watch_for_idling(&mut self) {
+        let (since, count) = self.idle;
+        if self.time > since + 1e-12 * since.abs() {
+            self.idle = (self.time, 0);
+        } else if count + 1 >= COLLAPSE_COLLISIONS_PER_PARTICLE * self.particles.len() as u64 {
+            self.collapsed = Some(self.time);
+        } else {
+            self.idle.1 = count + 1;
         }
     }
 

@@ -38,6 +38,21 @@ impl Counters {
         self.virial += other.virial;
         self.tc_elastic += other.tc_elastic;
     }
+
+    /// Checks a restored tally: finite sums and, where every collision is an event
+    /// (`events` = the events or candidates it took), no more collisions than events.
+    pub(crate) fn check(&self, events: &str) -> Result<()> {
+        let counted = events.is_empty() || self.events >= self.collisions;
+        if !(self.energy_lost.is_finite() && self.virial.is_finite()) || !counted {
+            let range = if events.is_empty() {
+                "finite sums".to_string()
+            } else {
+                format!("finite sums and {events} >= collisions")
+            };
+            return Err(Error::out_of_range("counters", format!("{self:?}"), range));
+        }
+        Ok(())
+    }
 }
 
 /// What [`Engine::velocity_statistics`] gives.

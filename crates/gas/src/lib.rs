@@ -19,6 +19,7 @@ pub mod init;
 pub mod observe;
 pub mod parallel;
 mod prefetch;
+pub mod profile;
 pub(crate) mod rng;
 mod serde_util;
 pub mod soft;

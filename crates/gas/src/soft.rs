@@ -136,6 +136,31 @@ impl ContactReport {
     }
 }
 
+/// The neighbour list's skin, `options.skin` largest diameters, after checking that it is
+/// positive and that the box holds twice the largest diameter plus the skin (one image).
+fn neighbor_skin<const D: usize>(options: &SoftSphereOptions, system: &System<D>) -> Result<f64> {
+    if !(options.skin.is_finite() && options.skin > 0.0) {
+        return Err(Error::out_of_range(
+            "skin",
+            options.skin,
+            "a finite number > 0",
+        ));
+    }
+    let largest = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
+    let skin = options.skin * largest;
+    if system.length < 2.0 * (largest + skin) {
+        return Err(Error::out_of_range(
+            "length",
+            system.length,
+            format!(
+                "at least twice the largest diameter plus the skin, {}",
+                2.0 * (largest + skin)
+            ),
+        ));
+    }
+    Ok(skin)
+}
+
 /// NaN: a quantity a check-point did not record.
 fn unknown() -> f64 {
     f64::NAN
@@ -255,25 +280,7 @@ impl<const D: usize> SoftSphere<D> {
                 shortest_contact(&system, &material)? / options.steps_per_contact
             }
         };
-        if !(options.skin.is_finite() && options.skin > 0.0) {
-            return Err(Error::out_of_range(
-                "skin",
-                options.skin,
-                "a finite number > 0",
-            ));
-        }
-        let largest = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
-        let skin = options.skin * largest;
-        if system.length < 2.0 * (largest + skin) {
-            return Err(Error::out_of_range(
-                "length",
-                system.length,
-                format!(
-                    "at least twice the largest diameter plus the skin, {}",
-                    2.0 * (largest + skin)
-                ),
-            ));
-        }
+        let skin = neighbor_skin(&options, &system)?;
         let n = system.len();
         let mut engine = SoftSphere {
             forces: vec![[0.0; D]; n],
@@ -548,7 +555,33 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 "sorted pairs i < j of particle indices",
             ));
         }
-        let largest = 2.0 * state.system.radii.iter().copied().fold(0.0, f64::max);
+        let skin = neighbor_skin(&state.options, &state.system)?;
+        state.counters.check("")?;
+        if let Some(i) = state
+            .forces
+            .iter()
+            .position(|f| f.iter().any(|x| !x.is_finite()))
+        {
+            return Err(Error::NotFinite {
+                what: "forces",
+                index: i,
+            });
+        }
+        let overlap = state.statistics.max_relative_overlap;
+        if !(overlap.is_finite() && overlap >= 0.0) {
+            return Err(Error::out_of_range(
+                "max_relative_overlap",
+                overlap,
+                "a finite number >= 0",
+            ));
+        }
+        if !(state.eps_error.is_nan() || state.eps_error >= 0.0 && state.eps_error.is_finite()) {
+            return Err(Error::out_of_range(
+                "eps_error",
+                state.eps_error,
+                "a finite number >= 0 (or NaN: not recorded)",
+            ));
+        }
         let active = (0..n as u32)
             .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
             .collect();
@@ -557,7 +590,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             touching: vec![0; n],
             current: Vec::new(),
             impulses: Vec::new(),
-            neighbors: NeighborList::new(state.options.skin * largest),
+            neighbors: NeighborList::new(skin),
             system: state.system,
             forces: state.forces,
             material: state.material,

@@ -78,6 +78,14 @@ impl<const D: usize> System<D> {
                 "a finite energy",
             ));
         }
+        // The observers' Sonine coefficient sums (m) c^4: a finite energy is not enough.
+        if !crate::observe::sonine_a2(self).is_finite() {
+            return Err(Error::out_of_range(
+                "velocities",
+                "a fourth moment beyond the range of f64",
+                "speeds whose fourth powers sum to a finite number",
+            ));
+        }
         let length = self.length;
         if let Some(i) = self.positions.iter().position(|p| {
             p.iter()

@@ -226,6 +226,17 @@ pub struct OutputSection {
     pub fields: Option<FieldsOutput>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub snapshots: Option<SnapshotsOutput>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profiles: Option<ProfilesOutput>,
+}
+
+/// `output.profiles`: slabs along `axis`, `bins` of them, at every sample
+/// (`profiles.csv`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProfilesOutput {
+    pub axis: AxisName,
+    pub bins: usize,
 }
 
 /// `output.fields`: coarse-grained fields every `every` samples on a `grid`^D grid.

@@ -33,6 +33,7 @@ pub mod output;
 pub mod parallel;
 pub mod plot;
 pub mod probe;
+pub mod profiles;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;

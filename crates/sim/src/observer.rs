@@ -94,6 +94,9 @@ pub fn for_plan<const D: usize>(plan: &Plan) -> Vec<Box<dyn Observer<D>>> {
     if let Some(walls) = crate::walls::WallSeries::of(plan) {
         list.push(Box::new(walls));
     }
+    if let Some(profiles) = crate::profiles::ProfileSeries::of(plan) {
+        list.push(Box::new(profiles));
+    }
     list
 }
 

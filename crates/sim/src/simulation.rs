@@ -374,6 +374,11 @@ impl Simulation {
         each!(&self.run, r => r.observer::<SpeciesSeries>().map(|s| s.samples.as_slice()))
     }
 
+    /// The rows of `profiles.csv` (`output.profiles`), None without it.
+    pub fn profile_rows(&self) -> Option<&[crate::profiles::ProfileRow]> {
+        each!(&self.run, r => r.observer::<crate::profiles::ProfileSeries>().map(|s| s.rows.as_slice()))
+    }
+
     /// The walls' rows taken so far (`walls.csv`); None for a run in the periodic box.
     pub fn wall_samples(&self) -> Option<&[crate::walls::WallSample]> {
         each!(&self.run, r => r.observer::<crate::walls::WallSeries>().map(|s| s.samples.as_slice()))

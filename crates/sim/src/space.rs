@@ -32,6 +32,8 @@ use std::path::{Path, PathBuf};
 pub const MODE_SHELLS: usize = 3;
 /// Largest grid per axis of `output.fields` in 1, 2, 3 dimensions.
 const MAX_FIELD_GRID: [usize; 3] = [1 << 20, 4096, 256];
+/// Most slabs of `output.profiles`.
+const MAX_PROFILE_BINS: usize = 100_000;
 /// Largest FFT grid per axis of S(k) in 1, 2, 3 dimensions.
 const MAX_STRUCTURE_GRID: [usize; 3] = [1 << 20, 2048, 256];
 
@@ -63,6 +65,7 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
         ("output.structure", o.structure),
         ("output.fields", o.fields.is_some()),
         ("output.snapshots", o.snapshots.is_some()),
+        ("output.profiles", o.profiles.is_some()),
     ];
     for (key, on) in asked {
         if on && !spatial {
@@ -101,6 +104,22 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
     }
     if let Some(s) = o.snapshots {
         every("output.snapshots.every", s.every)?;
+    }
+    if let Some(p) = o.profiles {
+        if p.axis.index() >= dimension {
+            return Err(Error::out_of_range(
+                "output.profiles.axis",
+                p.axis.name(),
+                &crate::description::AXIS_NAMES[..dimension].join(" | "),
+            ));
+        }
+        if !(1..=MAX_PROFILE_BINS).contains(&p.bins) {
+            return Err(Error::out_of_range(
+                "output.profiles.bins",
+                p.bins,
+                &format!("1 ..= {MAX_PROFILE_BINS}"),
+            ));
+        }
     }
     Ok(())
 }

@@ -45,12 +45,13 @@ const SEEDS: [&str; 9] = [
     "[system]\ndimension = 2\nparticles = 60\npacking_fraction = 0.1\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
      [run]\ncollisions_per_particle = 5\nsamples = 4\n\
+     [output]\nprofiles = { axis = \"y\", bins = 6 }\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"thermal\"\ntemperature = 1.5\n\
      [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"restitution\"\nrestitution = 0.8\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 37] = [
+const KEYS: [&str; 39] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -88,10 +89,12 @@ const KEYS: [&str; 37] = [
     "amplitude",
     "frequency",
     "waveform",
+    "profiles",
+    "bins",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 37] = [
+const VALUES: [&str; 39] = [
     "0",
     "1",
     "-1",
@@ -130,6 +133,8 @@ const VALUES: [&str; 37] = [
     "\"high\"",
     "\"elastic\"",
     "\"vibrating\"",
+    "{ axis = \"y\", bins = 8 }",
+    "{ axis = \"z\", bins = 0 }",
 ];
 
 /// One mutation of a run file's text.

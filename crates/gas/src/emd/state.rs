@@ -100,14 +100,7 @@ impl<const D: usize> EventDrivenState<D> {
                 what: "collision counts and particles".into(),
             });
         }
-        let c = &self.counters;
-        if !(c.energy_lost.is_finite() && c.virial.is_finite()) || c.events < c.collisions {
-            return Err(Error::out_of_range(
-                "counters",
-                format!("{c:?}"),
-                "finite sums and events >= collisions",
-            ));
-        }
+        self.counters.check("events")?;
         if !(self.min_cell_width.is_finite() && self.min_cell_width >= 0.0) {
             return Err(Error::out_of_range(
                 "min_cell_width",
@@ -299,6 +292,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         }
         engine.tally = counters;
         engine.stall = (stall_since, stall_collisions);
+        engine.idle = (time, 0);
         // Taken up when the walls are set again (they are not part of the state).
         engine.saved_walls = walls;
         if sorter != SorterKind::default() {

@@ -97,7 +97,7 @@ pub(crate) fn walls_spec(
                 ),
             ));
         }
-        let kind = wall_kind(wall, &key)?;
+        let kind = wall_kind(wall, description.system.temperature, &key)?;
         specs.push(WallSpec { axis, side, kind });
     }
     for (i, wall) in walls.iter().enumerate() {
@@ -117,8 +117,18 @@ pub(crate) fn walls_spec(
     Ok(specs)
 }
 
-/// A wall's kind with its own keys, refusing the keys of the other kinds.
-fn wall_kind(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallSpecKind> {
+/// How far a thermal wall's temperature may lie from the gas's initial one, either way:
+/// speeds 1e6 times apart. Beyond, the fast particles' events come closer together than
+/// the run's clock resolves (a run at t ~ 1 resolves ~1e-16), and the run stalls.
+const WALL_TEMPERATURE_RATIO: f64 = 1e12;
+
+/// A wall's kind with its own keys, refusing the keys of the other kinds (`gas_temperature`:
+/// `system.temperature`).
+fn wall_kind(
+    wall: &WallSection,
+    gas_temperature: f64,
+    key: &dyn Fn(&str) -> String,
+) -> Result<WallSpecKind> {
     let kind = wall.kind;
     let refuse = |name: &str, present: bool, for_kinds: &str| -> Result<()> {
         if present {
@@ -158,11 +168,19 @@ fn wall_kind(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallSpe
             let t = wall
                 .temperature
                 .ok_or_else(|| Error::input(key("temperature"), "missing for a thermal wall"))?;
-            if !(t.is_finite() && t > 0.0) {
+            let (low, high) = (
+                gas_temperature / WALL_TEMPERATURE_RATIO,
+                gas_temperature * WALL_TEMPERATURE_RATIO,
+            );
+            if !(low..=high).contains(&t) {
                 return Err(Error::out_of_range(
                     &key("temperature"),
                     t,
-                    "finite and > 0",
+                    &format!(
+                        "{} ..= {} (1e-12 to 1e12 times system.temperature)",
+                        crate::output::number(low),
+                        crate::output::number(high)
+                    ),
                 ));
             }
             Ok(WallSpecKind::Thermal(t))
