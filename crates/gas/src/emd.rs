@@ -17,10 +17,12 @@ use crate::walls::{Side, Walls, WallsState};
 use restitution::Restitution;
 
 mod driving;
+mod gravity;
 mod models;
 mod predict;
 mod state;
 
+use gravity::Field;
 pub use models::BathState;
 use models::{Baths, TcModel};
 pub use state::{EventDrivenState, TcState};
@@ -128,6 +130,9 @@ pub struct EventDriven<const D: usize> {
     walls: Option<Walls<D>>,
     /// Walls' state from a check-point, taken up by the next [`EventDriven::set_walls`].
     saved_walls: Option<WallsState>,
+    /// Gravity ([`EventDriven::set_gravity`]); with it, particles' positions and
+    /// velocities are kept in the falling frame (module `gravity`).
+    field: Option<Field<D>>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -265,6 +270,7 @@ impl<const D: usize> EventDriven<D> {
             kicks: None,
             walls: None,
             saved_walls: None,
+            field: None,
         };
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
@@ -351,7 +357,17 @@ impl<const D: usize> EventDriven<D> {
         let length = self.system.length;
         let p = &mut self.particles[i];
         let x = p.position_at(self.time);
-        p.position = std::array::from_fn(|k| wrap(x[k], length));
+        p.position = match &self.field {
+            None => std::array::from_fn(|k| wrap(x[k], length)),
+            // Axes with gravity are closed: the falling frame's y is not wrapped.
+            Some(f) => std::array::from_fn(|k| {
+                if f.g[k] == 0.0 {
+                    wrap(x[k], length)
+                } else {
+                    x[k]
+                }
+            }),
+        };
         p.valid_at = self.time;
     }
 
@@ -481,6 +497,7 @@ impl<const D: usize> EventDriven<D> {
 
     /// The contact of i with the wall on the high (`up`) or low side of axis k, now.
     fn hit_wall(&mut self, i: usize, k: usize, up: bool) {
+        self.keep_frame_near();
         self.bring_to_now(i);
         let side = if up { Side::High } else { Side::Low };
         let Some(walls) = self.walls.as_mut() else {
@@ -490,7 +507,15 @@ impl<const D: usize> EventDriven<D> {
             return;
         };
         let p = &mut self.particles[i];
-        walls.bounce(index, p.mass, &mut p.velocity);
+        match &self.field {
+            None => walls.bounce(index, p.mass, &mut p.velocity),
+            Some(f) => {
+                // The wall acts on the velocity in the box.
+                let (x, mut v) = f.to_box(&p.position, &p.velocity, self.time);
+                walls.bounce(index, p.mass, &mut v);
+                p.velocity = f.to_falling(&x, &v, self.time).1;
+            }
+        }
         p.count = p.count.wrapping_add(1);
         p.wall_hits = p.wall_hits.wrapping_add(1);
     }
@@ -503,8 +528,9 @@ impl<const D: usize> EventDriven<D> {
         let mut walls = walls;
         if let Some(w) = walls.as_mut() {
             let length = self.system.length;
-            for (i, p) in self.particles.iter().enumerate() {
-                let x = p.position_at(self.time);
+            for i in 0..self.particles.len() {
+                let (x, _) = self.in_box_now(i);
+                let p = &self.particles[i];
                 for k in (0..D).filter(|&k| w.closed(k)) {
                     if x[k] < p.radius || x[k] > length - p.radius {
                         return Err(Error::out_of_range(

@@ -76,12 +76,23 @@ pub struct WallTally {
     pub energy: f64,
 }
 
+/// The lifts of a floor in gravity ([`Walls::set_min_speed`]): contacts that would have
+/// left a sphere slower than the floor's least speed, and the energy the floor gave by
+/// raising them to it (part of [`WallTally::energy`] too).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LiftTally {
+    pub lifts: u64,
+    pub energy: f64,
+}
+
 /// A wall and its tally, as an engine reports it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WallRecord {
     pub axis: usize,
     pub side: Side,
     pub tally: WallTally,
+    pub lift: LiftTally,
 }
 
 /// The walls' part of an engine's saved state: their tallies and the position of the
@@ -91,6 +102,9 @@ pub struct WallRecord {
 pub struct WallsState {
     pub tallies: Vec<WallTally>,
     pub draws: u64,
+    /// Per wall (empty before any lift; the last field: states without it read as empty).
+    #[serde(default)]
+    pub lifts: Vec<LiftTally>,
 }
 
 /// The walls of a container, with their tallies and the random stream of the thermal ones.
@@ -100,6 +114,9 @@ pub struct Walls<const D: usize> {
     /// `at[k][side]`: the index in `walls` of the wall on that side of axis k.
     at: [[Option<usize>; 2]; D],
     tallies: Vec<WallTally>,
+    /// The least normal speed each wall sends a sphere off with (0: none).
+    min_speed: Vec<f64>,
+    lifts: Vec<LiftTally>,
     seed: u64,
     stream: Stream,
 }
@@ -146,6 +163,8 @@ impl<const D: usize> Walls<D> {
         }
         let tallies = vec![WallTally::default(); walls.len()];
         Ok(Walls {
+            min_speed: vec![0.0; walls.len()],
+            lifts: vec![LiftTally::default(); walls.len()],
             walls,
             at,
             tallies,
@@ -178,11 +197,12 @@ impl<const D: usize> Walls<D> {
     pub fn records(&self) -> Vec<WallRecord> {
         self.walls
             .iter()
-            .zip(&self.tallies)
-            .map(|(w, &tally)| WallRecord {
+            .zip(self.tallies.iter().zip(&self.lifts))
+            .map(|(w, (&tally, &lift))| WallRecord {
                 axis: w.axis,
                 side: w.side,
                 tally,
+                lift,
             })
             .collect()
     }
@@ -192,7 +212,18 @@ impl<const D: usize> Walls<D> {
         WallsState {
             tallies: self.tallies.clone(),
             draws: self.stream.draws(),
+            lifts: if self.lifts.iter().any(|l| l.lifts > 0) {
+                self.lifts.clone()
+            } else {
+                Vec::new()
+            },
         }
+    }
+
+    /// Sends spheres off wall `index` with a normal speed of at least `speed` (a floor in
+    /// gravity: the resting rule, docs/walls.md).
+    pub fn set_min_speed(&mut self, index: usize, speed: f64) {
+        self.min_speed[index] = speed;
     }
 
     /// Takes up a saved state; fails if it holds another number of walls.
@@ -213,7 +244,24 @@ impl<const D: usize> Walls<D> {
                 "finite momentum and energy",
             ));
         }
+        if !(state.lifts.is_empty() || state.lifts.len() == self.walls.len())
+            || state
+                .lifts
+                .iter()
+                .any(|l| !(l.energy.is_finite() && l.energy >= 0.0))
+        {
+            return Err(Error::out_of_range(
+                "walls.lifts",
+                format!("{:?}", state.lifts),
+                "one finite energy >= 0 per wall",
+            ));
+        }
         self.tallies = state.tallies;
+        self.lifts = if state.lifts.is_empty() {
+            vec![LiftTally::default(); self.walls.len()]
+        } else {
+            state.lifts
+        };
         self.stream = Stream::at(self.seed, crate::rng::Purpose::Walls, 0, 0, state.draws);
         Ok(())
     }
@@ -243,6 +291,15 @@ impl<const D: usize> Walls<D> {
                 // 1 - U lies in (0, 1]: the logarithm is finite.
                 scale * (-2.0 * (1.0 - self.stream.uniform()).ln()).sqrt()
             }
+        };
+        let least = self.min_speed[index];
+        let away = if away < least {
+            let lift = &mut self.lifts[index];
+            lift.lifts += 1;
+            lift.energy += 0.5 * mass * (least * least - away * away);
+            least
+        } else {
+            away
         };
         v[k] = inward * away;
         let after: f64 = v.iter().map(|x| x * x).sum();

@@ -66,6 +66,25 @@ pub struct RunDescription {
     /// `[[wall]]`: the walls of a container (none: the periodic box).
     #[serde(default, rename = "wall", skip_serializing_if = "Vec::is_empty")]
     pub walls: Vec<WallSection>,
+    /// `[field]`: forces on every sphere (gravity).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub field: Option<FieldSection>,
+}
+
+/// `[field]`: a uniform acceleration of every sphere, along axes closed by walls.
+///
+/// ```toml
+/// [field]
+/// gravity = [0.0, 0.0, -1.0]   # one component per dimension
+/// rest_height = 1e-4           # a floor sends spheres at least this high (default
+///                              # 1e-4 of the smallest diameter; the resting rule)
+/// ```
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldSection {
+    pub gravity: Vec<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rest_height: Option<f64>,
 }
 
 /// One `[[wall]]`: a flat wall on one side of one axis (`gas::walls`); an axis is periodic

@@ -11,6 +11,7 @@
 //! allowed range.
 
 mod driving;
+mod field;
 mod law;
 pub(crate) mod material;
 mod run;
@@ -18,6 +19,7 @@ mod system;
 mod walls;
 
 pub use crate::engines::EngineSpec;
+pub use field::GravitySpec;
 pub use law::{LawSpec, StochasticTable};
 pub(crate) use material::material;
 pub use walls::{WallSpec, WallSpecKind};
@@ -89,6 +91,8 @@ pub struct Plan {
     pub driving_interval: Option<f64>,
     /// The walls of a container (`[[wall]]`; empty: the periodic box).
     pub walls: Vec<WallSpec>,
+    /// Gravity (`[field]`), if on.
+    pub gravity: Option<GravitySpec>,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
@@ -110,6 +114,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     run::check_ranks(r, &abilities)?;
     let (driving, driving_interval) = driving::driving_spec(description, &abilities, &law)?;
     let walls = walls::walls_spec(description, &abilities)?;
+    let gravity = field::gravity_spec(description, &abilities, &walls, &species)?;
     let c = &description.collision;
     let mut description = description.clone();
     description.normalize();
@@ -124,6 +129,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         driving,
         driving_interval,
         walls,
+        gravity,
         notes: Vec::new(),
     };
     if plan.driving.is_some()

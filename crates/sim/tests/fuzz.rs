@@ -46,12 +46,13 @@ const SEEDS: [&str; 9] = [
      [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
      [run]\ncollisions_per_particle = 5\nsamples = 4\n\
      [output]\nprofiles = { axis = \"y\", bins = 6 }\n\
+     [field]\ngravity = [0.0, -0.5]\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"thermal\"\ntemperature = 1.5\n\
      [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"restitution\"\nrestitution = 0.8\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 39] = [
+const KEYS: [&str; 42] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -91,10 +92,13 @@ const KEYS: [&str; 39] = [
     "waveform",
     "profiles",
     "bins",
+    "field",
+    "gravity",
+    "rest_height",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 39] = [
+const VALUES: [&str; 40] = [
     "0",
     "1",
     "-1",
@@ -135,6 +139,7 @@ const VALUES: [&str; 39] = [
     "\"vibrating\"",
     "{ axis = \"y\", bins = 8 }",
     "{ axis = \"z\", bins = 0 }",
+    "[0.0, -1.0]",
 ];
 
 /// One mutation of a run file's text.

@@ -126,3 +126,97 @@ fn bad_walls_name_their_key() {
         assert!(error.to_string().starts_with("wall"), "{error}");
     }
 }
+
+/// A column in gravity (`[field]`) from a run file: resumes bit for bit from a check-point
+/// taken mid-run (the falling frame is the box's at every check-point); the walls' pressures
+/// differ by the weight (momentum balance: floor − ceiling = N m g / L over a long span,
+/// within the change of the gas's momentum, which the second half's ~8e4 collisions make
+/// small: 3 % of the weight allowed).
+#[test]
+fn gravity_from_a_run_file_resumes_and_weighs_on_the_floor() {
+    let text = BOX.replace(
+        "collisions_per_particle = 40",
+        "collisions_per_particle = 800",
+    ) + "[field]\ngravity = [0.0, -0.05]\n"
+        + &WALLS.replace(
+            "kind = \"restitution\"\nrestitution = 0.5",
+            "kind = \"elastic\"",
+        );
+    let mut run = Simulation::from_toml(&text, "column.toml".as_ref()).unwrap();
+    assert!(run
+        .advance(Point::CollisionsPerParticle(100.0), &mut ())
+        .unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-gravity-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("column.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    assert_eq!(loaded.wall_samples(), run.wall_samples());
+    loaded.write(&dir).unwrap();
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let walls = summary["walls"].as_array().unwrap();
+    let pressure = |w: usize| walls[w]["pressure"].as_f64().unwrap();
+    let side = (200.0 * std::f64::consts::PI / 4.0 / 0.1f64).sqrt();
+    let weight = 200.0 * 0.05 / side;
+    let difference = pressure(0) - pressure(1);
+    eprintln!("floor - ceiling {difference}, weight per unit length {weight}");
+    assert!(
+        (difference / weight - 1.0).abs() < 0.03,
+        "{difference} vs {weight}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Bad gravity: exit 2 naming the key.
+#[test]
+fn bad_gravity_names_its_key() {
+    let column = format!("{BOX}[field]\ngravity = [0.0, -1.0]\n{WALLS}");
+    let cases = [
+        (
+            column.replace("[0.0, -1.0]", "[-1.0, 0.0]"),
+            "field.gravity[0]",
+        ),
+        (
+            column.replace("[0.0, -1.0]", "[0.0, 0.0, -1.0]"),
+            "field.gravity",
+        ),
+        (
+            column.replace("[0.0, -1.0]", "[0.0, 1e31]"),
+            "field.gravity[1]",
+        ),
+        (
+            column.replace(
+                "gravity = [0.0, -1.0]",
+                "gravity = [0.0, -1.0]\nrest_height = 2.0",
+            ),
+            "field.rest_height",
+        ),
+        (
+            column.replace("gravity = [0.0, -1.0]", "gravity = [0.0, -1.0]\nwind = 1.0"),
+            "wind",
+        ),
+        (
+            format!("{BOX}[field]\ngravity = [0.0, -1.0]\n"),
+            "field.gravity[1]",
+        ),
+        (
+            column.replace("[run]\n", "[run]\nengine = \"dsmc\"\n"),
+            "wall",
+        ),
+        (
+            format!("{column}[driving]\nkind = \"white-noise\"\nstrength = 1.0\n"),
+            "field.gravity",
+        ),
+    ];
+    for (text, key) in cases {
+        let error = Simulation::from_toml(&text, "bad.toml".as_ref())
+            .err()
+            .unwrap_or_else(|| panic!("accepted:\n{text}"));
+        assert!(error.is_input(), "{error}");
+        assert!(error.to_string().contains(key), "{key}: {error}");
+    }
+}

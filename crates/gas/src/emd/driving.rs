@@ -45,6 +45,13 @@ impl<const D: usize> EventDriven<D> {
             self.kicks = None;
             return Ok(());
         };
+        if self.field.is_some() {
+            return Err(Error::out_of_range(
+                "driving",
+                "with gravity",
+                "no driving in a gas with gravity",
+            ));
+        }
         let interval = match interval {
             Some(dt) if dt.is_finite() && dt > 0.0 => dt,
             other => {

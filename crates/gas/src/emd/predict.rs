@@ -218,17 +218,64 @@ impl<const D: usize> EventDriven<D> {
     /// dimension k + D): delay from now, dimension, direction.
     #[inline(always)]
     fn exit_of(&self, i: usize, p: &Vector<D>, v: &Vector<D>) -> Option<(f64, usize, bool)> {
-        let exit = self.grid.exit(&self.particles[i].cell, p, v);
         match &self.walls {
-            None => exit,
-            Some(walls) => self.exit_or_wall(walls, i, p, v, exit),
+            None => self.grid.exit(&self.particles[i].cell, p, v),
+            Some(walls) => self.exit_or_wall(walls, i, p, v),
         }
     }
 
-    /// [`Self::exit_of`] in a container: the cell exit `exit` or, if earlier, the contact
-    /// with a wall. (Out of line: the periodic box's path stays as short as before.)
+    /// [`Self::exit_of`] in a container: the cell exit or, if earlier, the contact with a
+    /// wall; with gravity, along its axes, the first root of the fall to a face or wall
+    /// (`p`, `v`: the falling frame's). (Out of line: the periodic box's path stays as
+    /// short as before.)
     #[inline(never)]
     fn exit_or_wall(
+        &self,
+        walls: &crate::walls::Walls<D>,
+        i: usize,
+        p: &Vector<D>,
+        v: &Vector<D>,
+    ) -> Option<(f64, usize, bool)> {
+        let cell = &self.particles[i].cell;
+        let Some(field) = &self.field else {
+            let exit = self.grid.exit(cell, p, v);
+            return self.first_wall_contact(walls, i, p, v, exit);
+        };
+        let (x, u) = field.to_box(p, v, self.time);
+        // Straight flights across the axes without gravity, falls along the others.
+        let straight: Vector<D> =
+            std::array::from_fn(|k| if field.g[k] == 0.0 { u[k] } else { 0.0 });
+        let mut first = self.grid.exit(cell, &x, &straight);
+        first = self.first_wall_contact(walls, i, &x, &straight, first);
+        let (radius, width, last) = (
+            self.particles[i].radius,
+            self.grid.width,
+            self.grid.per_side as u32 - 1,
+        );
+        for k in (0..D).filter(|&k| field.g[k] != 0.0) {
+            // The axis is closed: the end cells' outer faces are the walls' contact planes.
+            let low = if cell[k] == 0 {
+                radius
+            } else {
+                cell[k] as f64 * width
+            };
+            let high = if cell[k] == last {
+                self.system.length - radius
+            } else {
+                (cell[k] + 1) as f64 * width
+            };
+            let (dt, up) = super::gravity::fall_exit(x[k], u[k], field.g[k], low, high);
+            let at_wall = if up { cell[k] == last } else { cell[k] == 0 };
+            if first.is_none_or(|f| dt <= f.0) {
+                first = Some((dt, if at_wall { k + D } else { k }, up));
+            }
+        }
+        first
+    }
+
+    /// The cell exit `exit` or, if earlier, the contact with a wall of a sphere at `p`
+    /// moving with `v` (straight).
+    fn first_wall_contact(
         &self,
         walls: &crate::walls::Walls<D>,
         i: usize,

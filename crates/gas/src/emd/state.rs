@@ -22,6 +22,10 @@ impl<const D: usize> EventDriven<D> {
         self.occupied.iter_mut().for_each(|w| *w = 0);
         for i in 0..n {
             self.bring_to_now(i);
+        }
+        // With gravity, the falling frame is the box's now: positions are the box's.
+        self.move_frame();
+        for i in 0..n {
             let p = &mut self.particles[i];
             p.collision = f64::INFINITY;
             p.crossing = f64::INFINITY;
@@ -190,10 +194,13 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
         s.radii.clear();
         s.masses.clear();
         for p in &self.particles {
-            let x = p.position_at(time);
+            let (x, v) = match &self.field {
+                None => (p.position_at(time), p.velocity),
+                Some(f) => f.to_box(&p.position_at(time), &p.velocity, time),
+            };
             s.positions
                 .push(std::array::from_fn(|k| wrap(x[k], length)));
-            s.velocities.push(p.velocity);
+            s.velocities.push(v);
             s.radii.push(p.radius);
             s.masses.push(p.mass);
         }

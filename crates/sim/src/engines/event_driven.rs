@@ -81,7 +81,7 @@ pub(super) fn start<const D: usize>(
 }
 
 /// Puts the engine's gas into the plan's walls, if any (their thermal velocities drawn
-/// from the run's seed).
+/// from the run's seed), and in its gravity.
 fn enclose<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
     if plan.walls.is_empty() {
         return Ok(());
@@ -93,7 +93,14 @@ fn enclose<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<(
     .map_err(|e| Error::input("wall", e))?;
     engine
         .set_walls(Some(walls))
-        .map_err(|e| Error::input("wall", e))
+        .map_err(|e| Error::input("wall", e))?;
+    let Some(gravity) = &plan.gravity else {
+        return Ok(());
+    };
+    let g: [f64; D] = std::array::from_fn(|k| gravity.acceleration[k]);
+    engine
+        .set_gravity(Some(g), gravity.rest_height)
+        .map_err(|e| Error::input("field.gravity", e))
 }
 
 /// The engine of a check-point, its state checked against the plan, driven as the plan
