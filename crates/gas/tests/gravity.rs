@@ -206,3 +206,76 @@ fn a_settling_bed_runs_at_a_bounded_rate() {
     eprintln!("lifts {lift:?}");
     assert!(lift.lifts > 0 && lift.energy <= lift.lifts as f64 * g * 1e-4 * (1.0 + 1e-12));
 }
+
+/// Hard spheres between thermal floor and ceiling at T = 1 in gravity, phi ~ 0.22 at the
+/// bottom and ~ 0.09 at the top (Z from 2.3 to 1.4: an ideal gas would be off by as
+/// much): in equilibrium the pressure at height z is
+/// the ceiling's plus the weight of the gas above (hydrostatics, exact), and the equation
+/// of state gives it from the local density: P = n T Z(phi) with Carnahan–Starling's Z
+/// (local density approximation, valid where n varies little over a diameter: the scale
+/// height T / (m g) is 5 diameters here). Slabs one diameter thick, at least 2 diameters
+/// from the walls (their layering is not a bulk state). Tolerance per slab: 4 standard
+/// errors (10 blocks) plus 2 %, CS's error at phi < 0.4 (< 1 %) and the local density
+/// approximation's (the gradient term (sigma / H)^2 ~ 4 % of the slab's weight term;
+/// measured: docs/walls.md).
+#[test]
+fn a_dense_column_is_in_hydrostatic_balance_with_carnahan_starling() {
+    let g = 0.2;
+    let mut e = column::<3>(
+        2000,
+        0.15,
+        1.0,
+        WallKind::Thermal { temperature: 1.0 },
+        WallKind::Thermal { temperature: 1.0 },
+        g,
+        17,
+    );
+    e.run_collisions(300_000);
+    let length = e.system().length;
+    let bins = length.floor() as usize;
+    let width = length / bins as f64;
+    let area = length * length;
+    let mut blocks: Vec<(Vec<f64>, f64)> = Vec::new();
+    for _ in 0..10 {
+        let mut density = vec![0.0; bins];
+        let ceiling = e.walls().unwrap().tallies()[1].momentum;
+        let t0 = e.time();
+        for _ in 0..20 {
+            e.run_collisions(5_000);
+            let slabs = gas::profile::profile(e.system(), 2, bins, 1.0);
+            for (d, s) in density.iter_mut().zip(&slabs) {
+                *d += s.density / 20.0;
+            }
+        }
+        let ceiling = (e.walls().unwrap().tallies()[1].momentum - ceiling) / (area * (e.time() - t0));
+        blocks.push((density, ceiling));
+    }
+    // Per block and slab: weight pressure (ceiling + m g ∫ n above the slab's centre) over
+    // the equation of state's.
+    let ratios: Vec<Vec<f64>> = blocks
+        .iter()
+        .map(|(n, ceiling)| {
+            (0..bins)
+                .map(|b| {
+                    let above: f64 = n[b + 1..].iter().sum::<f64>() * width + 0.5 * n[b] * width;
+                    let weight = ceiling + g * above;
+                    let phi = n[b] * std::f64::consts::PI / 6.0;
+                    let z = (1.0 + phi + phi * phi - phi.powi(3)) / (1.0 - phi).powi(3);
+                    weight / (n[b] * z)
+                })
+                .collect()
+        })
+        .collect();
+    for b in 0..bins {
+        let centre = (b as f64 + 0.5) * width;
+        if centre < 2.5 || centre > length - 2.5 {
+            continue;
+        }
+        let values: Vec<f64> = ratios.iter().map(|r| r[b]).collect();
+        let mean = values.iter().sum::<f64>() / 10.0;
+        let error = (values.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 90.0).sqrt();
+        let phi = blocks.iter().map(|(n, _)| n[b]).sum::<f64>() / 10.0 * std::f64::consts::PI / 6.0;
+        eprintln!("z {centre:.2} phi {phi:.3}: weight / EOS = {mean:.4} ± {error:.4}");
+        assert!((mean - 1.0).abs() < 4.0 * error + 0.02, "slab {b}: {mean} ± {error}");
+    }
+}
