@@ -507,14 +507,19 @@ impl<const D: usize> EventDriven<D> {
             return;
         };
         let p = &mut self.particles[i];
-        match &self.field {
-            None => walls.bounce(index, p.mass, &mut p.velocity),
+        let touched = match &self.field {
+            None => walls.bounce(index, p.mass, &mut p.velocity, self.time),
             Some(f) => {
                 // The wall acts on the velocity in the box.
                 let (x, mut v) = f.to_box(&p.position, &p.velocity, self.time);
-                walls.bounce(index, p.mass, &mut v);
+                let touched = walls.bounce(index, p.mass, &mut v, self.time);
                 p.velocity = f.to_falling(&x, &v, self.time).1;
+                touched
             }
+        };
+        if !touched {
+            // A vibrating wall's early check: the velocity is unchanged.
+            return;
         }
         p.count = p.count.wrapping_add(1);
         p.wall_hits = p.wall_hits.wrapping_add(1);
@@ -528,11 +533,38 @@ impl<const D: usize> EventDriven<D> {
         let mut walls = walls;
         if let Some(w) = walls.as_mut() {
             let length = self.system.length;
+            let largest = self.particles.iter().map(|p| p.radius).fold(0.0, f64::max);
+            for k in (0..D).filter(|&k| w.closed(k)) {
+                let sweep = |side| {
+                    w.at(k, side)
+                        .and_then(|index| w.motion(index).map(|m| (index, 2.0 * m.amplitude)))
+                };
+                let (low, high) = (sweep(Side::Low), sweep(Side::High));
+                let swept = low.map_or(0.0, |s| s.1) + high.map_or(0.0, |s| s.1);
+                if let Some((index, _)) = low.or(high).filter(|_| swept + 2.0 * largest >= length) {
+                    return Err(Error::out_of_range(
+                        format!("wall[{index}].amplitude"),
+                        format!("walls sweeping {swept} of axis {k}"),
+                        format!(
+                            "sweeps (2 A per vibrating wall) below the box side minus the \
+                             largest diameter, {}",
+                            length - 2.0 * largest
+                        ),
+                    ));
+                }
+            }
             for i in 0..self.particles.len() {
                 let (x, _) = self.in_box_now(i);
                 let p = &self.particles[i];
                 for k in (0..D).filter(|&k| w.closed(k)) {
-                    if x[k] < p.radius || x[k] > length - p.radius {
+                    // A vibrating wall is displaced d(t) into the box.
+                    let at = |side| {
+                        w.at(k, side)
+                            .and_then(|index| w.motion(index))
+                            .map_or(0.0, |m| m.displacement(self.time))
+                    };
+                    let (low, high) = (at(Side::Low), at(Side::High));
+                    if x[k] < low + p.radius || x[k] > length - high - p.radius {
                         return Err(Error::out_of_range(
                             "wall",
                             format!("sphere {i} at {} on axis {k}, radius {}", x[k], p.radius),

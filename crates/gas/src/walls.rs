@@ -17,6 +17,10 @@
 //! Each wall counts its contacts, the normal momentum the spheres gave it, m (u + v_n'),
 //! and the energy it gave the gas, m (|v'|^2 - |v|^2) / 2 (negative where it takes energy).
 
+mod motion;
+
+pub use motion::{first_contact, Motion, Waveform};
+
 use crate::error::{Error, Result};
 use crate::rng::Stream;
 use restitution::Restitution;
@@ -43,7 +47,16 @@ impl Side {
 pub enum WallKind {
     Elastic,
     Restitution(Box<dyn Restitution>),
-    Thermal { temperature: f64 },
+    Thermal {
+        temperature: f64,
+    },
+    /// A wall moving along its axis ([`Motion`]), bouncing spheres with the law's
+    /// restitution in its own frame: with u > 0 the normal speed of approach relative to
+    /// the wall and V its velocity into the box, v_n' = V + eps(u) u.
+    Vibrating {
+        law: Box<dyn Restitution>,
+        motion: Motion,
+    },
 }
 
 impl std::fmt::Debug for WallKind {
@@ -52,6 +65,7 @@ impl std::fmt::Debug for WallKind {
             WallKind::Elastic => write!(f, "Elastic"),
             WallKind::Restitution(_) => write!(f, "Restitution(law)"),
             WallKind::Thermal { temperature } => write!(f, "Thermal {{ {temperature} }}"),
+            WallKind::Vibrating { motion, .. } => write!(f, "Vibrating {{ {motion:?} }}"),
         }
     }
 }
@@ -116,6 +130,8 @@ pub struct Walls<const D: usize> {
     tallies: Vec<WallTally>,
     /// The least normal speed each wall sends a sphere off with (0: none).
     min_speed: Vec<f64>,
+    /// Whether any wall vibrates.
+    vibrating: bool,
     lifts: Vec<LiftTally>,
     seed: u64,
     stream: Stream,
@@ -153,6 +169,20 @@ impl<const D: usize> Walls<D> {
                     ));
                 }
             }
+            if let WallKind::Vibrating { motion, .. } = &wall.kind {
+                for (name, x) in [
+                    ("amplitude", motion.amplitude),
+                    ("frequency", motion.frequency),
+                ] {
+                    if !(x.is_finite() && x > 0.0) {
+                        return Err(Error::out_of_range(
+                            format!("wall.{name}"),
+                            x,
+                            "a finite number > 0",
+                        ));
+                    }
+                }
+            }
         }
         if let Some(k) = (0..D).find(|&k| at[k][0].is_some() != at[k][1].is_some()) {
             return Err(Error::out_of_range(
@@ -163,6 +193,9 @@ impl<const D: usize> Walls<D> {
         }
         let tallies = vec![WallTally::default(); walls.len()];
         Ok(Walls {
+            vibrating: walls
+                .iter()
+                .any(|w| matches!(w.kind, WallKind::Vibrating { .. })),
             min_speed: vec![0.0; walls.len()],
             lifts: vec![LiftTally::default(); walls.len()],
             walls,
@@ -266,9 +299,24 @@ impl<const D: usize> Walls<D> {
         Ok(())
     }
 
-    /// The contact of a sphere of mass m and velocity v with wall `index`: sets the
-    /// velocity after it and tallies the wall.
-    pub fn bounce(&mut self, index: usize, mass: f64, v: &mut [f64; D]) {
+    /// Whether a wall vibrates.
+    #[inline]
+    pub fn vibrates(&self) -> bool {
+        self.vibrating
+    }
+
+    /// The motion of wall `index`, if it vibrates.
+    pub fn motion(&self, index: usize) -> Option<Motion> {
+        match &self.walls[index].kind {
+            WallKind::Vibrating { motion, .. } => Some(*motion),
+            _ => None,
+        }
+    }
+
+    /// The contact of a sphere of mass m and velocity v with wall `index` at time t: sets
+    /// the velocity after it and tallies the wall. False (nothing done) if the sphere does
+    /// not approach the wall (a vibrating wall's early check).
+    pub fn bounce(&mut self, index: usize, mass: f64, v: &mut [f64; D], t: f64) -> bool {
         let Wall { axis, side, kind } = &self.walls[index];
         let k = *axis;
         // +1: the gas lies above the wall (low side).
@@ -276,11 +324,20 @@ impl<const D: usize> Walls<D> {
             Side::Low => 1.0,
             Side::High => -1.0,
         };
-        let u = (-inward * v[k]).max(0.0);
+        // The wall's velocity into the box; speeds are relative to it.
+        let wall = match kind {
+            WallKind::Vibrating { motion, .. } => motion.velocity(t),
+            _ => 0.0,
+        };
+        let relative = inward * v[k] - wall;
+        if matches!(kind, WallKind::Vibrating { .. }) && relative >= 0.0 {
+            return false;
+        }
+        let u = (-relative).max(0.0);
         let before: f64 = v.iter().map(|x| x * x).sum();
         let away = match kind {
             WallKind::Elastic => u,
-            WallKind::Restitution(law) => law.eps(u) * u,
+            WallKind::Restitution(law) | WallKind::Vibrating { law, .. } => law.eps(u) * u,
             WallKind::Thermal { temperature } => {
                 let scale = (temperature / mass).sqrt();
                 for (j, x) in v.iter_mut().enumerate() {
@@ -301,13 +358,14 @@ impl<const D: usize> Walls<D> {
         } else {
             away
         };
-        v[k] = inward * away;
+        v[k] = inward * (wall + away);
         let after: f64 = v.iter().map(|x| x * x).sum();
         let energy = 0.5 * mass * (after - before);
         let tally = &mut self.tallies[index];
         tally.collisions += 1;
         tally.momentum += mass * (u + away);
         tally.energy += energy;
+        true
     }
 }
 

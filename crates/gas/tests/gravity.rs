@@ -247,7 +247,8 @@ fn a_dense_column_is_in_hydrostatic_balance_with_carnahan_starling() {
                 *d += s.density / 20.0;
             }
         }
-        let ceiling = (e.walls().unwrap().tallies()[1].momentum - ceiling) / (area * (e.time() - t0));
+        let ceiling =
+            (e.walls().unwrap().tallies()[1].momentum - ceiling) / (area * (e.time() - t0));
         blocks.push((density, ceiling));
     }
     // Per block and slab: weight pressure (ceiling + m g ∫ n above the slab's centre) over
@@ -276,6 +277,9 @@ fn a_dense_column_is_in_hydrostatic_balance_with_carnahan_starling() {
         let error = (values.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 90.0).sqrt();
         let phi = blocks.iter().map(|(n, _)| n[b]).sum::<f64>() / 10.0 * std::f64::consts::PI / 6.0;
         eprintln!("z {centre:.2} phi {phi:.3}: weight / EOS = {mean:.4} ± {error:.4}");
-        assert!((mean - 1.0).abs() < 4.0 * error + 0.02, "slab {b}: {mean} ± {error}");
+        assert!(
+            (mean - 1.0).abs() < 4.0 * error + 0.02,
+            "slab {b}: {mean} ± {error}"
+        );
     }
 }

@@ -113,7 +113,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     crate::space::check_output(description, &abilities)?;
     run::check_ranks(r, &abilities)?;
     let (driving, driving_interval) = driving::driving_spec(description, &abilities, &law)?;
-    let walls = walls::walls_spec(description, &abilities)?;
+    let walls = walls::walls_spec(description, &abilities, &species)?;
     let gravity = field::gravity_spec(description, &abilities, &walls, &species)?;
     let c = &description.collision;
     let mut description = description.clone();

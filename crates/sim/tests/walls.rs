@@ -100,7 +100,28 @@ fn bad_walls_name_their_key() {
                 "kind = \"thermal\"\ntemperature = 2.0",
                 "kind = \"vibrating\"",
             ),
-            "wall[0].kind",
+            "wall[0].amplitude",
+        ),
+        (
+            WALLS.replace(
+                "kind = \"thermal\"\ntemperature = 2.0",
+                "kind = \"vibrating\"\namplitude = 20.0\nfrequency = 0.01",
+            ),
+            "wall[0].amplitude",
+        ),
+        (
+            WALLS.replace(
+                "kind = \"thermal\"\ntemperature = 2.0",
+                "kind = \"vibrating\"\namplitude = 0.1\nfrequency = 1e8",
+            ),
+            "wall[0].frequency",
+        ),
+        (
+            WALLS.replace(
+                "kind = \"thermal\"\ntemperature = 2.0",
+                "kind = \"vibrating\"\namplitude = 0.1\nfrequency = 1.0\ntemperature = 1.0",
+            ),
+            "wall[0].temperature",
         ),
     ];
     for (walls, key) in cases {
@@ -219,4 +240,35 @@ fn bad_gravity_names_its_key() {
         assert!(error.is_input(), "{error}");
         assert!(error.to_string().contains(key), "{key}: {error}");
     }
+}
+
+/// A vibrated bed from a run file (sine floor, gravity, inelastic spheres with the TC
+/// model): the floor heats it (walls.csv: energy given > 0; the exact balance is
+/// `crates/gas/tests/vibrating.rs`'s), and it resumes bit for bit.
+#[test]
+fn a_vibrated_bed_from_a_run_file_is_heated_and_resumes() {
+    let text = "[system]\ndimension = 2\nparticles = 100\npacking_fraction = 0.05\nseed = 3\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\ntc = 1e-4\n\
+                [run]\ncollisions_per_particle = 100\nsamples = 5\n\
+                [field]\ngravity = [0.0, -1.0]\n\
+                [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"vibrating\"\n\
+                amplitude = 0.5\nfrequency = 1.0\nwaveform = \"sine\"\n\
+                [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"elastic\"\n";
+    let mut run = Simulation::from_toml(text, "bed.toml".as_ref()).unwrap();
+    assert!(run
+        .advance(Point::CollisionsPerParticle(30.0), &mut ())
+        .unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-bed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bed.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    assert_eq!(loaded.wall_samples(), run.wall_samples());
+    let walls = run.wall_samples().unwrap();
+    let floor = &walls[walls.len() - 2];
+    assert!(floor.collisions > 100 && floor.energy > 0.0, "{floor:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -239,7 +239,11 @@ impl<const D: usize> EventDriven<D> {
         let cell = &self.particles[i].cell;
         let Some(field) = &self.field else {
             let exit = self.grid.exit(cell, p, v);
-            return self.first_wall_contact(walls, i, p, v, exit);
+            let first = self.first_wall_contact(walls, i, p, v, exit);
+            if !walls.vibrates() {
+                return first;
+            }
+            return self.vibrating_contact(walls, i, p, v, &[0.0; D], first);
         };
         let (x, u) = field.to_box(p, v, self.time);
         // Straight flights across the axes without gravity, falls along the others.
@@ -268,6 +272,74 @@ impl<const D: usize> EventDriven<D> {
             let at_wall = if up { cell[k] == last } else { cell[k] == 0 };
             if first.is_none_or(|f| dt <= f.0) {
                 first = Some((dt, if at_wall { k + D } else { k }, up));
+            }
+        }
+        if walls.vibrates() {
+            first = self.vibrating_contact(walls, i, &x, &u, &field.g, first);
+        }
+        first
+    }
+
+    /// The event `first` or, if earlier, the first contact of sphere i (at `x` with
+    /// velocity `u` in the box, acceleration `a`) with a vibrating wall, found by
+    /// [`crate::walls::first_contact`] up to `first`'s time (the sphere is predicted
+    /// again at its next event anyway). The fixed contact planes of the other methods stay
+    /// as early checks: a vibrating wall sweeps [0, 2A] from its face, so its contact
+    /// comes first, and at a plane the bounce finds no approach and does nothing.
+    fn vibrating_contact(
+        &self,
+        walls: &crate::walls::Walls<D>,
+        i: usize,
+        x: &Vector<D>,
+        u: &Vector<D>,
+        a: &Vector<D>,
+        mut first: Option<(f64, usize, bool)>,
+    ) -> Option<(f64, usize, bool)> {
+        use crate::walls::Side;
+        let (radius, length, t0) = (self.particles[i].radius, self.system.length, self.time);
+        for (index, wall) in walls.walls().iter().enumerate() {
+            let Some(motion) = walls.motion(index) else {
+                continue;
+            };
+            let k = wall.axis;
+            let horizon = first.map_or(f64::INFINITY, |f| f.0);
+            // Distance of the centre from the wall's face, its speed and acceleration away.
+            let (y, w, c) = match wall.side {
+                Side::Low => (x[k], u[k], a[k]),
+                Side::High => (length - x[k], -u[k], -a[k]),
+            };
+            let at = |s: f64| y + w * s + 0.5 * c * s * s;
+            let mut lowest = if horizon.is_finite() {
+                y.min(at(horizon))
+            } else if w < 0.0 || c < 0.0 {
+                f64::NEG_INFINITY
+            } else {
+                y
+            };
+            if c > 0.0 && w < 0.0 && -w / c < horizon {
+                lowest = lowest.min(at(-w / c));
+            }
+            if lowest - radius > 2.0 * motion.amplitude {
+                continue;
+            }
+            let gap = |s: f64| {
+                let t = t0 + s;
+                (
+                    at(s) - radius - motion.displacement(t),
+                    w + c * s - motion.velocity(t),
+                )
+            };
+            let contact = crate::walls::first_contact(
+                gap,
+                c.abs() + motion.max_acceleration(),
+                |s| motion.next_kink(t0 + s) - t0,
+                horizon,
+                1e-13 * length,
+            );
+            if let Some(s) = contact {
+                if first.is_none_or(|f| s <= f.0) {
+                    first = Some((s, k + D, wall.side == Side::High));
+                }
             }
         }
         first

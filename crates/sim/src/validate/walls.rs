@@ -2,7 +2,10 @@
 //! is closed when both its sides have a wall and periodic when neither has. Each kind takes
 //! its own keys only.
 
-use crate::description::{RunDescription, WallKindName, WallSection, WallSide, AXIS_NAMES};
+use super::Species;
+use crate::description::{
+    RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
+};
 use crate::engines::{kind_name, Abilities};
 use crate::error::{Error, Result};
 use gas::walls::Side;
@@ -23,12 +26,20 @@ pub enum WallSpecKind {
     Restitution(f64),
     /// Maxwell's diffuse wall at this temperature.
     Thermal(f64),
+    /// A wall moving along its axis, bouncing with a constant restitution in its frame.
+    Vibrating {
+        restitution: f64,
+        motion: gas::walls::Motion,
+    },
 }
 
 impl WallSpecKind {
     /// Whether the wall can give the gas energy.
     pub fn can_heat(&self) -> bool {
-        matches!(self, WallSpecKind::Thermal(_))
+        matches!(
+            self,
+            WallSpecKind::Thermal(_) | WallSpecKind::Vibrating { .. }
+        )
     }
 }
 
@@ -42,6 +53,15 @@ impl WallSpec {
                 restitution::Constant::new(eps).expect("checked in validation"),
             )),
             WallSpecKind::Thermal(temperature) => WallKind::Thermal { temperature },
+            WallSpecKind::Vibrating {
+                restitution,
+                motion,
+            } => WallKind::Vibrating {
+                law: Box::new(
+                    restitution::Constant::new(restitution).expect("checked in validation"),
+                ),
+                motion,
+            },
         };
         gas::walls::Wall {
             axis: self.axis,
@@ -55,6 +75,7 @@ impl WallSpec {
 pub(crate) fn walls_spec(
     description: &RunDescription,
     engine: &Abilities,
+    species: &[Species],
 ) -> Result<Vec<WallSpec>> {
     let walls = &description.walls;
     if walls.is_empty() {
@@ -100,6 +121,7 @@ pub(crate) fn walls_spec(
         let kind = wall_kind(wall, description.system.temperature, &key)?;
         specs.push(WallSpec { axis, side, kind });
     }
+    check_sweeps(description, &specs, species)?;
     for (i, wall) in walls.iter().enumerate() {
         let sides = specs.iter().filter(|s| s.axis == wall.axis.index()).count();
         if sides != 2 {
@@ -115,6 +137,53 @@ pub(crate) fn walls_spec(
         }
     }
     Ok(specs)
+}
+
+/// Refuses vibrating walls whose sweeps (2 A each) leave less than the largest diameter
+/// of their axis, naming the first one's amplitude.
+fn check_sweeps(
+    description: &RunDescription,
+    specs: &[WallSpec],
+    species: &[Species],
+) -> Result<()> {
+    let dimension = description.system.dimension as i32;
+    let ball = |d: f64| match dimension {
+        1 => d,
+        2 => std::f64::consts::PI * d * d / 4.0,
+        _ => std::f64::consts::PI * d * d * d / 6.0,
+    };
+    let volume: f64 = species
+        .iter()
+        .map(|s| s.count as f64 * ball(s.diameter))
+        .sum();
+    let length = (volume / description.system.packing_fraction).powf(1.0 / dimension as f64);
+    let largest = species.iter().map(|s| s.diameter).fold(0.0, f64::max);
+    for axis in 0..dimension as usize {
+        let sweeps: Vec<(usize, f64)> = specs
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.axis == axis)
+            .filter_map(|(i, s)| match s.kind {
+                WallSpecKind::Vibrating { motion, .. } => Some((i, 2.0 * motion.amplitude)),
+                _ => None,
+            })
+            .collect();
+        let swept: f64 = sweeps.iter().map(|s| s.1).sum();
+        if let Some(&(i, _)) = sweeps.first() {
+            if swept + largest >= length {
+                return Err(Error::out_of_range(
+                    &format!("wall[{i}].amplitude"),
+                    crate::output::number(swept / 2.0),
+                    &format!(
+                        "sweeps 2 A of the vibrating walls of an axis below the box side minus \
+                         the largest diameter, {}",
+                        crate::output::number(length - largest)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// How far a thermal wall's temperature may lie from the gas's initial one, either way:
@@ -185,10 +254,55 @@ fn wall_kind(
             }
             Ok(WallSpecKind::Thermal(t))
         }
-        WallKindName::Vibrating => Err(Error::input(
-            key("kind"),
-            "vibrating walls are not built yet (issue 34 is in progress); allowed now: \
-             \"elastic\", \"restitution\", \"thermal\"",
-        )),
+        WallKindName::Vibrating => {
+            let eps = wall.restitution.unwrap_or(1.0);
+            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
+                return Err(Error::out_of_range(&key("restitution"), eps, "0 <= e <= 1"));
+            }
+            let positive = |name: &str, x: Option<f64>| {
+                let x = x.ok_or_else(|| Error::input(key(name), "missing for a vibrating wall"))?;
+                if (1e-30..=1e30).contains(&x) {
+                    Ok(x)
+                } else {
+                    Err(Error::out_of_range(
+                        &key(name),
+                        crate::output::number(x),
+                        "1e-30 <= value <= 1e30",
+                    ))
+                }
+            };
+            let amplitude = positive("amplitude", wall.amplitude)?;
+            let frequency = positive("frequency", wall.frequency)?;
+            // The wall's top speed (sine: 2 pi A f) against the gas's thermal speed, as
+            // for a thermal wall's temperature.
+            let speed = std::f64::consts::TAU * amplitude * frequency;
+            let thermal = gas_temperature.sqrt();
+            let ratio = WALL_TEMPERATURE_RATIO.sqrt();
+            if speed > ratio * thermal {
+                return Err(Error::out_of_range(
+                    &key("frequency"),
+                    frequency,
+                    &format!(
+                        "a wall speed 2 pi A f up to 1e6 thermal speeds sqrt(system.temperature): \
+                         f <= {}",
+                        crate::output::number(
+                            ratio * thermal / (std::f64::consts::TAU * amplitude)
+                        )
+                    ),
+                ));
+            }
+            Ok(WallSpecKind::Vibrating {
+                restitution: eps,
+                motion: gas::walls::Motion {
+                    amplitude,
+                    frequency,
+                    waveform: match wall.waveform.unwrap_or(Waveform::Sine) {
+                        Waveform::Sine => gas::walls::Waveform::Sine,
+                        Waveform::Triangle => gas::walls::Waveform::Triangle,
+                        Waveform::Sawtooth => gas::walls::Waveform::Sawtooth,
+                    },
+                },
+            })
+        }
     }
 }
