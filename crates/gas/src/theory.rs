@@ -27,7 +27,10 @@ pub mod hydrodynamics;
 pub mod mixture;
 pub mod sonine;
 
-pub use hydrodynamics::{dilute_elastic_viscosity, long_wavelength_structure_factor, HcsTransport};
+pub use hydrodynamics::{
+    dilute_elastic_viscosity, enskog_thermal_conductivity, long_wavelength_structure_factor,
+    HcsTransport,
+};
 pub use mixture::{DrivenState, MixtureHcs, MixtureTheory};
 pub use sonine::{second_sonine, SonineHierarchy};
 use std::f64::consts::PI;

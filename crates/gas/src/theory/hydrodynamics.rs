@@ -54,6 +54,35 @@ pub fn dilute_elastic_viscosity<const D: usize>(diameter: f64, mass: f64, temper
         * (mass * temperature).sqrt()
 }
 
+/// The elastic Enskog thermal conductivity of hard spheres (D = 3) and disks (D = 2) at
+/// packing fraction phi, first Sonine approximation: Garzó & Dufty's D-dimensional
+/// forms (Phys. Rev. E 59, 5895 (1999)) at α = 1, a2 = 0,
+///
+///   κ = κ0 [(1 + c)² / χ + 2^{2D+2} (D−1) / ((D+2)² π) φ² χ],  c = 3·2^{D−1}/(D+2) φ χ,
+///   κ0 = D (D+2) / (2 (D−1)) η0 / m
+///
+/// (the Eucken ratio: (75/64) (T / (π m))^{1/2} / σ² in 3D, (2/σ) (T / (π m))^{1/2} in 2D).
+/// In 3D with b n = 4φ, y = b n χ: κ = κ0 b n [1/y + 6/5 + (9/25 + 32/(25π)) y], Chapman
+/// & Cowling's first approximation, whose tabulated 0.7575 (with their higher
+/// approximations' factor 1.02513 on the kinetic parts) is 9/25 + 32/(25π) / 1.02513
+/// (tests below). In 2D: κ0 [1/χ + 3φ + (9/4 + 4/π) φ² χ].
+pub fn enskog_thermal_conductivity<const D: usize>(
+    diameter: f64,
+    mass: f64,
+    temperature: f64,
+    phi: f64,
+) -> f64 {
+    assert!(D >= 2, "thermal conductivity of hard rods: not defined here");
+    let d = D as f64;
+    let eta0 = dilute_elastic_viscosity::<D>(diameter, mass, temperature);
+    let kappa0 = d * (d + 2.0) / (2.0 * (d - 1.0)) * eta0 / mass;
+    let chi = contact_value::<D>(phi);
+    let c = 3.0 * 2f64.powi(D as i32 - 1) / (d + 2.0) * phi * chi;
+    let collisional =
+        2f64.powi(2 * D as i32 + 2) * (d - 1.0) / ((d + 2.0).powi(2) * PI) * phi * phi * chi;
+    kappa0 * ((1.0 + c).powi(2) / chi + collisional)
+}
+
 /// The transport of the HCS at number density n, packing fraction phi (χ from
 /// [`contact_value`], phi = 0 for the Boltzmann gas that DSMC samples), restitution eps and
 /// temperature T, with a2 of van Noije & Ernst.
@@ -181,6 +210,33 @@ pub fn long_wavelength_structure_factor<const D: usize>(phi: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    /// Oracles: the dilute values in closed form (Chapman & Cowling's (75/64) (T/(πm))^{1/2}
+    /// / σ² in 3D), Chapman & Cowling's 3D Enskog form b n [1/y + 6/5 + 0.7674 y], and
+    /// the 2D form expanded by hand.
+    #[test]
+    fn enskog_conductivities_reduce_to_their_textbook_forms() {
+        use super::super::contact_value;
+        use super::enskog_thermal_conductivity as kappa;
+        use std::f64::consts::PI;
+        let k3 = kappa::<3>(1.0, 1.0, 1.0, 0.0);
+        assert!((k3 - 75.0 / 64.0 / PI.sqrt()).abs() < 1e-15, "{k3}");
+        let k2 = kappa::<2>(1.0, 1.0, 1.0, 0.0);
+        assert!((k2 - 2.0 / PI.sqrt()).abs() < 1e-15, "{k2}");
+        // Scaling: sqrt(T / m) / sigma^(D-1).
+        assert!((kappa::<3>(2.0, 4.0, 9.0, 0.0) - k3 * 1.5 / 4.0).abs() < 1e-15);
+        for phi in [0.05, 0.2, 0.4] {
+            let (bn, y) = (4.0 * phi, 4.0 * phi * contact_value::<3>(phi));
+            let textbook = k3 * bn * (1.0 / y + 1.2 + (0.36 + 32.0 / (25.0 * PI)) * y);
+            assert!((kappa::<3>(1.0, 1.0, 1.0, phi) / textbook - 1.0).abs() < 1e-13);
+            // Chapman & Cowling's 0.7575 is the same coefficient with 1.02513 factored out
+            // (0.75745: equal to the digits they give).
+            assert!(((0.36 + 32.0 / (25.0 * PI) / 1.02513) - 0.7575).abs() < 1e-4);
+            let chi2 = contact_value::<2>(phi);
+            let by_hand = k2 * (1.0 / chi2 + 3.0 * phi + (2.25 + 4.0 / PI) * phi * phi * chi2);
+            assert!((kappa::<2>(1.0, 1.0, 1.0, phi) / by_hand - 1.0).abs() < 1e-13);
+        }
+    }
+
     use super::*;
 
     #[test]
