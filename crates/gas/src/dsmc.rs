@@ -161,6 +161,10 @@ pub struct Snapshot<const D: usize, O> {
     /// of its particles), in the engine's species order (that of its
     /// `species_collisions`); empty for one species.
     pub species_collisions: Vec<u64>,
+    /// The walls' tallies of a spatial engine in a container (absent otherwise: the other
+    /// states stay byte for byte as before; the last field, read as None where missing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub walls: Option<crate::walls::WallsState>,
 }
 
 impl<const D: usize, O> Snapshot<D, O> {

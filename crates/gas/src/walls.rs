@@ -317,56 +317,193 @@ impl<const D: usize> Walls<D> {
     /// the velocity after it and tallies the wall. False (nothing done) if the sphere does
     /// not approach the wall (a vibrating wall's early check).
     pub fn bounce(&mut self, index: usize, mass: f64, v: &mut [f64; D], t: f64) -> bool {
-        let Wall { axis, side, kind } = &self.walls[index];
-        let k = *axis;
-        // +1: the gas lies above the wall (low side).
-        let inward = match side {
-            Side::Low => 1.0,
-            Side::High => -1.0,
-        };
-        // The wall's velocity into the box; speeds are relative to it.
-        let wall = match kind {
-            WallKind::Vibrating { motion, .. } => motion.velocity(t),
-            _ => 0.0,
-        };
-        let relative = inward * v[k] - wall;
-        if matches!(kind, WallKind::Vibrating { .. }) && relative >= 0.0 {
-            return false;
-        }
-        let u = (-relative).max(0.0);
-        let before: f64 = v.iter().map(|x| x * x).sum();
-        let away = match kind {
-            WallKind::Elastic => u,
-            WallKind::Restitution(law) | WallKind::Vibrating { law, .. } => law.eps(u) * u,
-            WallKind::Thermal { temperature } => {
-                let scale = (temperature / mass).sqrt();
-                for (j, x) in v.iter_mut().enumerate() {
-                    if j != k {
-                        *x = scale * gaussian(&mut self.stream);
-                    }
-                }
-                // 1 - U lies in (0, 1]: the logarithm is finite.
-                scale * (-2.0 * (1.0 - self.stream.uniform()).ln()).sqrt()
+        let contact = contact_with(
+            &self.walls[index],
+            self.min_speed[index],
+            mass,
+            v,
+            t,
+            &mut self.stream,
+        );
+        match contact {
+            Some(c) => {
+                self.add(index, &c);
+                true
             }
-        };
-        let least = self.min_speed[index];
-        let away = if away < least {
+            None => false,
+        }
+    }
+
+    /// What the contact of a sphere of mass m and velocity v with wall `index` at time t
+    /// does, the velocity set to the one after it, thermal walls drawing from `stream`;
+    /// None (nothing done) if the sphere does not approach a vibrating wall. The walls are
+    /// left as they were: [`Self::add`] tallies it (engines that handle contacts in
+    /// parallel sum them first).
+    pub(crate) fn contact(
+        &self,
+        index: usize,
+        mass: f64,
+        v: &mut [f64; D],
+        t: f64,
+        stream: &mut Stream,
+    ) -> Option<Contact> {
+        contact_with(
+            &self.walls[index],
+            self.min_speed[index],
+            mass,
+            v,
+            t,
+            stream,
+        )
+    }
+
+    /// Tallies a contact with wall `index`.
+    pub fn add(&mut self, index: usize, contact: &Contact) {
+        if let Some(energy) = contact.lift {
             let lift = &mut self.lifts[index];
             lift.lifts += 1;
-            lift.energy += 0.5 * mass * (least * least - away * away);
-            least
-        } else {
-            away
-        };
-        v[k] = inward * (wall + away);
-        let after: f64 = v.iter().map(|x| x * x).sum();
-        let energy = 0.5 * mass * (after - before);
+            lift.energy += energy;
+        }
         let tally = &mut self.tallies[index];
         tally.collisions += 1;
-        tally.momentum += mass * (u + away);
-        tally.energy += energy;
-        true
+        tally.momentum += contact.momentum;
+        tally.energy += contact.energy;
     }
+
+    /// Tallies a sum of contacts with wall `index` (an engine's step).
+    pub fn add_sums(&mut self, index: usize, sums: &ContactSums) {
+        let lift = &mut self.lifts[index];
+        lift.lifts += sums.lifts;
+        lift.energy += sums.lift_energy.value();
+        let tally = &mut self.tallies[index];
+        tally.collisions += sums.collisions;
+        tally.momentum += sums.momentum.value();
+        tally.energy += sums.energy.value();
+    }
+}
+
+/// What one contact did ([`Walls::contact`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Normal momentum given to the wall.
+    pub momentum: f64,
+    /// Energy the wall gave the sphere.
+    pub energy: f64,
+    /// The energy of a lift, if the resting rule lifted the sphere.
+    pub lift: Option<f64>,
+}
+
+/// Contacts with one wall summed exactly (the same sums in any order: threads, ranks).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ContactSums {
+    pub collisions: u64,
+    pub momentum: crate::exact_sum::ExactSum,
+    pub energy: crate::exact_sum::ExactSum,
+    pub lifts: u64,
+    pub lift_energy: crate::exact_sum::ExactSum,
+}
+
+impl ContactSums {
+    pub fn add(&mut self, c: &Contact) {
+        self.collisions += 1;
+        self.momentum.add(c.momentum);
+        self.energy.add(c.energy);
+        if let Some(e) = c.lift {
+            self.lifts += 1;
+            self.lift_energy.add(e);
+        }
+    }
+
+    pub fn merge(&mut self, other: &ContactSums) {
+        self.collisions += other.collisions;
+        self.momentum.merge(&other.momentum);
+        self.energy.merge(&other.energy);
+        self.lifts += other.lifts;
+        self.lift_energy.merge(&other.lift_energy);
+    }
+}
+
+/// [`Walls::contact`] for one wall whose least speed is `least`.
+fn contact_with<const D: usize>(
+    wall: &Wall,
+    least: f64,
+    mass: f64,
+    v: &mut [f64; D],
+    t: f64,
+    stream: &mut Stream,
+) -> Option<Contact> {
+    let Wall { axis, side, kind } = wall;
+    let k = *axis;
+    // +1: the gas lies above the wall (low side).
+    let inward = match side {
+        Side::Low => 1.0,
+        Side::High => -1.0,
+    };
+    // The wall's velocity into the box; speeds are relative to it.
+    let wall = match kind {
+        WallKind::Vibrating { motion, .. } => motion.velocity(t),
+        _ => 0.0,
+    };
+    let relative = inward * v[k] - wall;
+    if matches!(kind, WallKind::Vibrating { .. }) && relative >= 0.0 {
+        return None;
+    }
+    let u = (-relative).max(0.0);
+    let before: f64 = v.iter().map(|x| x * x).sum();
+    let away = match kind {
+        WallKind::Elastic => u,
+        WallKind::Restitution(law) | WallKind::Vibrating { law, .. } => law.eps(u) * u,
+        WallKind::Thermal { temperature } => {
+            let scale = (temperature / mass).sqrt();
+            for (j, x) in v.iter_mut().enumerate() {
+                if j != k {
+                    *x = scale * gaussian(stream);
+                }
+            }
+            // 1 - U lies in (0, 1]: the logarithm is finite.
+            scale * (-2.0 * (1.0 - stream.uniform()).ln()).sqrt()
+        }
+    };
+    let (away, lift) = if away < least {
+        (least, Some(0.5 * mass * (least * least - away * away)))
+    } else {
+        (away, None)
+    };
+    v[k] = inward * (wall + away);
+    let after: f64 = v.iter().map(|x| x * x).sum();
+    Some(Contact {
+        momentum: mass * (u + away),
+        energy: 0.5 * mass * (after - before),
+        lift,
+    })
+}
+
+/// The first time s > 0 at which a sphere at x moving with v along an axis with
+/// acceleration g (≠ 0) reaches `low` or `high` (low <= x <= high, up to rounding), and
+/// whether that is `high`. Cancellation-free roots of g s²/2 + v s + x − b = 0: against
+/// the pull (a distance d, upward speed u > 0) s = 2 d / (u + sqrt(u² − 2 a d)) when
+/// u² >= 2 a d (a = |g|), else along it (a distance e): s = (u + S) / a for u >= 0 and
+/// s = 2 e / (S − u) for u < 0, S = sqrt(u² + 2 a e) (always a root).
+pub(crate) fn fall_exit(x: f64, v: f64, g: f64, low: f64, high: f64) -> (f64, bool) {
+    let a = g.abs();
+    // "Up" is against the pull.
+    let (up_distance, down_distance, u) = if g < 0.0 {
+        (high - x, x - low, v)
+    } else {
+        (x - low, high - x, -v)
+    };
+    let (d, e) = (up_distance.max(0.0), down_distance.max(0.0));
+    let reach = u * u - 2.0 * a * d;
+    if u > 0.0 && reach >= 0.0 {
+        return (2.0 * d / (u + reach.sqrt()), g < 0.0);
+    }
+    let s = (u * u + 2.0 * a * e).sqrt();
+    let time = if u >= 0.0 {
+        (u + s) / a
+    } else {
+        2.0 * e / (s - u)
+    };
+    (time, g > 0.0)
 }
 
 /// A standard normal variate (Box–Muller's cosine branch: one per two uniforms, so that
@@ -375,4 +512,38 @@ fn gaussian(stream: &mut Stream) -> f64 {
     let u1 = 1.0 - stream.uniform();
     let u2 = stream.uniform();
     (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fall_exit;
+
+    /// Oracle: the roots of the quadratic by the textbook formula, where it is accurate.
+    #[test]
+    fn fall_exits_are_the_quadratics_roots() {
+        // Thrown up from 0.2 in [0, 1] at 1 with g = -1: reaches 1 if 1 >= 2 * 0.8? No:
+        // falls back to 0 at s = 1 + sqrt(1 + 0.4).
+        let (s, up) = fall_exit(0.2, 1.0, -1.0, 0.0, 1.0);
+        assert!(!up && (s - (1.0 + 1.4f64.sqrt())).abs() < 1e-15, "{s}");
+        // Fast enough: reaches 1 at the smaller root of s^2/2 - 2 s + 0.8 = 0.
+        let (s, up) = fall_exit(0.2, 2.0, -1.0, 0.0, 1.0);
+        assert!(
+            up && (s - (2.0 - (4.0f64 - 1.6).sqrt())).abs() < 1e-15,
+            "{s}"
+        );
+        // Falling: s^2/2 + 0.5 s - 0.2 = 0.
+        let (s, up) = fall_exit(0.2, -0.5, -1.0, 0.0, 1.0);
+        assert!(
+            !up && (s - (-0.5 + (0.25f64 + 0.4).sqrt())).abs() < 1e-15,
+            "{s}"
+        );
+        // Mirror: g > 0 pulls towards high.
+        let (s, up) = fall_exit(0.8, -1.0, 1.0, 0.0, 1.0);
+        assert!(up && (s - (1.0 + 1.4f64.sqrt())).abs() < 1e-15, "{s}");
+        // Just crossed upwards at the face: back after 2 v / g.
+        let (s, up) = fall_exit(0.0, 0.3, -2.0, 0.0, 1.0);
+        assert!(!up && (s - 0.3).abs() < 1e-16, "{s}");
+        // At rest on the low face: 0, downwards.
+        assert_eq!(fall_exit(0.0, 0.0, -1.0, 0.0, 1.0), (0.0, false));
+    }
 }

@@ -413,3 +413,24 @@ fn ranks_or_system(e: gas::Error) -> Error {
 fn state_error(sections: &Sections) -> impl Fn(String) -> Error + '_ {
     move |e| sections.error(format!("engine state: {e}"))
 }
+
+/// The plan's walls as the engines take them (their thermal velocities drawn from the
+/// run's seed); None for the periodic box.
+fn walls_of<const D: usize>(plan: &Plan) -> Result<Option<gas::walls::Walls<D>>> {
+    if plan.walls.is_empty() {
+        return Ok(None);
+    }
+    gas::walls::Walls::new(
+        plan.walls.iter().map(|w| w.build()).collect(),
+        plan.description.system.seed,
+    )
+    .map(Some)
+    .map_err(|e| Error::input("wall", e))
+}
+
+/// The plan's gravity and rest height, if any.
+fn gravity_of<const D: usize>(plan: &Plan) -> Option<([f64; D], f64)> {
+    plan.gravity
+        .as_ref()
+        .map(|g| (std::array::from_fn(|k| g.acceleration[k]), g.rest_height))
+}

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 10] = [
+const SEEDS: [&str; 11] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -55,6 +55,12 @@ const SEEDS: [&str; 10] = [
      [field]\ngravity = [0.0, -1.0]\nrest_height = 1e-3\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"vibrating\"\namplitude = 0.3\nfrequency = 1.0\nwaveform = \"triangle\"\n\
      [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"elastic\"\n",
+    "[system]\ndimension = 2\nparticles = 200\npacking_fraction = 0.05\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 3\nsamples = 3\n\
+     [field]\ngravity = [0.0, -0.1]\n\
+     [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"restitution\"\nrestitution = 0.5\n\
+     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.

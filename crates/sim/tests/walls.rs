@@ -272,3 +272,46 @@ fn a_vibrated_bed_from_a_run_file_is_heated_and_resumes() {
     assert!(floor.collisions > 100 && floor.energy > 0.0, "{floor:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Spatial DSMC in a container from a run file (thermal floor and ceiling, gravity,
+/// profiles): walls.csv and profiles.csv written, a mid-run check-point resumes bit for
+/// bit; several ranks are refused with walls.
+#[test]
+fn spatial_dsmc_in_a_container_resumes() {
+    let text = "[system]\ndimension = 2\nparticles = 2000\npacking_fraction = 0.05\nseed = 4\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.95\n\
+                [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n\
+                collisions_per_particle = 20\nsamples = 5\n\
+                [output]\nprofiles = { axis = \"y\", bins = 10 }\n\
+                [field]\ngravity = [0.0, -0.02]\n\
+                [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"thermal\"\ntemperature = 1.0\n\
+                [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n";
+    let mut run = Simulation::from_toml(text, "dsmc.toml".as_ref()).unwrap();
+    assert!(run
+        .advance(Point::CollisionsPerParticle(8.0), &mut ())
+        .unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-dsmc-walls-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("dsmc.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    assert_eq!(loaded.wall_samples(), run.wall_samples());
+    assert_eq!(loaded.profile_rows(), run.profile_rows());
+    let rows = run.wall_samples().unwrap();
+    assert!(rows[rows.len() - 2].collisions > 100);
+    std::fs::remove_dir_all(&dir).unwrap();
+    let ranks = text.replace(
+        "dsmc_scheme = \"spatial\"\n",
+        "dsmc_scheme = \"spatial\"\nranks = 2\n",
+    );
+    let error = Simulation::from_toml(&ranks, "bad.toml".as_ref())
+        .err()
+        .unwrap();
+    assert!(
+        error.is_input() && error.to_string().contains("wall"),
+        "{error}"
+    );
+}

@@ -246,7 +246,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
             draws,
             temperature,
             species_collisions,
+            walls,
         } = snapshot;
+        if walls.is_some() {
+            return Err(Error::out_of_range(
+                "walls",
+                "a container",
+                "none: homogeneous DSMC has no positions, so no walls",
+            ));
+        }
         let mut engine = Self::distributed(system, packing_fraction, law, seed, options, comm)?;
         // The exact scheme's majorant (finite: `Snapshot::check`) must bound every speed (it
         // only ever grows to the largest one seen): a smaller one would accept with
@@ -297,6 +305,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             draws,
             temperature,
             species_collisions,
+            walls: None,
         }
     }
 

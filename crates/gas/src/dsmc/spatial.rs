@@ -16,6 +16,7 @@ use rayon::prelude::*;
 use restitution::Restitution;
 use std::sync::Arc;
 
+mod container;
 mod ranks;
 mod sums;
 use std::time::Instant;
@@ -101,6 +102,12 @@ pub struct SpatialDsmc<const D: usize> {
     /// by cell (None after it, and on one rank).
     ordinals: Option<Vec<u64>>,
     traffic: Traffic,
+    /// The walls of a container ([`SpatialDsmc::set_walls`]); None: periodic.
+    walls: Option<crate::walls::Walls<D>>,
+    /// Walls' state from a check-point, taken up by the next [`SpatialDsmc::set_walls`].
+    saved_walls: Option<crate::walls::WallsState>,
+    /// Gravity ([`SpatialDsmc::set_gravity`]).
+    gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -254,6 +261,9 @@ impl<const D: usize> SpatialDsmc<D> {
             total: n,
             ordinals,
             traffic: Traffic::default(),
+            walls: None,
+            saved_walls: None,
+            gravity: None,
         })
     }
 
@@ -280,6 +290,7 @@ impl<const D: usize> SpatialDsmc<D> {
         engine.tally = snapshot.counters;
         engine.species_collisions = snapshot.species_collisions;
         engine.temperature = snapshot.temperature;
+        engine.saved_walls = snapshot.walls;
         Ok(engine)
     }
 
@@ -307,6 +318,7 @@ impl<const D: usize> SpatialDsmc<D> {
             draws: 0,
             temperature,
             species_collisions: self.species_collisions.clone(),
+            walls: self.walls_state(),
         }
     }
 
@@ -389,7 +401,11 @@ impl<const D: usize> SpatialDsmc<D> {
                 p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
             }
         };
-        let starts = if self.comm.size() == 1 {
+        let starts = if self.comm.size() == 1 && self.walls.is_some() {
+            self.stream_in_container(dt);
+            self.sorter
+                .update_and_sort(&mut self.simulators, cells.pow(D as u32), |_| {}, key)
+        } else if self.comm.size() == 1 {
             self.sorter
                 .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key)
         } else {
@@ -544,6 +560,10 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
 
     fn particles(&self) -> usize {
         self.len()
+    }
+
+    fn walls(&self) -> Option<Vec<crate::walls::WallRecord>> {
+        self.walls.as_ref().map(|w| w.records())
     }
 
     fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {

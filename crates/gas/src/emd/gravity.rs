@@ -54,33 +54,7 @@ impl<const D: usize> Field<D> {
     }
 }
 
-/// The first time s > 0 at which a sphere at x moving with v along an axis with
-/// acceleration g (≠ 0) reaches `low` or `high` (low <= x <= high, up to rounding), and
-/// whether that is `high`. Cancellation-free roots of g s²/2 + v s + x − b = 0: against
-/// the pull (a distance d, upward speed u > 0) s = 2 d / (u + sqrt(u² − 2 a d)) when
-/// u² >= 2 a d (a = |g|), else along it (a distance e): s = (u + S) / a for u >= 0 and
-/// s = 2 e / (S − u) for u < 0, S = sqrt(u² + 2 a e) (always a root).
-pub(super) fn fall_exit(x: f64, v: f64, g: f64, low: f64, high: f64) -> (f64, bool) {
-    let a = g.abs();
-    // "Up" is against the pull.
-    let (up_distance, down_distance, u) = if g < 0.0 {
-        (high - x, x - low, v)
-    } else {
-        (x - low, high - x, -v)
-    };
-    let (d, e) = (up_distance.max(0.0), down_distance.max(0.0));
-    let reach = u * u - 2.0 * a * d;
-    if u > 0.0 && reach >= 0.0 {
-        return (2.0 * d / (u + reach.sqrt()), g < 0.0);
-    }
-    let s = (u * u + 2.0 * a * e).sqrt();
-    let time = if u >= 0.0 {
-        (u + s) / a
-    } else {
-        2.0 * e / (s - u)
-    };
-    (time, g > 0.0)
-}
+pub(super) use crate::walls::fall_exit;
 
 impl<const D: usize> EventDriven<D> {
     /// Lets every sphere fall with the acceleration `g` (None: no field), a floor's
@@ -190,39 +164,5 @@ impl<const D: usize> EventDriven<D> {
                 self.move_frame();
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::fall_exit;
-
-    /// Oracle: the roots of the quadratic by the textbook formula, where it is accurate.
-    #[test]
-    fn fall_exits_are_the_quadratics_roots() {
-        // Thrown up from 0.2 in [0, 1] at 1 with g = -1: reaches 1 if 1 >= 2 * 0.8? No:
-        // falls back to 0 at s = 1 + sqrt(1 + 0.4).
-        let (s, up) = fall_exit(0.2, 1.0, -1.0, 0.0, 1.0);
-        assert!(!up && (s - (1.0 + 1.4f64.sqrt())).abs() < 1e-15, "{s}");
-        // Fast enough: reaches 1 at the smaller root of s^2/2 - 2 s + 0.8 = 0.
-        let (s, up) = fall_exit(0.2, 2.0, -1.0, 0.0, 1.0);
-        assert!(
-            up && (s - (2.0 - (4.0f64 - 1.6).sqrt())).abs() < 1e-15,
-            "{s}"
-        );
-        // Falling: s^2/2 + 0.5 s - 0.2 = 0.
-        let (s, up) = fall_exit(0.2, -0.5, -1.0, 0.0, 1.0);
-        assert!(
-            !up && (s - (-0.5 + (0.25f64 + 0.4).sqrt())).abs() < 1e-15,
-            "{s}"
-        );
-        // Mirror: g > 0 pulls towards high.
-        let (s, up) = fall_exit(0.8, -1.0, 1.0, 0.0, 1.0);
-        assert!(up && (s - (1.0 + 1.4f64.sqrt())).abs() < 1e-15, "{s}");
-        // Just crossed upwards at the face: back after 2 v / g.
-        let (s, up) = fall_exit(0.0, 0.3, -2.0, 0.0, 1.0);
-        assert!(!up && (s - 0.3).abs() < 1e-16, "{s}");
-        // At rest on the low face: 0, downwards.
-        assert_eq!(fall_exit(0.0, 0.0, -1.0, 0.0, 1.0), (0.0, false));
     }
 }

@@ -72,7 +72,10 @@ pub fn enskog_thermal_conductivity<const D: usize>(
     temperature: f64,
     phi: f64,
 ) -> f64 {
-    assert!(D >= 2, "thermal conductivity of hard rods: not defined here");
+    assert!(
+        D >= 2,
+        "thermal conductivity of hard rods: not defined here"
+    );
     let d = D as f64;
     let eta0 = dilute_elastic_viscosity::<D>(diameter, mass, temperature);
     let kappa0 = d * (d + 2.0) / (2.0 * (d - 1.0)) * eta0 / mass;

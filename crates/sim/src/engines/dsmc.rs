@@ -35,7 +35,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         collapse: false,
         baths: false,
         species_materials: true,
-        walls: false,
+        walls: scheme == DsmcScheme::Spatial,
     }
 }
 
@@ -244,8 +244,25 @@ pub(super) fn start_spatial<const D: usize>(
     options: SpatialOptions,
     comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
-    let engine = spatial(system, setup(plan, law), options, comm).map_err(ranks_or_system)?;
+    let mut engine = spatial(system, setup(plan, law), options, comm).map_err(ranks_or_system)?;
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
+}
+
+/// Puts the spatial engine's gas into the plan's walls and gravity, if any.
+fn enclose<const D: usize>(engine: &mut SpatialDsmc<D>, plan: &Plan) -> Result<()> {
+    let Some(walls) = super::walls_of::<D>(plan)? else {
+        return Ok(());
+    };
+    engine
+        .set_walls(Some(walls))
+        .map_err(|e| Error::input("wall", e))?;
+    let Some((g, rest_height)) = super::gravity_of::<D>(plan) else {
+        return Ok(());
+    };
+    engine
+        .set_gravity(Some(g), rest_height)
+        .map_err(|e| Error::input("field.gravity", e))
 }
 
 /// The homogeneous engine of a check-point, on the ranks of `comm`, driven as the plan says.
@@ -282,11 +299,19 @@ pub(super) fn restore_spatial<const D: usize>(
     };
     check_state(plan, &state.system, &state, state.options == options, true)
         .map_err(state_error(sections))?;
-    let engine = if comm.size() > 1 {
+    if state.walls.as_ref().map(|w| w.tallies.len())
+        != (!plan.walls.is_empty()).then_some(plan.walls.len())
+    {
+        return Err(state_error(sections)(
+            "the walls differ from [[wall]]".into(),
+        ));
+    }
+    let mut engine = if comm.size() > 1 {
         SpatialDsmc::restore_distributed(state, law, comm.clone()).map_err(ranks_or_system)?
     } else {
         SpatialDsmc::restore(state, law).map_err(|e| state_error(sections)(e.to_string()))?
     };
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
 }
 

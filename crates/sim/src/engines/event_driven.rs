@@ -83,23 +83,17 @@ pub(super) fn start<const D: usize>(
 /// Puts the engine's gas into the plan's walls, if any (their thermal velocities drawn
 /// from the run's seed), and in its gravity.
 fn enclose<const D: usize>(engine: &mut EventDriven<D>, plan: &Plan) -> Result<()> {
-    if plan.walls.is_empty() {
+    let Some(walls) = super::walls_of::<D>(plan)? else {
         return Ok(());
-    }
-    let walls = gas::walls::Walls::new(
-        plan.walls.iter().map(|w| w.build()).collect(),
-        plan.description.system.seed,
-    )
-    .map_err(|e| Error::input("wall", e))?;
+    };
     engine
         .set_walls(Some(walls))
         .map_err(|e| Error::input("wall", e))?;
-    let Some(gravity) = &plan.gravity else {
+    let Some((g, rest_height)) = super::gravity_of::<D>(plan) else {
         return Ok(());
     };
-    let g: [f64; D] = std::array::from_fn(|k| gravity.acceleration[k]);
     engine
-        .set_gravity(Some(g), gravity.rest_height)
+        .set_gravity(Some(g), rest_height)
         .map_err(|e| Error::input("field.gravity", e))
 }
 

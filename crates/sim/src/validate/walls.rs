@@ -85,10 +85,17 @@ pub(crate) fn walls_spec(
         return Err(Error::input(
             "wall",
             format!(
-                "run.engine = \"{}\" has no walls yet; walls run in run.engine = \
-                 \"event-driven\"",
+                "run.engine = \"{}\" has no walls here; walls run in run.engine = \
+                 \"event-driven\" and in dsmc_scheme = \"spatial\" (homogeneous DSMC has no \
+                 positions)",
                 kind_name(description.run.engine)
             ),
+        ));
+    }
+    if description.run.ranks.is_some_and(|r| r > 1) {
+        return Err(Error::input(
+            "wall",
+            "walls in spatial DSMC run on one rank; allowed: run.ranks = 1",
         ));
     }
     let dimension = description.system.dimension as usize;
