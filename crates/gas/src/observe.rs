@@ -23,6 +23,13 @@ pub fn temperature<const D: usize>(s: &System<D>) -> f64 {
 /// energy of the peculiar motion), so that a2 vanishes for Maxwellians of one temperature
 /// whatever the masses; for equal masses the two definitions coincide. 0 for a gas at rest.
 pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
+    let (c2, c4) = peculiar_sums(s);
+    sonine_a2_of_sums::<D>(c2, c4, s.len() as f64)
+}
+
+/// The sums of x and x^2 over the particles, x = c^2 (or m c^2 for unequal masses) of
+/// the peculiar velocities c ([`sonine_a2`]).
+fn peculiar_sums<const D: usize>(s: &System<D>) -> (f64, f64) {
     let (mean, _) = mean_velocity(s);
     let equal_masses = s.masses.iter().all(|&m| m == s.masses[0]);
     let (mut c2, mut c4) = (0.0, 0.0);
@@ -36,7 +43,13 @@ pub fn sonine_a2<const D: usize>(s: &System<D>) -> f64 {
         c2 += x;
         c4 += x * x;
     }
-    sonine_a2_of_sums::<D>(c2, c4, s.len() as f64)
+    (c2, c4)
+}
+
+/// The sum of x^2 of [`sonine_a2`] (its fourth moment), which must be finite for the
+/// observers.
+pub fn fourth_moment_sum<const D: usize>(s: &System<D>) -> f64 {
+    peculiar_sums(s).1
 }
 
 /// a2 = D/(D+2) <x^2>/<x>^2 - 1 from the sums `c2` of x and `c4` of x^2 over `n` particles
@@ -47,7 +60,13 @@ pub fn sonine_a2_of_sums<const D: usize>(c2: f64, c4: f64, n: f64) -> f64 {
         // distribution to compare with a Maxwellian: 0 rather than 0/0.
         return 0.0;
     }
-    D as f64 / (D as f64 + 2.0) * (c4 / n) / (c2 / n).powi(2) - 1.0
+    let second = (c2 / n).powi(2);
+    if second == 0.0 {
+        // Peculiar speeds at the rounding of the mean (one particle, or all alike): no
+        // distribution either.
+        return 0.0;
+    }
+    D as f64 / (D as f64 + 2.0) * (c4 / n) / second - 1.0
 }
 
 /// Histogram of the scaled peculiar velocity components c = (v_k - <v>_k) / sqrt(2 T / m_i)

@@ -27,6 +27,8 @@
 //! collisional virial of [`crate::observe::pressure`].
 
 pub mod accuracy;
+mod container;
+pub use container::ContainerState;
 pub mod contact;
 pub mod neighbors;
 mod step;
@@ -188,6 +190,10 @@ pub struct SoftSphereState<const D: usize> {
     /// See [`accuracy::eps_error`] (absent in check-points written before it existed).
     #[serde(default = "unknown")]
     pub eps_error: f64,
+    /// Walls and their contacts, in a container (absent otherwise: the periodic states
+    /// stay as they were byte for byte; the last field, read as None where missing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub container: Option<ContainerState>,
 }
 
 /// Soft-sphere MD of viscoelastic spheres (see the [module](self) documentation).
@@ -215,6 +221,12 @@ pub struct SoftSphere<const D: usize> {
     current: Vec<(u32, u32)>,
     /// Scratch: the force on the second particle of each pair of `current`.
     impulses: Vec<Vector<D>>,
+    /// Walls and gravity ([`SoftSphere::set_walls`], [`SoftSphere::set_gravity`]).
+    container: Option<container::Container<D>>,
+    /// The container's state from a check-point, taken up by the next `set_walls`.
+    saved_container: Option<ContainerState>,
+    /// Whether the container came from a check-point (its forces are then the saved ones).
+    restored_container: bool,
 }
 
 impl<const D: usize> SoftSphere<D> {
@@ -299,6 +311,9 @@ impl<const D: usize> SoftSphere<D> {
             touching: vec![0; n],
             current: Vec::new(),
             impulses: Vec::new(),
+            container: None,
+            saved_container: None,
+            restored_container: false,
             system,
         };
         // Forces of the initial state (velocities known exactly at t = 0); overlaps present
@@ -452,6 +467,10 @@ pub fn shortest_contact_duration(
 }
 
 impl<const D: usize> Engine<D> for SoftSphere<D> {
+    fn walls(&self) -> Option<Vec<crate::walls::WallRecord>> {
+        self.container.as_ref().map(|c| c.walls.records())
+    }
+
     fn run_until(&mut self, t: f64) {
         self.run_to(t, u64::MAX, u64::MAX);
     }
@@ -521,6 +540,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             collision_counts: self.collision_counts.clone(),
             statistics: self.statistics,
             eps_error: self.eps_error,
+            container: self.container_state(),
         }
     }
 
@@ -603,6 +623,9 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             collision_counts: state.collision_counts,
             statistics: state.statistics,
             eps_error: state.eps_error,
+            container: None,
+            saved_container: state.container,
+            restored_container: false,
         })
     }
 }

@@ -78,8 +78,8 @@ impl<const D: usize> System<D> {
                 "a finite energy",
             ));
         }
-        // The observers' Sonine coefficient sums (m) c^4: a finite energy is not enough.
-        if !crate::observe::sonine_a2(self).is_finite() {
+        // The observers' Sonine coefficient sums (m c^2)^2: a finite energy is not enough.
+        if !crate::observe::fourth_moment_sum(self).is_finite() {
             return Err(Error::out_of_range(
                 "velocities",
                 "a fourth moment beyond the range of f64",

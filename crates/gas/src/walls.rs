@@ -370,6 +370,15 @@ impl<const D: usize> Walls<D> {
         tally.energy += contact.energy;
     }
 
+    /// Tallies what wall `index` did in a step of an engine with soft contacts: contacts
+    /// begun, the normal momentum it took and the energy it gave.
+    pub fn add_work(&mut self, index: usize, begun: u64, momentum: f64, energy: f64) {
+        let tally = &mut self.tallies[index];
+        tally.collisions += begun;
+        tally.momentum += momentum;
+        tally.energy += energy;
+    }
+
     /// Tallies a sum of contacts with wall `index` (an engine's step).
     pub fn add_sums(&mut self, index: usize, sums: &ContactSums) {
         let lift = &mut self.lifts[index];

@@ -104,7 +104,10 @@ fn dsmc_in_gravity_is_barometric() {
         let error = (batches.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 56.0).sqrt();
         worst = worst.max((mean - expected).abs() / error);
         eprintln!("slab {b}: {mean:.1} ± {error:.1} vs {expected:.1}");
-        assert!((mean - expected).abs() < 5.0 * error, "slab {b}: {mean} ± {error} vs {expected}");
+        assert!(
+            (mean - expected).abs() < 5.0 * error,
+            "slab {b}: {mean} ± {error} vs {expected}"
+        );
     }
     eprintln!("largest deviation {worst:.2} standard errors");
 }

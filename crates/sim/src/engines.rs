@@ -213,7 +213,9 @@ pub(crate) fn start<const D: usize>(
             dsmc::start_homogeneous(plan, system, law, scheme, comm)
         }
         EngineSpec::SpatialDsmc(options) => dsmc::start_spatial(plan, system, law, options, comm),
-        EngineSpec::SoftSphere(options, material) => soft_sphere::start(system, options, material),
+        EngineSpec::SoftSphere(options, material) => {
+            soft_sphere::start(plan, system, options, material)
+        }
     }?;
     Ok((engine, grown))
 }

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 11] = [
+const SEEDS: [&str; 12] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -61,6 +61,12 @@ const SEEDS: [&str; 11] = [
      [field]\ngravity = [0.0, -0.1]\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"restitution\"\nrestitution = 0.5\n\
      [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n",
+    "[system]\nparticles = 40\npacking_fraction = 0.1\ntemperature = 0.1\n\
+     [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\ndissipative_constant = 0.01\n\
+     [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\nsteps_per_contact = 20\n\
+     [field]\ngravity = [0.0, 0.0, -1.0]\n\
+     [[wall]]\naxis = \"z\"\nside = \"low\"\nkind = \"restitution\"\n\
+     [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"vibrating\"\namplitude = 0.1\nfrequency = 1.0\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.

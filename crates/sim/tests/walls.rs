@@ -132,7 +132,8 @@ fn bad_walls_name_their_key() {
         assert!(error.is_input(), "{error}");
         assert!(error.to_string().contains(key), "{key}: {error}");
     }
-    // Engines without walls refuse them, naming the section.
+    // Homogeneous DSMC refuses walls naming the section; soft-sphere MD refuses thermal
+    // walls (`WALLS` has one) naming the kind.
     let soft = "[system]\nparticles = 40\npacking_fraction = 0.1\n\
                 [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
                 dissipative_constant = 0.01\n\
@@ -146,6 +147,54 @@ fn bad_walls_name_their_key() {
         assert!(error.is_input(), "{error}");
         assert!(error.to_string().starts_with("wall"), "{error}");
     }
+    let soft_restitution = format!(
+        "{soft}[[wall]]\naxis = \"z\"\nside = \"low\"\nkind = \"restitution\"\nrestitution = 0.5\n\
+         [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"elastic\"\n"
+    );
+    let error = Simulation::from_toml(&soft_restitution, "bad.toml".as_ref())
+        .err()
+        .unwrap();
+    assert!(error.to_string().contains("wall[0].restitution"), "{error}");
+}
+
+/// Soft-sphere MD in a container from a run file (a damped bed on a vibrating floor in
+/// gravity): walls.csv, and a mid-run check-point resumes bit for bit.
+#[test]
+fn soft_spheres_in_a_container_resume() {
+    let text = "[system]\nparticles = 60\npacking_fraction = 0.05\ntemperature = 0.1\n\
+                [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
+                dissipative_constant = 0.01\n\
+                [run]\nengine = \"soft-sphere\"\nend_time = 6.0\nsamples = 4\n\
+                [field]\ngravity = [0.0, 0.0, -1.0]\n\
+                [[wall]]\naxis = \"z\"\nside = \"low\"\nkind = \"vibrating\"\n\
+                amplitude = 0.1\nfrequency = 2.0\n\
+                [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"elastic\"\n";
+    let mut run = Simulation::from_toml(text, "soft.toml".as_ref()).unwrap();
+    assert!(run.advance(Point::Time(2.0), &mut ()).unwrap());
+    let dir = std::env::temp_dir().join(format!("haff-soft-walls-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("soft.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    assert_eq!(loaded.wall_samples(), run.wall_samples());
+    let rows = run.wall_samples().unwrap();
+    assert!(
+        rows[rows.len() - 2].collisions > 10,
+        "{:?}",
+        rows[rows.len() - 2]
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+    let bad = text.replace(
+        "gravity = [0.0, 0.0, -1.0]",
+        "gravity = [0.0, 0.0, -1.0]\nrest_height = 0.01",
+    );
+    let error = Simulation::from_toml(&bad, "bad.toml".as_ref())
+        .err()
+        .unwrap();
+    assert!(error.to_string().contains("field.rest_height"), "{error}");
 }
 
 /// A column in gravity (`[field]`) from a run file: resumes bit for bit from a check-point

@@ -67,6 +67,12 @@ impl ViscoelasticMaterial {
         2.0 * self.young * effective_radius.sqrt() / (3.0 * (1.0 - self.poisson * self.poisson))
     }
 
+    /// ρ_w = 2 Y √R / (3 (1 − ν²)) of a sphere of radius r against a half-space of the
+    /// same material (R_eff = r: Eq. (3) of MP2011 with the second radius infinite).
+    pub fn wall_constant(&self, r: f64) -> f64 {
+        2.0 * self.young * r.sqrt() / (3.0 * (1.0 - self.poisson * self.poisson))
+    }
+
     /// β = (3/2) A (ρ / m_eff)^{2/5} of a pair (Eq. (8) of MP2011): the material constant of
     /// its coefficient of restitution, in the run's units.
     pub fn beta(&self, r1: f64, r2: f64, m1: f64, m2: f64) -> f64 {

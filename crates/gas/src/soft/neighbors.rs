@@ -79,6 +79,8 @@ pub struct NeighborList {
     pub largest_radius: f64,
     /// Rebuilds so far.
     pub builds: u64,
+    /// Axes closed by walls (bit k): no pair across them.
+    pub closed: u8,
 }
 
 impl NeighborList {
@@ -102,6 +104,17 @@ impl NeighborList {
         if speed2 > self.speed_bound2 {
             self.speed_bound2 = speed2;
         }
+    }
+
+    /// Records a kick that may have raised any particle's speed by up to `dv` (gravity).
+    pub fn accelerated(&mut self, dv: f64) {
+        let bound = self.speed_bound2.sqrt() + dv;
+        self.speed_bound2 = bound * bound;
+    }
+
+    /// Marks the list stale (the walls changed).
+    pub fn invalidate(&mut self) {
+        self.moved = None;
     }
 
     /// Records a drift of all particles for a time `dt`.
@@ -152,7 +165,13 @@ impl NeighborList {
                             minimum_image(system.positions[j][k] - x[k], system.length).powi(2)
                         })
                         .sum();
-                    if d2 < cutoff * cutoff {
+                    // Across a closed axis the nearest image lies behind a wall.
+                    let across = self.closed != 0
+                        && (0..D).any(|k| {
+                            self.closed & (1 << k) != 0
+                                && (system.positions[j][k] - x[k]).abs() > 0.5 * system.length
+                        });
+                    if d2 < cutoff * cutoff && !across {
                         self.pairs.push((i as u32, j as u32));
                     }
                 }

@@ -63,6 +63,7 @@ impl<const D: usize> SoftSphere<D> {
         );
         self.neighbors.drifted(dt);
         let (power, virial, begun) = self.compute_forces(Some(dt));
+        self.tally_walls(dt);
         self.half_kick(dt);
         self.steps += 1;
         self.tally.collisions += begun;
@@ -143,6 +144,7 @@ impl<const D: usize> SoftSphere<D> {
                 self.statistics.max_relative_overlap = relative;
             }
         }
+        self.find_wall_contacts(predicting);
         for &i in &self.active {
             self.forces[i as usize] = [0.0; D];
             self.touching[i as usize] = 0;
@@ -167,6 +169,7 @@ impl<const D: usize> SoftSphere<D> {
                 self.forces[j][k] += f;
             }
         }
+        self.add_container_forces();
         // Contacts begun: in `current` but not in the previous list (both sorted).
         let mut begun = 0;
         let mut old = self.contacts.iter().peekable();

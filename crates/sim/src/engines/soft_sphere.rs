@@ -21,7 +21,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     collapse: false,
     baths: false,
     species_materials: false,
-    walls: false,
+    walls: true,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).
@@ -164,6 +164,7 @@ pub(super) fn engine<const D: usize>(
 /// A fresh engine of the plan: a step that does not resolve the contacts blames the key
 /// that set it.
 pub(super) fn start<const D: usize>(
+    plan: &Plan,
     system: System<D>,
     options: SoftSphereOptions,
     material: ViscoelasticMaterial,
@@ -172,11 +173,28 @@ pub(super) fn start<const D: usize>(
         Some(_) => "run.time_step",
         None => "run.steps_per_contact",
     };
-    let engine = engine(system, options, material).map_err(|e| match e {
+    let mut engine = engine(system, options, material).map_err(|e| match e {
         gas::Error::UnresolvedStep { .. } => Error::input(step_key, e),
         _ => Error::input("system", e),
     })?;
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
+}
+
+/// Puts the engine's gas into the plan's walls and gravity, if any.
+fn enclose<const D: usize>(engine: &mut SoftSphere<D>, plan: &Plan) -> Result<()> {
+    let Some(walls) = super::walls_of::<D>(plan)? else {
+        return Ok(());
+    };
+    engine
+        .set_walls(Some(walls))
+        .map_err(|e| Error::input("wall", e))?;
+    let Some((g, _)) = super::gravity_of::<D>(plan) else {
+        return Ok(());
+    };
+    engine
+        .set_gravity(Some(g))
+        .map_err(|e| Error::input("field.gravity", e))
 }
 
 /// The engine of a check-point, its state checked against the plan.
@@ -186,8 +204,16 @@ pub(super) fn restore<const D: usize>(
 ) -> Result<Box<dyn Driven<D>>> {
     let state: SoftSphereState<D> = sections.engine()?;
     check_state(plan, &state).map_err(state_error(sections))?;
-    let engine =
+    if state.container.as_ref().map(|c| c.walls.tallies.len())
+        != (!plan.walls.is_empty()).then_some(plan.walls.len())
+    {
+        return Err(state_error(sections)(
+            "the walls differ from [[wall]]".into(),
+        ));
+    }
+    let mut engine =
         SoftSphere::restore(state, ()).map_err(|e| state_error(sections)(e.to_string()))?;
+    enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
 }
 

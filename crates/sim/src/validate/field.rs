@@ -3,7 +3,7 @@
 //! height (docs/walls.md).
 
 use super::{Species, WallSpec};
-use crate::description::{RunDescription, AXIS_NAMES};
+use crate::description::{EngineKind, RunDescription, AXIS_NAMES};
 use crate::engines::{kind_name, Abilities};
 use crate::error::{Error, Result};
 
@@ -79,6 +79,13 @@ pub(crate) fn gravity_spec(
         .iter()
         .map(|s| s.diameter)
         .fold(f64::INFINITY, f64::min);
+    if field.rest_height.is_some() && description.run.engine == EngineKind::SoftSphere {
+        return Err(Error::input(
+            "field.rest_height",
+            "run.engine = \"soft-sphere\": soft contacts come to rest by themselves; leave \
+             rest_height out",
+        ));
+    }
     let rest_height = field.rest_height.unwrap_or(REST_HEIGHT * smallest);
     if !(rest_height.is_finite() && (0.0..=smallest).contains(&rest_height)) {
         return Err(Error::out_of_range(

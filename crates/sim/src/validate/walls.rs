@@ -4,7 +4,7 @@
 
 use super::Species;
 use crate::description::{
-    RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
+    EngineKind, RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
 };
 use crate::engines::{kind_name, Abilities};
 use crate::error::{Error, Result};
@@ -126,6 +126,9 @@ pub(crate) fn walls_spec(
             ));
         }
         let kind = wall_kind(wall, description.system.temperature, &key)?;
+        if description.run.engine == EngineKind::SoftSphere {
+            soft_wall(wall, &key)?;
+        }
         specs.push(WallSpec { axis, side, kind });
     }
     check_sweeps(description, &specs, species)?;
@@ -144,6 +147,27 @@ pub(crate) fn walls_spec(
         }
     }
     Ok(specs)
+}
+
+/// Soft-sphere walls are contacts of the particles' material: no thermal walls, and no
+/// restitution of their own.
+fn soft_wall(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<()> {
+    if wall.kind == WallKindName::Thermal {
+        return Err(Error::input(
+            key("kind"),
+            "run.engine = \"soft-sphere\" has no thermal walls (a soft contact has no \
+             temperature); allowed: \"elastic\" (undamped Hertz), \"restitution\" (the \
+             material's viscoelastic contact), \"vibrating\"",
+        ));
+    }
+    if wall.restitution.is_some() {
+        return Err(Error::input(
+            key("restitution"),
+            "run.engine = \"soft-sphere\": a wall is a contact of the particles' material \
+             ([collision]), whose restitution follows from it; leave restitution out",
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses vibrating walls whose sweeps (2 A each) leave less than the largest diameter
