@@ -96,6 +96,7 @@ pub struct FieldSection {
 /// side = "low"         # low | high
 /// kind = "restitution" # elastic | restitution | thermal | vibrating
 /// restitution = 0.9    # restitution walls (default 1)
+/// # law = "viscoelastic", beta = 0.1   # or another law of [collision] with its keys
 /// # temperature = 2.0  # thermal: diffuse re-emission from the wall's Maxwellian
 /// ```
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -107,6 +108,22 @@ pub struct WallSection {
     /// Restitution and vibrating walls: the coefficient of restitution (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restitution: Option<f64>,
+    /// Restitution and vibrating walls: the law of their contacts, with the keys of
+    /// `[collision]`'s law of that name (default `constant`, with `restitution`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub law: Option<LawKind>,
+    /// `law = "dashpot"`: the damping ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping_ratio: Option<f64>,
+    /// `law = "dashpot"`: the end-of-contact criterion.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub criterion: Option<Criterion>,
+    /// `law = "viscoelastic"`: β of the sphere–wall contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beta: Option<f64>,
+    /// `law = "viscoelastic"`: the form of eps(v) (default as in `[collision]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub form: Option<FormName>,
     /// Thermal walls: the wall's temperature.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub temperature: Option<f64>,

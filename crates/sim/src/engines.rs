@@ -422,12 +422,16 @@ fn walls_of<const D: usize>(plan: &Plan) -> Result<Option<gas::walls::Walls<D>>>
     if plan.walls.is_empty() {
         return Ok(None);
     }
-    gas::walls::Walls::new(
-        plan.walls.iter().map(|w| w.build()).collect(),
-        plan.description.system.seed,
-    )
-    .map(Some)
-    .map_err(|e| Error::input("wall", e))
+    let speed = crate::validate::wall_impact_speed(plan);
+    let walls = plan
+        .walls
+        .iter()
+        .enumerate()
+        .map(|(i, w)| w.build(i, speed))
+        .collect::<Result<Vec<_>>>()?;
+    gas::walls::Walls::new(walls, plan.description.system.seed)
+        .map(Some)
+        .map_err(|e| Error::input("wall", e))
 }
 
 /// The plan's gravity and rest height, if any.

@@ -40,7 +40,7 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
                 .map_err(input("collision.damping_ratio"))?,
         ),
         LawSpec::Viscoelastic { beta, form } => {
-            viscoelastic(*beta, form, max_speed, "collision.beta")?
+            viscoelastic(*beta, form, max_speed, "collision.beta", "collision.form")?
         }
         LawSpec::ViscoelasticPairs { kinds, betas, form } => {
             let laws = betas
@@ -50,7 +50,7 @@ pub fn build(spec: &LawSpec, max_speed: f64) -> Result<Box<dyn Restitution>> {
                     row.iter()
                         .map(|&beta| {
                             let key = format!("system.species[{i}].dissipative_constant");
-                            viscoelastic(beta, form, max_speed, &key)
+                            viscoelastic(beta, form, max_speed, &key, "collision.form")
                         })
                         .collect::<Result<Vec<_>>>()
                 })
@@ -77,8 +77,9 @@ fn viscoelastic(
     form: &FormName,
     max_speed: f64,
     key: &str,
+    form_key: &str,
 ) -> Result<Box<dyn Restitution>> {
-    let form = form.build().map_err(|e| Error::law("collision.form", e))?;
+    let form = form.build().map_err(|e| Error::law(form_key, e))?;
     let law = Viscoelastic::new(beta, form).map_err(|e| Error::law(key, e))?;
     let (validity, reach) = (law.form().validity(), law.vstar(max_speed));
     // Beyond the exact law's range eps is ~1e-20 (sticking spheres), and the
@@ -97,7 +98,7 @@ fn viscoelastic(
     }
     if !validity.contains(reach) {
         return Err(Error::input(
-            "collision.form",
+            form_key,
             format!(
                 "{} is {validity}, but a collision of this run can reach v* = {reach:.6} \
                  ({key} gives beta = {beta} with all the initial kinetic energy in one \
@@ -125,4 +126,31 @@ pub fn read_table(path: &Path, key: &str) -> Result<rods::stochastic::Table> {
     let fail = |e: String| Error::input(key, format!("{}: {e}", path.display()));
     let text = std::fs::read_to_string(path).map_err(|e| fail(e.to_string()))?;
     serde_json::from_str(&text).map_err(|e| fail(e.to_string()))
+}
+
+/// The law of wall `index` (`[[wall]]`; errors name the wall's keys), for impacts up to
+/// `max_speed` relative to the wall.
+pub fn wall_law(spec: &LawSpec, max_speed: f64, index: usize) -> Result<Box<dyn Restitution>> {
+    let key = |name: &str| format!("wall[{index}].{name}");
+    Ok(match spec {
+        LawSpec::Constant(eps) => {
+            Box::new(Constant::new(*eps).map_err(|e| Error::law(&key("restitution"), e))?)
+        }
+        LawSpec::Dashpot {
+            damping_ratio,
+            criterion,
+        } => Box::new(
+            Dashpot::new(*damping_ratio, (*criterion).into(), None)
+                .map_err(|e| Error::law(&key("damping_ratio"), e))?,
+        ),
+        LawSpec::Viscoelastic { beta, form } => {
+            viscoelastic(*beta, form, max_speed, &key("beta"), &key("form"))?
+        }
+        other => {
+            return Err(Error::input(
+                key("law"),
+                format!("{other:?} is not a wall law; allowed: constant, dashpot, viscoelastic"),
+            ))
+        }
+    })
 }

@@ -22,7 +22,7 @@ pub use crate::engines::EngineSpec;
 pub use field::GravitySpec;
 pub use law::{LawSpec, StochasticTable};
 pub(crate) use material::material;
-pub use walls::{WallSpec, WallSpecKind};
+pub use walls::{wall_impact_speed, WallLaw, WallSpec, WallSpecKind};
 
 use crate::description::{RunDescription, Spacing};
 use crate::engines::{self, DrivingTimes};

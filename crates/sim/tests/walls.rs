@@ -364,3 +364,54 @@ fn spatial_dsmc_in_a_container_resumes() {
         "{error}"
     );
 }
+
+/// A wall may take any law of `[collision]` with its keys (`law = "viscoelastic"`,
+/// `beta`; `law = "dashpot"`, `damping_ratio`); keys of another law are refused naming
+/// them, as is a beta beyond the exact law's range for the run's impacts. The viscoelastic
+/// wall takes energy (walls.csv; the exact balance of any law is
+/// `crates/gas/tests/walls.rs`'s).
+#[test]
+fn walls_take_the_laws_of_collisions() {
+    let viscoelastic = WALLS.replace(
+        "kind = \"restitution\"\nrestitution = 0.5",
+        "kind = \"restitution\"\nlaw = \"viscoelastic\"\nbeta = 0.2",
+    );
+    let mut run = Simulation::from_toml(&run_text(&viscoelastic), "law.toml".as_ref()).unwrap();
+    run.run(&mut (), None).unwrap();
+    let rows = run.wall_samples().unwrap();
+    assert!(
+        rows[rows.len() - 1].energy < 0.0,
+        "{:?}",
+        rows[rows.len() - 1]
+    );
+    let bad = [
+        (
+            "kind = \"restitution\"\nlaw = \"dashpot\"\nrestitution = 0.5",
+            "wall[1].restitution",
+        ),
+        (
+            "kind = \"restitution\"\nlaw = \"viscoelastic\"",
+            "wall[1].beta",
+        ),
+        (
+            "kind = \"restitution\"\nlaw = \"stochastic\"",
+            "wall[1].law",
+        ),
+        ("kind = \"elastic\"\nbeta = 0.1", "wall[1].beta"),
+        (
+            "kind = \"restitution\"\nlaw = \"viscoelastic\"\nbeta = 1e30",
+            "wall[1].beta",
+        ),
+    ];
+    for (kind, key) in bad {
+        let walls = WALLS.replace("kind = \"restitution\"\nrestitution = 0.5", kind);
+        let error = Simulation::from_toml(&run_text(&walls), "bad.toml".as_ref())
+            .err()
+            .unwrap_or_else(|| panic!("accepted: {kind}"));
+        assert!(
+            error.is_input() || error.to_string().contains(key),
+            "{error}"
+        );
+        assert!(error.to_string().contains(key), "{key}: {error}");
+    }
+}

@@ -2,13 +2,15 @@
 //! is closed when both its sides have a wall and periodic when neither has. Each kind takes
 //! its own keys only.
 
+use super::LawSpec;
 use super::Species;
 use crate::description::{
-    EngineKind, RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
+    EngineKind, LawKind, RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
 };
 use crate::engines::{kind_name, Abilities};
 use crate::error::{Error, Result};
 use gas::walls::Side;
+use restitution::{Criterion, FormName};
 
 /// A checked wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,15 +24,46 @@ pub struct WallSpec {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum WallSpecKind {
     Elastic,
-    /// A constant coefficient of restitution.
-    Restitution(f64),
+    /// A wall bouncing spheres with a law of restitution.
+    Restitution(WallLaw),
     /// Maxwell's diffuse wall at this temperature.
     Thermal(f64),
-    /// A wall moving along its axis, bouncing with a constant restitution in its frame.
+    /// A wall moving along its axis, bouncing with a law of restitution in its frame.
     Vibrating {
-        restitution: f64,
+        law: WallLaw,
         motion: gas::walls::Motion,
     },
+}
+
+/// The law of a restitution or vibrating wall (`law`, with the keys of `[collision]`'s law
+/// of that name).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WallLaw {
+    Constant(f64),
+    Dashpot {
+        damping_ratio: f64,
+        criterion: Criterion,
+    },
+    Viscoelastic {
+        beta: f64,
+        form: FormName,
+    },
+}
+
+impl WallLaw {
+    fn spec(&self) -> LawSpec {
+        match *self {
+            WallLaw::Constant(eps) => LawSpec::Constant(eps),
+            WallLaw::Dashpot {
+                damping_ratio,
+                criterion,
+            } => LawSpec::Dashpot {
+                damping_ratio,
+                criterion,
+            },
+            WallLaw::Viscoelastic { beta, form } => LawSpec::Viscoelastic { beta, form },
+        }
+    }
 }
 
 impl WallSpecKind {
@@ -44,31 +77,71 @@ impl WallSpecKind {
 }
 
 impl WallSpec {
-    /// The wall as the engines take it.
-    pub fn build(&self) -> gas::walls::Wall {
+    /// The wall as the engines take it, wall number `index`, its law for impacts up to
+    /// `max_speed` relative to it (errors name the wall's keys).
+    pub fn build(&self, index: usize, max_speed: f64) -> Result<gas::walls::Wall> {
         use gas::walls::WallKind;
-        let kind = match self.kind {
+        let law = |law: &WallLaw| crate::law::wall_law(&law.spec(), max_speed, index);
+        let kind = match &self.kind {
             WallSpecKind::Elastic => WallKind::Elastic,
-            WallSpecKind::Restitution(eps) => WallKind::Restitution(Box::new(
-                restitution::Constant::new(eps).expect("checked in validation"),
-            )),
-            WallSpecKind::Thermal(temperature) => WallKind::Thermal { temperature },
-            WallSpecKind::Vibrating {
-                restitution,
-                motion,
-            } => WallKind::Vibrating {
-                law: Box::new(
-                    restitution::Constant::new(restitution).expect("checked in validation"),
-                ),
-                motion,
+            WallSpecKind::Restitution(l) => WallKind::Restitution(law(l)?),
+            WallSpecKind::Thermal(temperature) => WallKind::Thermal {
+                temperature: *temperature,
+            },
+            WallSpecKind::Vibrating { law: l, motion } => WallKind::Vibrating {
+                law: law(l)?,
+                motion: *motion,
             },
         };
-        gas::walls::Wall {
+        Ok(gas::walls::Wall {
             axis: self.axis,
             side: self.side,
             kind,
-        }
+        })
     }
+}
+
+/// An upper bound of the impact speeds on the walls of `plan`: the collisions' bound
+/// ([`super::Plan::max_impact_speed`]) raised for the hottest thermal wall, plus twice the
+/// fastest wall's top speed and the speed of a fall through the box.
+pub fn wall_impact_speed(plan: &super::Plan) -> f64 {
+    let t0 = plan.description.system.temperature;
+    let hottest = plan
+        .walls
+        .iter()
+        .filter_map(|w| match w.kind {
+            WallSpecKind::Thermal(t) => Some(t),
+            _ => None,
+        })
+        .fold(t0, f64::max);
+    let wall_speed = plan
+        .walls
+        .iter()
+        .filter_map(|w| match w.kind {
+            WallSpecKind::Vibrating { motion, .. } => Some(motion.max_speed()),
+            _ => None,
+        })
+        .fold(0.0, f64::max);
+    let fall = plan.gravity.as_ref().map_or(0.0, |g| {
+        let largest = g.acceleration.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        (2.0 * largest * box_side(&plan.description, &plan.species)).sqrt()
+    });
+    plan.max_impact_speed() * (hottest / t0).sqrt() + 2.0 * wall_speed + fall
+}
+
+/// The box side of the run (the engines' value up to rounding).
+fn box_side(description: &RunDescription, species: &[Species]) -> f64 {
+    let dimension = description.system.dimension as i32;
+    let ball = |d: f64| match dimension {
+        1 => d,
+        2 => std::f64::consts::PI * d * d / 4.0,
+        _ => std::f64::consts::PI * d * d * d / 6.0,
+    };
+    let volume: f64 = species
+        .iter()
+        .map(|s| s.count as f64 * ball(s.diameter))
+        .sum();
+    (volume / description.system.packing_fraction).powf(1.0 / dimension as f64)
 }
 
 /// The walls of the run, checked against the dimension and the engine.
@@ -160,6 +233,13 @@ fn soft_wall(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<()> {
              material's viscoelastic contact), \"vibrating\"",
         ));
     }
+    if let Some((name, _)) = law_keys(wall).into_iter().find(|(_, present)| *present) {
+        return Err(Error::input(
+            key(name),
+            "run.engine = \"soft-sphere\": a wall is a contact of the particles' material \
+             ([collision]); leave the wall's law out",
+        ));
+    }
     if wall.restitution.is_some() {
         return Err(Error::input(
             key("restitution"),
@@ -178,16 +258,7 @@ fn check_sweeps(
     species: &[Species],
 ) -> Result<()> {
     let dimension = description.system.dimension as i32;
-    let ball = |d: f64| match dimension {
-        1 => d,
-        2 => std::f64::consts::PI * d * d / 4.0,
-        _ => std::f64::consts::PI * d * d * d / 6.0,
-    };
-    let volume: f64 = species
-        .iter()
-        .map(|s| s.count as f64 * ball(s.diameter))
-        .sum();
-    let length = (volume / description.system.packing_fraction).powf(1.0 / dimension as f64);
+    let length = box_side(description, species);
     let largest = species.iter().map(|s| s.diameter).fold(0.0, f64::max);
     for axis in 0..dimension as usize {
         let sweeps: Vec<(usize, f64)> = specs
@@ -246,6 +317,9 @@ fn wall_kind(
     let restitution_kinds = "\"restitution\" or \"vibrating\"";
     if !matches!(kind, WallKindName::Restitution | WallKindName::Vibrating) {
         refuse("restitution", wall.restitution.is_some(), restitution_kinds)?;
+        for (name, present) in law_keys(wall) {
+            refuse(name, present, restitution_kinds)?;
+        }
     }
     if kind != WallKindName::Thermal {
         refuse("temperature", wall.temperature.is_some(), "\"thermal\"")?;
@@ -257,13 +331,7 @@ fn wall_kind(
     }
     match kind {
         WallKindName::Elastic => Ok(WallSpecKind::Elastic),
-        WallKindName::Restitution => {
-            let eps = wall.restitution.unwrap_or(1.0);
-            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
-                return Err(Error::out_of_range(&key("restitution"), eps, "0 <= e <= 1"));
-            }
-            Ok(WallSpecKind::Restitution(eps))
-        }
+        WallKindName::Restitution => Ok(WallSpecKind::Restitution(wall_law(wall, key)?)),
         WallKindName::Thermal => {
             let t = wall
                 .temperature
@@ -286,10 +354,7 @@ fn wall_kind(
             Ok(WallSpecKind::Thermal(t))
         }
         WallKindName::Vibrating => {
-            let eps = wall.restitution.unwrap_or(1.0);
-            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
-                return Err(Error::out_of_range(&key("restitution"), eps, "0 <= e <= 1"));
-            }
+            let law = wall_law(wall, key)?;
             let positive = |name: &str, x: Option<f64>| {
                 let x = x.ok_or_else(|| Error::input(key(name), "missing for a vibrating wall"))?;
                 if (1e-30..=1e30).contains(&x) {
@@ -323,7 +388,7 @@ fn wall_kind(
                 ));
             }
             Ok(WallSpecKind::Vibrating {
-                restitution: eps,
+                law,
                 motion: gas::walls::Motion {
                     amplitude,
                     frequency,
@@ -334,6 +399,81 @@ fn wall_kind(
                     },
                 },
             })
+        }
+    }
+}
+
+/// The law keys of a wall, and whether each is given.
+fn law_keys(wall: &WallSection) -> [(&'static str, bool); 5] {
+    [
+        ("law", wall.law.is_some()),
+        ("damping_ratio", wall.damping_ratio.is_some()),
+        ("criterion", wall.criterion.is_some()),
+        ("beta", wall.beta.is_some()),
+        ("form", wall.form.is_some()),
+    ]
+}
+
+/// The law of a restitution or vibrating wall: `law` (default constant) with its own keys
+/// only.
+fn wall_law(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallLaw> {
+    let law = wall.law.unwrap_or(LawKind::Constant);
+    let own: &[&str] = match law {
+        LawKind::Constant => &["restitution"],
+        LawKind::Dashpot => &["damping_ratio", "criterion"],
+        LawKind::Viscoelastic => &["beta", "form"],
+        LawKind::Stochastic => {
+            return Err(Error::input(
+                key("law"),
+                "a wall has no internal modes; allowed: \"constant\", \"dashpot\", \
+                 \"viscoelastic\"",
+            ))
+        }
+    };
+    let given = [("restitution", wall.restitution.is_some())]
+        .into_iter()
+        .chain(law_keys(wall).into_iter().skip(1));
+    for (name, present) in given {
+        if present && !own.contains(&name) {
+            return Err(Error::input(
+                key(name),
+                format!(
+                    "not a key of law = \"{}\" (its keys: {})",
+                    law.name(),
+                    own.join(", ")
+                ),
+            ));
+        }
+    }
+    match law {
+        LawKind::Dashpot => Ok(WallLaw::Dashpot {
+            damping_ratio: wall.damping_ratio.ok_or_else(|| {
+                Error::input(key("damping_ratio"), "missing for law = \"dashpot\"")
+            })?,
+            criterion: wall.criterion.unwrap_or(Criterion::Improved),
+        }),
+        LawKind::Viscoelastic => {
+            let beta = wall
+                .beta
+                .ok_or_else(|| Error::input(key("beta"), "missing for law = \"viscoelastic\""))?;
+            if !(beta.is_finite() && beta >= 0.0) {
+                return Err(Error::out_of_range(
+                    &key("beta"),
+                    beta,
+                    "a finite beta >= 0",
+                ));
+            }
+            Ok(WallLaw::Viscoelastic {
+                beta,
+                form: wall.form.unwrap_or(FormName::Fast(Criterion::Improved)),
+            })
+        }
+        _ => {
+            let eps = wall.restitution.unwrap_or(1.0);
+            if !(eps.is_finite() && (0.0..=1.0).contains(&eps)) {
+                return Err(Error::out_of_range(&key("restitution"), eps, "0 <= e <= 1"));
+            }
+            Ok(WallLaw::Constant(eps))
         }
     }
 }
