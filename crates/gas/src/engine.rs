@@ -43,7 +43,7 @@ impl Counters {
     /// (`events` = the events or candidates it took), no more collisions than events.
     pub(crate) fn check(&self, events: &str) -> Result<()> {
         let counted = events.is_empty() || self.events >= self.collisions;
-        if !(self.energy_lost.is_finite() && self.virial.is_finite()) || !counted {
+        if !(self.energy_lost.is_finite() && self.virial.is_finite() && counted) {
             let range = if events.is_empty() {
                 "finite sums".to_string()
             } else {

@@ -30,7 +30,7 @@ pub(super) struct Field<const D: usize> {
 impl<const D: usize> Field<D> {
     /// Box position and velocity at time t of a sphere at y, w (falling frame, at t).
     #[inline]
-    pub(super) fn to_box(&self, y: &Vector<D>, w: &Vector<D>, t: f64) -> (Vector<D>, Vector<D>) {
+    pub(super) fn to_box(self, y: &Vector<D>, w: &Vector<D>, t: f64) -> (Vector<D>, Vector<D>) {
         let tau = t - self.reference;
         (
             std::array::from_fn(|k| y[k] + 0.5 * self.g[k] * tau * tau),
@@ -40,12 +40,7 @@ impl<const D: usize> Field<D> {
 
     /// The inverse of [`Self::to_box`].
     #[inline]
-    pub(super) fn to_falling(
-        &self,
-        x: &Vector<D>,
-        v: &Vector<D>,
-        t: f64,
-    ) -> (Vector<D>, Vector<D>) {
+    pub(super) fn to_falling(self, x: &Vector<D>, v: &Vector<D>, t: f64) -> (Vector<D>, Vector<D>) {
         let tau = t - self.reference;
         (
             std::array::from_fn(|k| x[k] - 0.5 * self.g[k] * tau * tau),

@@ -233,6 +233,7 @@ impl<const D: usize> SoftSphere<D> {
                 Side::High => -1.0,
             };
             let bit = 1u8 << w;
+            #[allow(clippy::needless_range_loop)] // i indexes five arrays
             for i in 0..s.len() {
                 let r = s.radii[i];
                 // Distance of the centre from the plane, inward.
