@@ -432,6 +432,45 @@ impl ContactSums {
     }
 }
 
+/// Checks gravity `g` against `walls` (finite components, along closed axes only) and
+/// sends spheres off each floor (the wall g pulls towards) at least as fast as a bounce
+/// `rest_height` high needs, sqrt(2 |g_k| h): the resting rule (docs/walls.md).
+pub(crate) fn fit_gravity<const D: usize>(
+    walls: Option<&mut Walls<D>>,
+    g: &[f64; D],
+    rest_height: f64,
+) -> Result<()> {
+    if g.iter().any(|x| !x.is_finite()) || !(rest_height.is_finite() && rest_height >= 0.0) {
+        return Err(Error::out_of_range(
+            "gravity",
+            format!("{g:?}, rest height {rest_height}"),
+            "finite components and a finite rest height >= 0",
+        ));
+    }
+    let closed_only = "components along axes closed by walls only";
+    let Some(walls) = walls else {
+        return Err(Error::out_of_range(
+            "gravity",
+            format!("{g:?}"),
+            closed_only,
+        ));
+    };
+    if let Some(k) = (0..D).find(|&k| g[k] != 0.0 && !walls.closed(k)) {
+        return Err(Error::out_of_range(
+            "gravity",
+            format!("{} along the periodic axis {k}", g[k]),
+            closed_only,
+        ));
+    }
+    for k in (0..D).filter(|&k| g[k] != 0.0) {
+        let floor = if g[k] < 0.0 { Side::Low } else { Side::High };
+        if let Some(index) = walls.at(k, floor) {
+            walls.set_min_speed(index, (2.0 * g[k].abs() * rest_height).sqrt());
+        }
+    }
+    Ok(())
+}
+
 /// [`Walls::contact`] for one wall whose least speed is `least`.
 fn contact_with<const D: usize>(
     wall: &Wall,

@@ -15,7 +15,6 @@
 use super::EventDriven;
 use crate::error::{Error, Result};
 use crate::system::Vector;
-use crate::walls::Side;
 
 /// The field of an engine.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,21 +62,7 @@ impl<const D: usize> EventDriven<D> {
             self.field = None;
             return Ok(());
         };
-        if g.iter().any(|x| !x.is_finite()) {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{g:?}"),
-                "finite components",
-            ));
-        }
-        if !(rest_height.is_finite() && rest_height >= 0.0) {
-            return Err(Error::out_of_range(
-                "rest_height",
-                rest_height,
-                "a finite height >= 0",
-            ));
-        }
-        if g.iter().all(|&x| x == 0.0) {
+        if g.iter().all(|&x| x == 0.0) && rest_height.is_finite() {
             self.field = None;
             return Ok(());
         }
@@ -88,26 +73,7 @@ impl<const D: usize> EventDriven<D> {
                 "no gravity with driving",
             ));
         }
-        let Some(walls) = self.walls.as_mut() else {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{g:?}"),
-                "components along axes closed by walls only",
-            ));
-        };
-        if let Some(k) = (0..D).find(|&k| g[k] != 0.0 && !walls.closed(k)) {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{} along the periodic axis {k}", g[k]),
-                "components along axes closed by walls only",
-            ));
-        }
-        for k in (0..D).filter(|&k| g[k] != 0.0) {
-            let floor = if g[k] < 0.0 { Side::Low } else { Side::High };
-            if let Some(index) = walls.at(k, floor) {
-                walls.set_min_speed(index, (2.0 * g[k].abs() * rest_height).sqrt());
-            }
-        }
+        crate::walls::fit_gravity(self.walls.as_mut(), &g, rest_height)?;
         let length = self.system.length;
         let largest = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         self.field = Some(Field {

@@ -155,16 +155,8 @@ impl<const D: usize> SoftSphere<D> {
                 )),
             };
         };
-        if let Some(g) = g {
-            if let Some(k) =
-                (0..D).find(|&k| !g[k].is_finite() || g[k] != 0.0 && !container.walls.closed(k))
-            {
-                return Err(Error::out_of_range(
-                    "gravity",
-                    format!("{} along axis {k}", g[k]),
-                    "finite components along axes closed by walls only",
-                ));
-            }
+        if let Some(g) = &g {
+            crate::walls::fit_gravity(Some(&mut container.walls), g, 0.0)?;
         }
         container.gravity = g;
         if !self.restored_container {

@@ -71,33 +71,7 @@ impl<const D: usize> SpatialDsmc<D> {
             self.gravity = None;
             return Ok(());
         };
-        if g.iter().any(|x| !x.is_finite()) || !(rest_height.is_finite() && rest_height >= 0.0) {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{g:?}, rest height {rest_height}"),
-                "finite components and a finite rest height >= 0",
-            ));
-        }
-        let Some(walls) = self.walls.as_mut() else {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{g:?}"),
-                "components along axes closed by walls only",
-            ));
-        };
-        if let Some(k) = (0..D).find(|&k| g[k] != 0.0 && !walls.closed(k)) {
-            return Err(Error::out_of_range(
-                "gravity",
-                format!("{} along the periodic axis {k}", g[k]),
-                "components along axes closed by walls only",
-            ));
-        }
-        for k in (0..D).filter(|&k| g[k] != 0.0) {
-            let floor = if g[k] < 0.0 { Side::Low } else { Side::High };
-            if let Some(index) = walls.at(k, floor) {
-                walls.set_min_speed(index, (2.0 * g[k].abs() * rest_height).sqrt());
-            }
-        }
+        crate::walls::fit_gravity(self.walls.as_mut(), &g, rest_height)?;
         self.gravity = Some(g);
         Ok(())
     }
