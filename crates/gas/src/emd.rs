@@ -534,36 +534,16 @@ impl<const D: usize> EventDriven<D> {
         if let Some(w) = walls.as_mut() {
             let length = self.system.length;
             let largest = self.particles.iter().map(|p| p.radius).fold(0.0, f64::max);
-            for k in (0..D).filter(|&k| w.closed(k)) {
-                let sweep = |side| {
-                    w.at(k, side)
-                        .and_then(|index| w.motion(index).map(|m| (index, 2.0 * m.amplitude)))
-                };
-                let (low, high) = (sweep(Side::Low), sweep(Side::High));
-                let swept = low.map_or(0.0, |s| s.1) + high.map_or(0.0, |s| s.1);
-                if let Some((index, _)) = low.or(high).filter(|_| swept + 2.0 * largest >= length) {
-                    return Err(Error::out_of_range(
-                        format!("wall[{index}].amplitude"),
-                        format!("walls sweeping {swept} of axis {k}"),
-                        format!(
-                            "sweeps (2 A per vibrating wall) below the box side minus the \
-                             largest diameter, {}",
-                            length - 2.0 * largest
-                        ),
-                    ));
-                }
-            }
+            w.check_sweeps(length, 2.0 * largest)?;
             for i in 0..self.particles.len() {
                 let (x, _) = self.in_box_now(i);
                 let p = &self.particles[i];
                 for k in (0..D).filter(|&k| w.closed(k)) {
                     // A vibrating wall is displaced d(t) into the box.
-                    let at = |side| {
-                        w.at(k, side)
-                            .and_then(|index| w.motion(index))
-                            .map_or(0.0, |m| m.displacement(self.time))
-                    };
-                    let (low, high) = (at(Side::Low), at(Side::High));
+                    let (low, high) = (
+                        w.displacement(k, Side::Low, self.time),
+                        w.displacement(k, Side::High, self.time),
+                    );
                     if x[k] < low + p.radius || x[k] > length - high - p.radius {
                         return Err(Error::out_of_range(
                             "wall",
@@ -577,16 +557,8 @@ impl<const D: usize> EventDriven<D> {
                     }
                 }
             }
-            if let Some(saved) = self.saved_walls.take() {
-                w.set_state(saved)?;
-            }
-        } else if self.saved_walls.is_some() {
-            return Err(Error::out_of_range(
-                "walls",
-                "none",
-                "the walls the check-point was saved with",
-            ));
         }
+        crate::walls::take_up(walls.as_mut(), self.saved_walls.take())?;
         self.walls = walls;
         self.synchronize();
         Ok(())

@@ -299,6 +299,39 @@ impl<const D: usize> Walls<D> {
         Ok(())
     }
 
+    /// Fails, naming the amplitude, if the vibrating walls of an axis sweep (2 A each) the
+    /// box side `length` less `clearance` (the largest diameter; 0 for points).
+    pub fn check_sweeps(&self, length: f64, clearance: f64) -> Result<()> {
+        for k in (0..D).filter(|&k| self.closed(k)) {
+            let sweep = |side| {
+                self.at(k, side)
+                    .and_then(|index| self.motion(index).map(|m| (index, 2.0 * m.amplitude)))
+            };
+            let (low, high) = (sweep(Side::Low), sweep(Side::High));
+            let swept = low.map_or(0.0, |s| s.1) + high.map_or(0.0, |s| s.1);
+            if let Some((index, _)) = low.or(high).filter(|_| swept + clearance >= length) {
+                return Err(Error::out_of_range(
+                    format!("wall[{index}].amplitude"),
+                    format!("walls sweeping {swept} of axis {k}"),
+                    format!(
+                        "sweeps (2 A per vibrating wall) below the box side minus the \
+                         largest diameter, {}",
+                        length - clearance
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The displacement into the box of the wall on `side` of axis k at time t (0 unless it
+    /// vibrates).
+    pub fn displacement(&self, k: usize, side: Side, t: f64) -> f64 {
+        self.at(k, side)
+            .and_then(|index| self.motion(index))
+            .map_or(0.0, |m| m.displacement(t))
+    }
+
     /// Whether a wall vibrates.
     #[inline]
     pub fn vibrates(&self) -> bool {
@@ -429,6 +462,24 @@ impl ContactSums {
         self.energy.merge(&other.energy);
         self.lifts += other.lifts;
         self.lift_energy.merge(&other.lift_energy);
+    }
+}
+
+/// Takes up an engine's walls state `saved` from a check-point into `walls` (the walls
+/// being set): fails if the check-point had walls and the engine is set without, or their
+/// numbers differ.
+pub(crate) fn take_up<const D: usize>(
+    walls: Option<&mut Walls<D>>,
+    saved: Option<WallsState>,
+) -> Result<()> {
+    match (walls, saved) {
+        (Some(w), Some(saved)) => w.set_state(saved),
+        (None, Some(_)) => Err(Error::out_of_range(
+            "walls",
+            "none",
+            "the walls the check-point was saved with",
+        )),
+        _ => Ok(()),
     }
 }
 

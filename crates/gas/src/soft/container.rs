@@ -72,27 +72,12 @@ impl<const D: usize> SoftSphere<D> {
         }
         let length = self.system.length;
         let largest = self.system.radii.iter().copied().fold(0.0, f64::max);
+        walls.check_sweeps(length, 2.0 * largest)?;
         for k in (0..D).filter(|&k| walls.closed(k)) {
-            let sweep = |side| {
-                walls
-                    .at(k, side)
-                    .and_then(|i| walls.motion(i))
-                    .map_or(0.0, |m| 2.0 * m.amplitude)
-            };
-            if sweep(Side::Low) + sweep(Side::High) + 2.0 * largest >= length {
-                return Err(Error::out_of_range(
-                    "wall.amplitude",
-                    format!("sweeps of axis {k}"),
-                    format!("below the box side minus the largest diameter, {length}"),
-                ));
-            }
-            let plane = |side| {
-                walls
-                    .at(k, side)
-                    .and_then(|i| walls.motion(i))
-                    .map_or(0.0, |m| m.displacement(self.time))
-            };
-            let (low, high) = (plane(Side::Low), length - plane(Side::High));
+            let (low, high) = (
+                walls.displacement(k, Side::Low, self.time),
+                length - walls.displacement(k, Side::High, self.time),
+            );
             if let Some(i) = self
                 .system
                 .positions

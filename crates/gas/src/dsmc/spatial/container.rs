@@ -35,30 +35,9 @@ impl<const D: usize> SpatialDsmc<D> {
                     "walls in spatial DSMC on one rank",
                 ));
             }
-            for k in (0..D).filter(|&k| w.closed(k)) {
-                let sweep = |side| {
-                    w.at(k, side)
-                        .and_then(|i| w.motion(i))
-                        .map_or(0.0, |m| 2.0 * m.amplitude)
-                };
-                if sweep(Side::Low) + sweep(Side::High) >= self.length {
-                    return Err(Error::out_of_range(
-                        "wall.amplitude",
-                        format!("sweeps of axis {k}"),
-                        format!("below the box side {}", self.length),
-                    ));
-                }
-            }
-            if let Some(saved) = self.saved_walls.take() {
-                w.set_state(saved)?;
-            }
-        } else if self.saved_walls.is_some() {
-            return Err(Error::out_of_range(
-                "walls",
-                "none",
-                "the walls the check-point was saved with",
-            ));
+            w.check_sweeps(self.length, 0.0)?;
         }
+        crate::walls::take_up(walls.as_mut(), self.saved_walls.take())?;
         self.walls = walls;
         Ok(())
     }
