@@ -19,7 +19,7 @@ fn morton(cell: [u64; 3]) -> u64 {
 }
 
 fn renumbered_along_morton(system: &mut System<3>) {
-    let l = system.length;
+    let l = system.sides[0];
     let key = |x: &[f64; 3]| morton(x.map(|c| (c / l * 1024.0) as u64));
     let mut order: Vec<usize> = (0..system.len()).collect();
     order.sort_by_key(|&i| key(&system.positions[i]));

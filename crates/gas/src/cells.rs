@@ -11,13 +11,13 @@ use crate::system::{minimum_image, wrap, Vector};
 /// The end of a cell list.
 pub const NONE: u32 = u32::MAX;
 
-/// A periodic grid of `per_side`^D cubic cells.
+/// A periodic grid of `per_side[0]` x ... x `per_side[D-1]` cells (cubes in a cubic box).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid<const D: usize> {
-    /// Cells per dimension.
-    pub per_side: usize,
-    /// Width of a cell.
-    pub width: f64,
+    /// Cells along each axis.
+    pub per_side: [usize; D],
+    /// Width of a cell along each axis.
+    pub width: [f64; D],
 }
 
 /// The most cells a grid for `n` particles has: 1024 per particle (and 2^20 for few): a
@@ -29,44 +29,70 @@ pub fn max_cells(n: usize) -> usize {
 }
 
 impl<const D: usize> Grid<D> {
-    /// The grid of a box of side `length` with cells at least `min_width` wide and at most
+    /// The grid of a box with `sides` with cells at least `min_width` wide and at most
     /// `max_cells` cells.
-    pub fn new(length: f64, min_width: f64, max_cells: usize) -> Self {
-        let most = (max_cells as f64).powf(1.0 / D as f64).floor();
-        let per_side = (length / min_width).floor().min(most).max(1.0) as usize;
+    pub fn new(sides: &Vector<D>, min_width: f64, max_cells: usize) -> Self {
+        let per_side: [usize; D] = if crate::system::is_cube(sides) {
+            // The cube's rule: at most max_cells^(1/D) per side.
+            let most = (max_cells as f64).powf(1.0 / D as f64).floor();
+            [(sides[0] / min_width).floor().min(most).max(1.0) as usize; D]
+        } else {
+            // Cells as narrow as allowed, widened by the same factor along every axis
+            // until there are at most max_cells.
+            let mut width = min_width;
+            loop {
+                let per: [usize; D] =
+                    std::array::from_fn(|k| (sides[k] / width).floor().max(1.0) as usize);
+                let total = per.iter().map(|&c| c as f64).product::<f64>();
+                if total <= max_cells as f64 {
+                    break per;
+                }
+                width *= (total / max_cells as f64).powf(1.0 / D as f64).max(1.0 + 1e-9);
+            }
+        };
         Grid {
             per_side,
-            width: length / per_side as f64,
+            width: std::array::from_fn(|k| sides[k] / per_side[k] as f64),
         }
     }
 
     /// Number of cells.
     pub fn cells(&self) -> usize {
-        self.per_side.pow(D as u32)
+        self.per_side.iter().product()
+    }
+
+    /// The fewest cells along any axis.
+    pub fn fewest_per_side(&self) -> usize {
+        self.per_side.iter().copied().min().unwrap_or(1)
+    }
+
+    /// The box's sides.
+    pub fn sides(&self) -> Vector<D> {
+        std::array::from_fn(|k| self.width[k] * self.per_side[k] as f64)
     }
 
     /// The cell coordinates of a position (wrapped into the box first).
     pub fn coords_of(&self, p: &Vector<D>) -> [u32; D] {
-        let length = self.width * self.per_side as f64;
         std::array::from_fn(|k| {
-            let c = (wrap(p[k], length) / self.width) as usize;
-            c.min(self.per_side - 1) as u32
+            let length = self.width[k] * self.per_side[k] as f64;
+            let c = (wrap(p[k], length) / self.width[k]) as usize;
+            c.min(self.per_side[k] - 1) as u32
         })
     }
 
     /// The linear index of the cell with coordinates c.
     #[inline]
     pub fn index(&self, c: &[u32; D]) -> usize {
-        c.iter()
+        (0..D)
             .rev()
-            .fold(0, |acc, &x| acc * self.per_side + x as usize)
+            .fold(0, |acc, k| acc * self.per_side[k] + c[k] as usize)
     }
 
     /// The coordinates of the cell one step from c along dimension k (periodically).
     #[inline]
     pub fn shifted(&self, c: &[u32; D], k: usize, up: bool) -> [u32; D] {
         let mut c = *c;
-        let n = self.per_side as u32;
+        let n = self.per_side[k] as u32;
         c[k] = if up {
             (c[k] + 1) % n
         } else {
@@ -75,56 +101,62 @@ impl<const D: usize> Grid<D> {
         c
     }
 
+    /// The distinct coordinates c-1, c, c+1 along axis k (periodically; fewer with fewer
+    /// than 3 cells along it) times the axis' stride, and how many there are.
+    #[inline]
+    fn adjacent_parts(&self, x: usize, k: usize, stride: usize) -> ([usize; 3], usize) {
+        let n = self.per_side[k];
+        if n < 3 {
+            // Every cell along the axis is adjacent: each once.
+            return ([0, stride, 0], n);
+        }
+        let below = if x == 0 { n - 1 } else { x - 1 };
+        let above = if x + 1 == n { 0 } else { x + 1 };
+        ([below * stride, x * stride, above * stride], 3)
+    }
+
     /// Linear indices of cell c and its adjacent cells, each once (also with fewer than 3
-    /// cells per side); the first `count` entries are valid.
+    /// cells along an axis); the first `count` entries are valid.
     #[inline]
     pub fn neighbor_cells(&self, c: &[u32; D]) -> ([usize; 27], usize) {
-        let n = self.per_side;
         let mut cells = [0; 27];
-        if n < 3 {
-            // Every cell along a dimension is adjacent: list each once.
-            let count = n.pow(D as u32);
+        if self.per_side.iter().all(|&n| n < 3) {
+            // Every cell is adjacent: each once, in linear order.
+            let count = self.cells();
             for (i, cell) in cells.iter_mut().enumerate().take(count) {
                 *cell = i;
             }
             return (cells, count);
         }
-        // Linear-index contributions of coordinates c-1, c, c+1 along each dimension.
         let mut stride = 1;
-        let parts: [[usize; 3]; D] = std::array::from_fn(|k| {
-            let x = c[k] as usize;
-            let below = if x == 0 { n - 1 } else { x - 1 };
-            let above = if x + 1 == n { 0 } else { x + 1 };
-            let part = [below * stride, x * stride, above * stride];
-            stride *= n;
-            part
-        });
         let mut count = 1;
-        for part in &parts {
-            // Each existing entry spawns three: (entry + part[0], + part[1], + part[2]).
+        for k in 0..D {
+            let (part, width) = self.adjacent_parts(c[k] as usize, k, stride);
+            stride *= self.per_side[k];
+            // Each existing entry spawns `width`: (entry + part[0], + part[1], ...).
             for e in (0..count).rev() {
                 let base = cells[e];
-                cells[3 * e] = base + part[0];
-                cells[3 * e + 1] = base + part[1];
-                cells[3 * e + 2] = base + part[2];
+                for (o, &p) in part.iter().enumerate().take(width) {
+                    cells[width * e + o] = base + p;
+                }
             }
-            count *= 3;
+            count *= width;
         }
         (cells, count)
     }
 
     /// Linear indices of the layer of neighbour cells beyond cell c along dimension k (the
     /// cells a particle that just entered c from the other side had not seen); needs at
-    /// least 3 cells per side. The first `count` entries are valid.
+    /// least 3 cells along every axis. The first `count` entries are valid.
     #[inline]
     pub fn layer_cells(&self, c: &[u32; D], k: usize, up: bool) -> ([usize; 9], usize) {
-        debug_assert!(self.per_side >= 3);
-        let n = self.per_side;
-        let layer = if up { 1 } else { n - 1 };
+        debug_assert!(self.fewest_per_side() >= 3);
         let mut stride = 1;
         let parts: [[usize; 3]; D] = std::array::from_fn(|d| {
+            let n = self.per_side[d];
             let base = c[d] as usize;
             let part = if d == k {
+                let layer = if up { 1 } else { n - 1 };
                 [(base + layer) % n * stride; 3]
             } else {
                 [n - 1, 0, 1].map(|o| (base + o) % n * stride)
@@ -151,20 +183,18 @@ impl<const D: usize> Grid<D> {
     /// Time until a particle at p (in its cell c) moving with v leaves the cell, the
     /// dimension and the direction; None if it never does (one cell per side, or v = 0).
     pub fn exit(&self, c: &[u32; D], p: &Vector<D>, v: &Vector<D>) -> Option<(f64, usize, bool)> {
-        if self.per_side < 2 {
-            return None;
-        }
-        let length = self.width * self.per_side as f64;
         let mut best: Option<(f64, usize, bool)> = None;
         for k in 0..D {
-            if v[k] == 0.0 {
+            if v[k] == 0.0 || self.per_side[k] < 2 {
                 continue;
             }
+            let width = self.width[k];
+            let length = width * self.per_side[k] as f64;
             // Offset from the cell's lower face, robust to positions just across a wrap.
-            let centre = (c[k] as f64 + 0.5) * self.width;
-            let x = minimum_image(p[k] - centre, length) + 0.5 * self.width;
+            let centre = (c[k] as f64 + 0.5) * width;
+            let x = minimum_image(p[k] - centre, length) + 0.5 * width;
             let dt = if v[k] > 0.0 {
-                (self.width - x) / v[k]
+                (width - x) / v[k]
             } else {
                 x / -v[k]
             };
@@ -189,9 +219,9 @@ pub struct CellGrid<const D: usize> {
 }
 
 impl<const D: usize> CellGrid<D> {
-    /// A grid for `n` particles in a box of side `length`, cells at least `min_width` wide.
-    pub fn new(length: f64, min_width: f64, n: usize) -> Self {
-        let grid = Grid::new(length, min_width, max_cells(n));
+    /// A grid for `n` particles in a box with `sides`, cells at least `min_width` wide.
+    pub fn new(sides: &Vector<D>, min_width: f64, n: usize) -> Self {
+        let grid = Grid::new(sides, min_width, max_cells(n));
         CellGrid {
             grid,
             head: vec![NONE; grid.cells()],
@@ -275,23 +305,27 @@ mod tests {
     /// Neighbour and layer cells agree with a brute-force periodic distance test.
     #[test]
     fn neighbour_cells_are_the_adjacent_ones() {
-        for per_side in [1usize, 2, 3, 4, 7] {
+        let shapes = [1usize, 2, 3, 4, 7]
+            .map(|n| [n; 3])
+            .into_iter()
+            .chain([[1, 3, 5], [4, 2, 3], [3, 3, 6], [5, 4, 3]]);
+        for per_side in shapes {
             let grid = Grid::<3> {
                 per_side,
-                width: 1.0,
+                width: [1.0; 3],
             };
-            let n = per_side as i64;
             let adjacent = |a: &[u32; 3], b: &[u32; 3]| {
                 (0..3).all(|k| {
+                    let n = per_side[k] as i64;
                     let d = (a[k] as i64 - b[k] as i64).rem_euclid(n);
                     d <= 1 || d == n - 1
                 })
             };
+            let [px, py, _] = per_side.map(|p| p as u32);
             let all: Vec<[u32; 3]> = (0..grid.cells())
                 .map(|i| {
                     let i = i as u32;
-                    let p = per_side as u32;
-                    [i % p, i / p % p, i / (p * p)]
+                    [i % px, i / px % py, i / (px * py)]
                 })
                 .collect();
             for c in &all {
@@ -304,8 +338,8 @@ mod tests {
                     .map(|b| grid.index(b))
                     .collect();
                 want.sort();
-                assert_eq!(got, want, "per_side {per_side}, cell {c:?}");
-                if per_side >= 3 {
+                assert_eq!(got, want, "per_side {per_side:?}, cell {c:?}");
+                if grid.fewest_per_side() >= 3 {
                     for k in 0..3 {
                         for up in [false, true] {
                             let (layer, count) = grid.layer_cells(c, k, up);

@@ -247,23 +247,26 @@ pub type HomogeneousSnapshot<const D: usize> = Snapshot<D, Scheme>;
 pub type SpatialSnapshot<const D: usize> = Snapshot<D, SpatialOptions>;
 
 /// A gas of point-like simulated particles for DSMC: `n` particles of diameter `diameter`
-/// and mass `mass` at uniformly random positions in the periodic box of side `length`
+/// and mass `mass` at uniformly random positions in the periodic box with `sides`
 /// (overlaps allowed: DSMC particles have no extent), Gaussian velocities with zero total
 /// momentum rescaled so that m <v^2> / D = `temperature` exactly.
 pub fn point_gas<const D: usize>(
     n: usize,
-    length: f64,
+    sides: impl crate::system::IntoSides<D>,
     diameter: f64,
     mass: f64,
     temperature: f64,
     seed: u64,
 ) -> Result<System<D>> {
+    let sides = sides.into_sides();
     theory::check_dimension::<D>()?;
     if n < 2 {
         return Err(Error::out_of_range("particles", n, "at least 2"));
     }
+    for &length in &sides {
+        require_positive("length", length)?;
+    }
     for (name, value) in [
-        ("length", length),
         ("diameter", diameter),
         ("mass", mass),
         ("temperature", temperature),
@@ -272,7 +275,7 @@ pub fn point_gas<const D: usize>(
     }
     let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
     let positions = (0..n)
-        .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
+        .map(|_| std::array::from_fn(|k| rng.random::<f64>() * sides[k]))
         .collect();
     let mut velocities: Vec<Vector<D>> = (0..n)
         .map(|_| std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal)))
@@ -290,7 +293,7 @@ pub fn point_gas<const D: usize>(
         }
     }
     Ok(System {
-        length,
+        sides,
         positions,
         velocities,
         radii: vec![0.5 * diameter; n],

@@ -170,24 +170,24 @@ impl<const D: usize> EventDriven<D> {
             return Err(Error::out_of_range("radii", "all 0", "a positive radius"));
         }
         let grid = Grid::new(
-            system.length,
+            &system.sides,
             max_diameter.max(min_width),
             crate::cells::max_cells(n),
         );
-        if grid.per_side < 4 {
+        if grid.fewest_per_side() < 4 {
             return Err(Error::BoxTooSmall {
-                length: system.length,
+                length: system.shortest_side(),
                 width: max_diameter.max(min_width),
             });
         }
-        let length = system.length;
+        let sides = system.sides;
         let particles: Vec<Particle<D>> = system
             .positions
             .iter()
             .zip(&system.velocities)
             .zip(system.radii.iter().zip(&system.masses))
             .map(|((p, v), (&radius, &mass))| Particle {
-                position: std::array::from_fn(|k| wrap(p[k], length)),
+                position: std::array::from_fn(|k| wrap(p[k], sides[k])),
                 velocity: *v,
                 valid_at: 0.0,
                 count: 0,
@@ -339,9 +339,9 @@ impl<const D: usize> EventDriven<D> {
     /// the pairs they see lie in adjacent cells, whose nearest image is the direct one.
     #[inline]
     fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
-        let length = self.system.length;
-        let half = 0.5 * length;
+        let sides = &self.system.sides;
         std::array::from_fn(|k| {
+            let (length, half) = (sides[k], 0.5 * sides[k]);
             let d = b[k] - a[k];
             if d > half {
                 d - length
@@ -354,15 +354,15 @@ impl<const D: usize> EventDriven<D> {
     }
 
     fn bring_to_now(&mut self, i: usize) {
-        let length = self.system.length;
+        let sides = self.system.sides;
         let p = &mut self.particles[i];
         let x = p.position_at(self.time);
         p.position = match &self.field {
-            None => std::array::from_fn(|k| wrap(x[k], length)),
+            None => std::array::from_fn(|k| wrap(x[k], sides[k])),
             // Axes with gravity are closed: the falling frame's y is not wrapped.
             Some(f) => std::array::from_fn(|k| {
                 if f.g[k] == 0.0 {
-                    wrap(x[k], length)
+                    wrap(x[k], sides[k])
                 } else {
                     x[k]
                 }
@@ -396,10 +396,10 @@ impl<const D: usize> EventDriven<D> {
     /// Whether the nearest image of b seen from a lies across a wall (then the two never
     /// meet there).
     fn across_a_wall(&self, a: &Vector<D>, b: &Vector<D>) -> bool {
-        let half = 0.5 * self.system.length;
-        self.walls
-            .as_ref()
-            .is_some_and(|w| (0..D).any(|k| w.closed(k) && (b[k] - a[k]).abs() > half))
+        let sides = &self.system.sides;
+        self.walls.as_ref().is_some_and(|w| {
+            (0..D).any(|k| w.closed(k) && (b[k] - a[k]).abs() > 0.5 * sides[k])
+        })
     }
 
     /// Processes the next event; false if there is none (all particles at rest).
@@ -532,13 +532,14 @@ impl<const D: usize> EventDriven<D> {
     pub fn set_walls(&mut self, walls: Option<Walls<D>>) -> Result<()> {
         let mut walls = walls;
         if let Some(w) = walls.as_mut() {
-            let length = self.system.length;
+            let sides = self.system.sides;
             let largest = self.particles.iter().map(|p| p.radius).fold(0.0, f64::max);
-            w.check_sweeps(length, 2.0 * largest)?;
+            w.check_sweeps(&sides, 2.0 * largest)?;
             for i in 0..self.particles.len() {
                 let (x, _) = self.in_box_now(i);
                 let p = &self.particles[i];
                 for k in (0..D).filter(|&k| w.closed(k)) {
+                    let length = sides[k];
                     // A vibrating wall is displaced d(t) into the box.
                     let (low, high) = (
                         w.displacement(k, Side::Low, self.time),

@@ -12,7 +12,9 @@ pub use growth::{GrowthReport, GROWTH_RATE};
 
 use crate::cells::CellGrid;
 use crate::error::{require_positive, Error, Result};
-use crate::system::{ball_volume, box_side, dot, monodisperse_box_side, System, Vector};
+use crate::system::{
+    ball_volume, box_side, box_volume, dot, is_cube, monodisperse_box_side, System, Vector,
+};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
@@ -21,6 +23,55 @@ use rand_pcg::Pcg64;
 /// Packing fraction up to which positions are placed by random sequential addition; above
 /// it on a lattice, melted by elastic collisions ([`melt`]).
 pub const RANDOM_ADDITION_LIMIT: f64 = 0.3;
+
+/// The box of an initial state: a cube holding the spheres at a packing fraction, or a box
+/// with sides of its own (the packing fraction is then the spheres' volume over the box's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BoxSize<const D: usize> {
+    PackingFraction(f64),
+    Sides(Vector<D>),
+}
+
+impl<const D: usize> From<f64> for BoxSize<D> {
+    fn from(phi: f64) -> Self {
+        BoxSize::PackingFraction(phi)
+    }
+}
+
+impl<const D: usize> From<Vector<D>> for BoxSize<D> {
+    fn from(sides: Vector<D>) -> Self {
+        BoxSize::Sides(sides)
+    }
+}
+
+impl<const D: usize> BoxSize<D> {
+    /// The sides and the packing fraction of spheres of total volume `sphere_volume`;
+    /// `cube_side` computes the side of the cube at a packing fraction.
+    fn resolve(self, sphere_volume: f64, cube_side: impl Fn(f64) -> f64) -> (Vector<D>, f64) {
+        match self {
+            BoxSize::PackingFraction(phi) => ([cube_side(phi); D], phi),
+            BoxSize::Sides(sides) => (sides, sphere_volume / box_volume(&sides)),
+        }
+    }
+
+    /// The key that sets the box, for errors.
+    fn key(self) -> &'static str {
+        match self {
+            BoxSize::PackingFraction(_) => "packing_fraction",
+            BoxSize::Sides(_) => "box",
+        }
+    }
+
+    /// Sides finite and > 0.
+    fn check(self) -> Result<()> {
+        if let BoxSize::Sides(sides) = self {
+            for (k, &l) in sides.iter().enumerate() {
+                require_positive(&format!("box[{k}]"), l)?;
+            }
+        }
+        Ok(())
+    }
+}
 
 /// A monodisperse gas: `n` spheres of diameter `diameter` and mass `mass` at packing
 /// fraction `phi`, temperature `temperature` (T = m <v^2> / D), all fixed by `seed`.
@@ -36,40 +87,46 @@ pub fn monodisperse<const D: usize>(
         .map(|(system, _)| system)
 }
 
-/// [`monodisperse`] in a box whose axes `closed` have walls (every centre at least its
-/// radius from them; the same random numbers as the periodic start), and the report of
-/// the growth of a dense start (above [`lattice_limit`]; not in a container yet).
+/// [`monodisperse`] in a box of `size` (a packing fraction, or sides of its own) whose axes
+/// `closed` have walls (every centre at least its radius from them; the same random
+/// numbers as the periodic start), and the report of the growth of a dense start (above
+/// [`lattice_limit`]; not in a container yet).
 pub fn monodisperse_reporting<const D: usize>(
     n: usize,
-    phi: f64,
+    size: impl Into<BoxSize<D>>,
     diameter: f64,
     mass: f64,
     temperature: f64,
     seed: u64,
     closed: [bool; D],
 ) -> Result<(System<D>, Option<GrowthReport>)> {
-    check_count_and_packing::<D>(n, phi)?;
-    let length = monodisperse_box_side::<D>(n, diameter, phi);
+    let size = size.into();
+    size.check()?;
+    let volume = n as f64 * ball_volume::<D>(0.5 * diameter);
+    let (sides, phi) = size.resolve(volume, |phi| {
+        monodisperse_box_side::<D>(n, diameter, phi)
+    });
+    check_count_and_packing::<D>(n, phi, size.key())?;
     let mut rng = Pcg64::seed_from_u64(seed);
     let (positions, grown_report) = if phi > lattice_limit(D) {
         refuse_growth_in_container(phi, &closed)?;
         let (positions, report) =
-            grown::<D>(length, phi, &vec![diameter; n], &vec![mass; n], &mut rng)?;
+            grown::<D>(sides, phi, &vec![diameter; n], &vec![mass; n], &mut rng)?;
         (positions, Some(report))
     } else if phi <= RANDOM_ADDITION_LIMIT {
         let positions =
-            random_addition::<D>(length, &vec![diameter; n], diameter, closed, &mut rng)?;
+            random_addition::<D>(sides, &vec![diameter; n], diameter, closed, &mut rng)?;
         (positions, None)
     } else {
-        (lattice::<D>(n, length, diameter)?, None)
+        (lattice::<D>(n, sides, diameter)?, None)
     };
-    let positions = space_order(&positions, length, diameter)
+    let positions = space_order(&positions, sides, diameter)
         .into_iter()
         .map(|i| positions[i])
         .collect();
     let velocities = maxwellian::<D>(n, mass, temperature, &mut rng);
     let system = System {
-        length,
+        sides,
         positions,
         velocities,
         radii: vec![0.5 * diameter; n],
@@ -99,11 +156,11 @@ fn refuse_growth_in_container(phi: f64, closed: &[bool]) -> Result<()> {
     Ok(())
 }
 
-/// Positions of spheres of `diameters` at packing fraction `phi` in the box of side `length`,
+/// Positions of spheres of `diameters` at packing fraction `phi` in the box with `sides`,
 /// grown ([`growth`]) from random sequential addition at [`RANDOM_ADDITION_LIMIT`]
 /// (scaled down by s0 = (0.3 / phi)^(1/D)), with velocities from `rng` at unit temperature.
 fn grown<const D: usize>(
-    length: f64,
+    sides: Vector<D>,
     phi: f64,
     diameters: &[f64],
     masses: &[f64],
@@ -112,14 +169,14 @@ fn grown<const D: usize>(
     let s0 = (RANDOM_ADDITION_LIMIT / phi).powf(1.0 / D as f64);
     let small: Vec<f64> = diameters.iter().map(|d| d * s0).collect();
     let largest = small.iter().copied().fold(0.0, f64::max);
-    let positions = random_addition::<D>(length, &small, largest, [false; D], rng)?;
+    let positions = random_addition::<D>(sides, &small, largest, [false; D], rng)?;
     let velocities: Vec<Vector<D>> = masses
         .iter()
         .map(|&m| std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal) / m.sqrt()))
         .collect();
     let radii: Vec<f64> = diameters.iter().map(|d| 0.5 * d).collect();
     let (positions, mut report) =
-        growth::grow::<D>(length, positions, velocities, &radii, masses, s0, 1.0)?;
+        growth::grow::<D>(sides, positions, velocities, &radii, masses, s0, 1.0)?;
     report.start_fraction = RANDOM_ADDITION_LIMIT;
     Ok((positions, report))
 }
@@ -220,13 +277,17 @@ pub fn polydisperse<const D: usize>(
 /// [`monodisperse_reporting`]), and the report of the growth of a dense start.
 pub fn polydisperse_reporting<const D: usize>(
     n: usize,
-    phi: f64,
+    size: impl Into<BoxSize<D>>,
     species: &[Species],
     temperature: f64,
     seed: u64,
     closed: [bool; D],
 ) -> Result<(System<D>, Option<GrowthReport>)> {
-    check_count_and_packing::<D>(n, phi)?;
+    let size = size.into();
+    size.check()?;
+    if let BoxSize::PackingFraction(phi) = size {
+        check_count_and_packing::<D>(n, phi, size.key())?;
+    }
     require_positive("temperature", temperature)?;
     for (s, x) in species.iter().enumerate() {
         for (name, value) in [("diameter", x.diameter), ("mass", x.mass)] {
@@ -247,28 +308,28 @@ pub fn polydisperse_reporting<const D: usize>(
         .iter()
         .map(|&s| ball_volume::<D>(0.5 * species[s].diameter))
         .sum();
-    let length = box_side::<D>(volume, phi);
+    let (sides, phi) = size.resolve(volume, |phi| box_side::<D>(volume, phi));
+    check_count_and_packing::<D>(n, phi, size.key())?;
     let mut rng = Pcg64::seed_from_u64(seed);
     let dense = phi > RANDOM_ADDITION_LIMIT;
     let mut report = None;
-    let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
-    let lattice_fits = length / side as f64 >= max_diameter;
+    let lattice_fits = lattice_spacing(n, &sides) >= max_diameter;
     let positions = if phi > lattice_limit(D) || (dense && !lattice_fits) {
         refuse_growth_in_container(phi, &closed)?;
         kind.shuffle(&mut rng);
         let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
         let masses: Vec<f64> = kind.iter().map(|&s| species[s].mass).collect();
-        let (positions, grew) = grown::<D>(length, phi, &diameters, &masses, &mut rng)?;
+        let (positions, grew) = grown::<D>(sides, phi, &diameters, &masses, &mut rng)?;
         report = Some(grew);
         positions
     } else if dense {
         kind.shuffle(&mut rng);
-        lattice::<D>(n, length, max_diameter)?
+        lattice::<D>(n, sides, max_diameter)?
     } else {
         let diameters: Vec<f64> = kind.iter().map(|&s| species[s].diameter).collect();
-        random_addition::<D>(length, &diameters, max_diameter, closed, &mut rng)?
+        random_addition::<D>(sides, &diameters, max_diameter, closed, &mut rng)?
     };
-    let order = space_order(&positions, length, max_diameter);
+    let order = space_order(&positions, sides, max_diameter);
     let positions: Vec<Vector<D>> = order.iter().map(|&i| positions[i]).collect();
     let kind: Vec<usize> = order.iter().map(|&i| kind[i]).collect();
     let masses: Vec<f64> = kind.iter().map(|&s| species[s].mass).collect();
@@ -281,7 +342,7 @@ pub fn polydisperse_reporting<const D: usize>(
         .collect();
     set_momentum_and_temperature(&mut velocities, &masses, temperature);
     let system = System {
-        length,
+        sides,
         positions,
         velocities,
         radii: kind.iter().map(|&s| 0.5 * species[s].diameter).collect(),
@@ -361,15 +422,21 @@ fn melt_in<const D: usize>(
     Ok(engine.system().clone())
 }
 
-/// At least two particles, and a packing fraction the initializer accepts.
-fn check_count_and_packing<const D: usize>(n: usize, phi: f64) -> Result<()> {
+/// At least two particles, and a packing fraction the initializer accepts (set by `key`:
+/// the packing fraction, or the box).
+fn check_count_and_packing<const D: usize>(n: usize, phi: f64, key: &str) -> Result<()> {
     if n < 2 {
         return Err(Error::out_of_range("particles", n, "at least 2"));
     }
     if !(phi > 0.0 && phi <= max_packing::<D>()) {
+        let value = if key == "packing_fraction" {
+            phi.to_string()
+        } else {
+            format!("a box the spheres fill to phi = {phi}")
+        };
         return Err(Error::out_of_range(
-            "packing_fraction",
-            phi,
+            key,
+            value,
             format!("0 < phi <= {}", max_packing::<D>()),
         ));
     }
@@ -419,17 +486,17 @@ fn lattice_too_dense<const D: usize>(phi: f64, diameter: f64, spacing: f64) -> E
 /// they overlap no sphere placed before (cells at least `max_diameter` wide); on the axes
 /// `closed` (walls) within their radius of neither face, with no periodic image.
 fn random_addition<const D: usize>(
-    length: f64,
+    sides: Vector<D>,
     diameters: &[f64],
     max_diameter: f64,
     closed: [bool; D],
     rng: &mut Pcg64,
 ) -> Result<Vec<Vector<D>>> {
     let n = diameters.len();
-    let mut grid = CellGrid::<D>::new(length, max_diameter, n);
+    let mut grid = CellGrid::<D>::new(&sides, max_diameter, n);
     let mut positions: Vec<Vector<D>> = Vec::with_capacity(n);
     let system = System::<D> {
-        length,
+        sides,
         positions: vec![],
         velocities: vec![],
         radii: vec![],
@@ -441,9 +508,9 @@ fn random_addition<const D: usize>(
             let p: Vector<D> = std::array::from_fn(|k| {
                 let u = rng.random::<f64>();
                 if closed[k] {
-                    0.5 * di + u * (length - di)
+                    0.5 * di + u * (sides[k] - di)
                 } else {
-                    u * length
+                    u * sides[k]
                 }
             });
             let c = grid.coords_of(&p);
@@ -480,20 +547,49 @@ fn contact(di: f64, dj: f64) -> f64 {
     }
 }
 
-fn lattice<const D: usize>(n: usize, length: f64, diameter: f64) -> Result<Vec<Vector<D>>> {
-    let side = (n as f64).powf(1.0 / D as f64).ceil() as usize;
-    let spacing = length / side as f64;
-    if spacing < diameter {
-        let phi = n as f64 * ball_volume::<D>(0.5 * diameter) / length.powi(D as i32);
-        return Err(lattice_too_dense::<D>(phi, diameter, spacing));
+/// Sites of a simple lattice for `n` spheres in a box with `sides`: ceil(n^(1/D)) per side
+/// in a cube; in another box a number per axis in proportion to its side (as near to
+/// equal spacings as whole numbers allow), at least n sites in all.
+fn lattice_sites<const D: usize>(n: usize, sides: &Vector<D>) -> [usize; D] {
+    if is_cube(sides) {
+        return [(n as f64).powf(1.0 / D as f64).ceil() as usize; D];
+    }
+    let density = (n as f64 / box_volume(sides)).powf(1.0 / D as f64);
+    let mut sites: [usize; D] =
+        std::array::from_fn(|k| ((sides[k] * density).floor() as usize).max(1));
+    // Add a row along the axis of the widest spacing until the sites hold n.
+    while sites.iter().product::<usize>() < n {
+        let k = (0..D)
+            .max_by(|&a, &b| (sides[a] / sites[a] as f64).total_cmp(&(sides[b] / sites[b] as f64)))
+            .unwrap_or(0);
+        sites[k] += 1;
+    }
+    sites
+}
+
+/// The smallest spacing of [`lattice_sites`].
+fn lattice_spacing<const D: usize>(n: usize, sides: &Vector<D>) -> f64 {
+    let sites = lattice_sites(n, sides);
+    (0..D)
+        .map(|k| sides[k] / sites[k] as f64)
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn lattice<const D: usize>(n: usize, sides: Vector<D>, diameter: f64) -> Result<Vec<Vector<D>>> {
+    let sites = lattice_sites(n, &sides);
+    let spacing: [f64; D] = std::array::from_fn(|k| sides[k] / sites[k] as f64);
+    let smallest = spacing.iter().copied().fold(f64::INFINITY, f64::min);
+    if smallest < diameter {
+        let phi = n as f64 * ball_volume::<D>(0.5 * diameter) / box_volume(&sides);
+        return Err(lattice_too_dense::<D>(phi, diameter, smallest));
     }
     Ok((0..n)
         .map(|i| {
             let mut rest = i;
-            std::array::from_fn(|_| {
-                let k = rest % side;
-                rest /= side;
-                (k as f64 + 0.5) * spacing
+            std::array::from_fn(|k| {
+                let x = rest % sites[k];
+                rest /= sites[k];
+                (x as f64 + 0.5) * spacing[k]
             })
         })
         .collect())
@@ -528,11 +624,12 @@ fn maxwellian<const D: usize>(
 /// The order of `positions` along a Morton (Z-order) curve of cells `width` wide, so that
 /// neighbours in space are neighbours in memory (fewer cache misses in large systems).
 /// Stable: particles in the same cell keep their order.
-fn space_order<const D: usize>(positions: &[Vector<D>], length: f64, width: f64) -> Vec<usize> {
-    let cells = (length / width).floor().max(1.0);
+fn space_order<const D: usize>(positions: &[Vector<D>], sides: Vector<D>, width: f64) -> Vec<usize> {
+    let cells: [f64; D] = std::array::from_fn(|k| (sides[k] / width).floor().max(1.0));
     let key = |p: &Vector<D>| -> u64 {
-        let c: [u64; D] =
-            std::array::from_fn(|k| ((p[k] / length * cells) as u64).min(cells as u64 - 1));
+        let c: [u64; D] = std::array::from_fn(|k| {
+            ((p[k] / sides[k] * cells[k]) as u64).min(cells[k] as u64 - 1)
+        });
         (0..21).fold(0u64, |acc, bit| {
             (0..D).fold(acc, |acc, k| {
                 acc | (((c[k] >> bit) & 1) << (bit * D as u64 + k as u64))

@@ -185,7 +185,7 @@ mod tests {
             })
             .collect();
         System {
-            length: 10.0,
+            sides: [10.0; 3],
             positions: vec![[0.0; 3]; n],
             velocities,
             radii: vec![0.5; n],

@@ -32,7 +32,7 @@ impl<const D: usize> Slab<D> {
     }
 }
 
-/// The profile of `system` along `axis` in `bins` slabs of width L / bins, each particle
+/// The profile of `system` along `axis` in `bins` slabs of width L_axis / bins, each particle
 /// counted in the slab of its centre; particle numbers and volumes times `weight` (the
 /// physical particles a simulated one stands for: `particle_weight` of DSMC, 1 otherwise).
 pub fn profile<const D: usize>(
@@ -42,9 +42,12 @@ pub fn profile<const D: usize>(
     weight: f64,
 ) -> Vec<Slab<D>> {
     assert!(axis < D && bins > 0, "axis {axis} of {D}, {bins} bins");
-    let length = system.length;
-    let width = length / bins as f64;
-    let slab_volume = width * length.powi(D as i32 - 1);
+    let width = system.sides[axis] / bins as f64;
+    let slab_volume = if system.is_cubic() {
+        width * system.sides[0].powi(D as i32 - 1)
+    } else {
+        width * system.volume() / system.sides[axis]
+    };
     let slab_of = |x: f64| ((x / width).floor().max(0.0) as usize).min(bins - 1);
     // Per slab: n, Σ m, Σ m v, Σ volume.
     let mut sums = vec![(0usize, 0.0, [0.0; D], 0.0); bins];
@@ -95,7 +98,7 @@ mod tests {
     #[test]
     fn slabs_by_hand() {
         let system = System::<2> {
-            length: 4.0,
+            sides: [4.0; 2],
             positions: vec![[0.5, 0.1], [1.0, 0.2], [3.0, 3.9], [3.5, 3.99]],
             velocities: vec![[1.0, 0.0], [-1.0, 2.0], [0.0, 0.0], [0.0, 0.0]],
             radii: vec![0.5; 4],

@@ -150,10 +150,10 @@ fn neighbor_skin<const D: usize>(options: &SoftSphereOptions, system: &System<D>
     }
     let largest = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
     let skin = options.skin * largest;
-    if system.length < 2.0 * (largest + skin) {
+    if system.shortest_side() < 2.0 * (largest + skin) {
         return Err(Error::out_of_range(
             "length",
-            system.length,
+            system.shortest_side(),
             format!(
                 "at least twice the largest diameter plus the skin, {}",
                 2.0 * (largest + skin)
@@ -274,9 +274,10 @@ impl<const D: usize> SoftSphere<D> {
         material.validate()?;
         system.check(false)?;
         let mut system = system;
+        let sides = system.sides;
         for x in &mut system.positions {
-            for c in x.iter_mut() {
-                *c = wrap(*c, system.length);
+            for (c, &l) in x.iter_mut().zip(&sides) {
+                *c = wrap(*c, l);
             }
         }
         let time_step = match options.time_step {
@@ -385,7 +386,7 @@ impl<const D: usize> SoftSphere<D> {
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
                 let d2: f64 = (0..D)
-                    .map(|k| minimum_image(s.positions[j][k] - s.positions[i][k], s.length).powi(2))
+                    .map(|k| minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k]).powi(2))
                     .sum();
                 let xi = (s.radii[i] + s.radii[j] - d2.sqrt()).max(0.0);
                 0.4 * self.material.elastic_constant(s.radii[i], s.radii[j]) * xi.powf(2.5)

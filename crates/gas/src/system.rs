@@ -6,13 +6,16 @@ use serde::{Deserialize, Serialize};
 /// A vector in D dimensions.
 pub type Vector<const D: usize> = [f64; D];
 
-/// N smooth spheres in the periodic box [0, L)^D. Serialized with each vector a list of D
-/// numbers; a state read from outside is checked with [`System::check`].
+/// N smooth spheres in the periodic box [0, L_1) x ... x [0, L_D). Serialized with each
+/// vector a list of D numbers (the box as one number when it is a cube:
+/// [`crate::serde_util::box_sides`]); a state read from outside is checked with
+/// [`System::check`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct System<const D: usize> {
-    /// Side of the periodic box.
-    pub length: f64,
+    /// Sides of the periodic box, one per axis.
+    #[serde(rename = "length", with = "crate::serde_util::box_sides")]
+    pub sides: Vector<D>,
     #[serde(with = "crate::serde_util::vectors")]
     pub positions: Vec<Vector<D>>,
     #[serde(with = "crate::serde_util::vectors")]
@@ -32,19 +35,41 @@ impl<const D: usize> System<D> {
 
     /// Volume (or area, length) of the box.
     pub fn volume(&self) -> f64 {
-        self.length.powi(D as i32)
+        box_volume(&self.sides)
+    }
+
+    /// Whether the box is a cube (every side the same).
+    pub fn is_cubic(&self) -> bool {
+        is_cube(&self.sides)
+    }
+
+    /// The shortest side of the box.
+    pub fn shortest_side(&self) -> f64 {
+        self.sides.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
     /// The minimum-image separation b - a.
     pub fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
-        std::array::from_fn(|k| minimum_image(b[k] - a[k], self.length))
+        std::array::from_fn(|k| minimum_image(b[k] - a[k], self.sides[k]))
     }
 
-    /// Checks a state read from outside (a check-point): a finite box side > 0, radii and
-    /// masses finite and > 0, finite velocities, and (if `in_box`) positions in [0, L)^D.
+    /// Position x wrapped into the box.
+    pub fn wrapped(&self, x: &Vector<D>) -> Vector<D> {
+        std::array::from_fn(|k| wrap(x[k], self.sides[k]))
+    }
+
+    /// Checks a state read from outside (a check-point): finite box sides > 0, radii and
+    /// masses finite and > 0, finite velocities, and (if `in_box`) positions in the box.
     pub fn check(&self, in_box: bool) -> crate::Result<()> {
         use crate::Error;
-        crate::error::require_positive("length", self.length)?;
+        for (k, &side) in self.sides.iter().enumerate() {
+            let name = if self.is_cubic() {
+                "length".to_string()
+            } else {
+                format!("sides[{k}]")
+            };
+            crate::error::require_positive(&name, side)?;
+        }
         let n = self.positions.len();
         if [self.velocities.len(), self.radii.len(), self.masses.len()] != [n; 3] {
             return Err(Error::LengthMismatch {
@@ -86,15 +111,16 @@ impl<const D: usize> System<D> {
                 "speeds whose fourth powers sum to a finite number",
             ));
         }
-        let length = self.length;
+        let sides = self.sides;
         if let Some(i) = self.positions.iter().position(|p| {
             p.iter()
-                .any(|x| !(x.is_finite() && (!in_box || (0.0..length).contains(x))))
+                .zip(&sides)
+                .any(|(x, &l)| !(x.is_finite() && (!in_box || (0.0..l).contains(x))))
         }) {
             return Err(Error::out_of_range(
                 format!("positions[{i}]"),
                 format!("{:?}", self.positions[i]),
-                format!("finite coordinates in [0, {length}) (the box)"),
+                format!("finite coordinates in the box [0, L) per side, L = {sides:?}"),
             ));
         }
         Ok(())
@@ -110,6 +136,38 @@ impl<const D: usize> System<D> {
 /// packing fraction `phi`: (sphere_volume / phi)^(1/D). The one place this is computed.
 pub fn box_side<const D: usize>(sphere_volume: f64, phi: f64) -> f64 {
     (sphere_volume / phi).powf(1.0 / D as f64)
+}
+
+/// A box given by one side (a cube) or by its D sides.
+pub trait IntoSides<const D: usize> {
+    fn into_sides(self) -> Vector<D>;
+}
+
+impl<const D: usize> IntoSides<D> for f64 {
+    fn into_sides(self) -> Vector<D> {
+        [self; D]
+    }
+}
+
+impl<const D: usize> IntoSides<D> for Vector<D> {
+    fn into_sides(self) -> Vector<D> {
+        self
+    }
+}
+
+/// The volume (area, length) of a box with these sides.
+pub fn box_volume<const D: usize>(sides: &Vector<D>) -> f64 {
+    if is_cube(sides) {
+        // As the cube always computed it: L^D.
+        sides[0].powi(D as i32)
+    } else {
+        sides.iter().product()
+    }
+}
+
+/// Whether every side is the same.
+pub fn is_cube<const D: usize>(sides: &Vector<D>) -> bool {
+    sides.iter().all(|&l| l == sides[0])
 }
 
 /// The box side of `n` equal spheres of diameter `diameter` at packing fraction `phi`.

@@ -300,9 +300,10 @@ impl<const D: usize> Walls<D> {
     }
 
     /// Fails, naming the amplitude, if the vibrating walls of an axis sweep (2 A each) the
-    /// box side `length` less `clearance` (the largest diameter; 0 for points).
-    pub fn check_sweeps(&self, length: f64, clearance: f64) -> Result<()> {
+    /// box side along it (of `sides`) less `clearance` (the largest diameter; 0 for points).
+    pub fn check_sweeps(&self, sides: &[f64; D], clearance: f64) -> Result<()> {
         for k in (0..D).filter(|&k| self.closed(k)) {
+            let length = sides[k];
             let sweep = |side| {
                 self.at(k, side)
                     .and_then(|index| self.motion(index).map(|m| (index, 2.0 * m.amplitude)))

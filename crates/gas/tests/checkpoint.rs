@@ -114,10 +114,10 @@ fn a_tampered_state_is_refused_through_every_path() {
     use gas::{SoftSphere, SoftSphereOptions};
     use std::sync::Arc;
     let system = gas::init::monodisperse::<3>(200, 0.1, 1.0, 1.0, 1.0, 3).unwrap();
-    let points = point_gas::<3>(200, system.length, 1.0, 1.0, 1.0, 3).unwrap();
+    let points = point_gas::<3>(200, system.sides, 1.0, 1.0, 1.0, 3).unwrap();
     let law = constant(0.9);
     let nan_velocity = |s: &mut gas::System<3>| s.velocities[7][1] = f64::NAN;
-    let outside = |s: &mut gas::System<3>| s.positions[7][0] = 3.0 * s.length;
+    let outside = |s: &mut gas::System<3>| s.positions[7][0] = 3.0 * s.sides[0];
     for (k, tamper) in [nan_velocity, outside].into_iter().enumerate() {
         let mut engine = EventDriven::new(system.clone(), law.box_clone()).unwrap();
         engine.run_collisions(100);

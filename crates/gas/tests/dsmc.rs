@@ -432,7 +432,7 @@ fn spatial_engine_conserves_and_collides_at_the_enskog_rate() {
     assert!(s
         .positions
         .iter()
-        .all(|x| x.iter().all(|&c| (0.0..s.length).contains(&c))));
+        .all(|x| x.iter().all(|&c| (0.0..s.sides[0]).contains(&c))));
     // Per particle (N - 1)/N of the physical density's rate.
     let ratio = e.collisions_per_particle() / (e.time() * omega0 * (1.0 - 1.0 / 10_000.0));
     eprintln!("spatial: omega / omega_Enskog = {ratio:.4}");
@@ -534,7 +534,7 @@ fn elastic_mixture_reaches_equipartition() {
     assert!((heavy / light - 1.0).abs() < 0.05);
     assert_eq!(after.masses.iter().filter(|&&m| m == 3.0).count(), 5000);
     let mut spatial = s;
-    spatial.length = 20.0;
+    spatial.sides = [20.0; 3];
     let mut e = SpatialDsmc::new(spatial, 0.1, law(1.0), 43, SpatialOptions::default()).unwrap();
     e.run_collisions(100_000);
     let after = e.system().clone();
@@ -633,7 +633,7 @@ fn bad_parameters_are_errors() {
         .contains("length"));
     assert!(HomogeneousDsmc::<4>::new(
         System {
-            length: 1.0,
+            sides: [1.0; 4],
             positions: vec![[0.0; 4]; 3],
             velocities: vec![[0.0; 4]; 3],
             radii: vec![0.5; 3],

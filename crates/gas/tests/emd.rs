@@ -82,7 +82,7 @@ fn one_and_two_dimensions() {
 fn cell_size_changes_only_crossings() {
     let system = monodisperse::<3>(60, 0.1, 1.0, 1.0, 1.0, 5).unwrap();
     let law = || Box::new(Constant::new(0.8).unwrap());
-    let quarter = system.length / 4.0;
+    let quarter = system.sides[0] / 4.0;
     let mut cells = EventDriven::with_cell_width(system.clone(), law(), 0.0).unwrap();
     let mut pairs = EventDriven::with_cell_width(system.clone(), law(), quarter).unwrap();
     for _ in 0..300 {
@@ -241,7 +241,7 @@ fn dense_states_are_melted_lattices() {
     assert_eq!(a, b);
     assert!((temperature(&a) - 2.0).abs() < 1e-10);
     let side = 10.0;
-    let spacing = a.length / side;
+    let spacing = a.sides[0] / side;
     let on_site = a
         .positions
         .iter()

@@ -57,7 +57,7 @@ fn energy<const D: usize>(s: &System<D>, g: f64) -> f64 {
 #[test]
 fn a_sphere_falls_on_its_parabola_and_bounces_on_time() {
     let system = System::<3> {
-        length: 10.0,
+        sides: [10.0; 3],
         positions: vec![[5.0, 5.0, 7.0]],
         velocities: vec![[0.3, -0.2, 0.5]],
         radii: vec![0.5],
@@ -116,7 +116,7 @@ fn an_elastic_column_conserves_its_energy() {
             let s = e.system();
             for (i, x) in s.positions.iter().enumerate() {
                 assert!(
-                    x[2] >= 0.5 - 1e-9 && x[2] <= s.length - 0.5 + 1e-9,
+                    x[2] >= 0.5 - 1e-9 && x[2] <= s.sides[2] - 0.5 + 1e-9,
                     "{i}: {x:?}"
                 );
             }
@@ -125,7 +125,7 @@ fn an_elastic_column_conserves_its_energy() {
         let drift = (energy(e.system(), g) - e0).abs() / e0;
         assert!(drift < 1e-11, "g {g}: energy drift {drift}");
         // Through several moves of the frame (one per sqrt(2 L / g)).
-        let horizon = (2.0 * e.system().length / g).sqrt();
+        let horizon = (2.0 * e.system().sides[0] / g).sqrt();
         assert!(e.time() > 3.0 * horizon, "{} of {horizon}", e.time());
     }
 }
@@ -231,7 +231,7 @@ fn a_dense_column_is_in_hydrostatic_balance_with_carnahan_starling() {
         17,
     );
     e.run_collisions(300_000);
-    let length = e.system().length;
+    let length = e.system().sides[2];
     let bins = length.floor() as usize;
     let width = length / bins as f64;
     let area = length * length;

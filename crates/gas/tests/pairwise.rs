@@ -47,7 +47,7 @@ fn mixture<const D: usize>(n: usize, phi: f64, seed: u64) -> System<D> {
 #[test]
 fn unlike_spheres_collide_with_their_pair_s_law() {
     let system = System::<3> {
-        length: 20.0,
+        sides: [20.0; 3],
         positions: vec![[5.0, 10.0, 10.0], [8.0, 10.0, 10.0]],
         velocities: vec![[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]],
         radii: vec![KINDS[0].0, KINDS[1].0],

@@ -29,7 +29,7 @@ fn material_for(vstar: f64) -> ViscoelasticMaterial {
 fn pair(gap: f64) -> System<3> {
     let l = 8.0;
     System {
-        length: l,
+        sides: [l; 3],
         positions: vec![
             [0.5 * l - 0.5 - gap, 4.0, 4.0],
             [0.5 * l + 0.5 + gap, 4.0, 4.0],

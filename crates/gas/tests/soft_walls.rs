@@ -46,7 +46,7 @@ fn a_wall_contact_has_the_viscoelastic_restitution() {
         // A second sphere flies far from the first and from the walls (it gives the gas
         // the temperature the engine's accuracy probe needs).
         let system = System::<3> {
-            length: 10.0,
+            sides: [10.0; 3],
             positions: vec![[5.0, 5.0, 0.52], [2.0, 2.0, 5.0]],
             velocities: vec![[0.0, 0.0, -v], [v, 0.0, 0.0]],
             radii: vec![0.5, 0.5],

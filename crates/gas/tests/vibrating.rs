@@ -25,7 +25,7 @@ fn vibrating(amplitude: f64, frequency: f64, waveform: Waveform, eps: f64) -> Wa
 /// elastic ceiling.
 fn one_sphere(y: f64, v: [f64; 2], floor: WallKind, g: f64) -> EventDriven<2> {
     let system = System::<2> {
-        length: 10.0,
+        sides: [10.0; 2],
         positions: vec![[5.0, y]],
         velocities: vec![v],
         radii: vec![0.5],
@@ -174,7 +174,7 @@ fn a_vibrated_gas_gains_what_the_walls_give() {
 #[test]
 fn a_sweep_across_the_box_is_refused() {
     let system = System::<2> {
-        length: 4.0,
+        sides: [4.0; 2],
         positions: vec![[2.0, 2.0]],
         velocities: vec![[0.0, 1.0]],
         radii: vec![0.5],

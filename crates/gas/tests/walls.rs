@@ -41,10 +41,10 @@ fn assert_inside<const D: usize>(engine: &mut EventDriven<D>, closed: &[usize]) 
         for &k in closed {
             let r = s.radii[i];
             assert!(
-                x[k] >= r - 1e-9 && x[k] <= s.length - r + 1e-9,
+                x[k] >= r - 1e-9 && x[k] <= s.sides[k] - r + 1e-9,
                 "sphere {i} at {} on axis {k} of a box of {}",
                 x[k],
-                s.length
+                s.sides[k]
             );
         }
     }
@@ -192,7 +192,7 @@ fn bad_walls_are_refused() {
 fn wall_pressure_follows_carnahan_starling() {
     let mut e = boxed::<3>(2000, 0.25, 1.0, &[2], |_, _| WallKind::Elastic, 21);
     e.run_collisions(200_000);
-    let (length, t) = (e.system().length, temperature(e.system()));
+    let (length, t) = (e.system().sides[0], temperature(e.system()));
     let area = length * length;
     let mut pressures = Vec::new();
     let mut middle = 0usize;

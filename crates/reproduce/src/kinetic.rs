@@ -59,7 +59,7 @@ fn enskog_frequency(phi: f64) -> f64 {
 /// A homogeneous DSMC gas of `n` points (blocks scheme) with the given law.
 fn dsmc(n: usize, phi: f64, law: Box<dyn Restitution>, seed: u64) -> Result<Box<dyn Driven<3>>> {
     let length = gas::system::monodisperse_box_side::<3>(n, 1.0, phi);
-    let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
+    let system = point_gas::<3>(n, [length; 3], 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
     let spec = EngineSpec::HomogeneousDsmc(Scheme::default());
     engines::build(&spec, system, setup(law, phi, seed))
 }

@@ -160,7 +160,7 @@ fn seed_run(
         seed,
     )?;
     let (fast_t, fast_s) = temperatures(fast, times)?;
-    let points = point_gas::<3>(n, system.length, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
+    let points = point_gas::<3>(n, system.sides, 1.0, 1.0, 1.0, seed).map_err(engine_error)?;
     let spec = EngineSpec::HomogeneousDsmc(Scheme::default());
     let dsmc = engine(spec, points, law(beta, "exact")?, phi, seed)?;
     let (dsmc_t, dsmc_s) = temperatures(dsmc, times)?;

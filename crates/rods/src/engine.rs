@@ -44,7 +44,7 @@ impl ChainEngine {
             episodes: 0,
             pending: Vec::new(),
             system: System {
-                length: 0.0,
+                sides: [0.0],
                 positions: Vec::new(),
                 velocities: Vec::new(),
                 radii: Vec::new(),
@@ -172,7 +172,7 @@ impl Engine<1> for ChainEngine {
     fn system(&mut self) -> &System<1> {
         let perimeter = self.chain.perimeter();
         let s = &mut self.system;
-        s.length = perimeter;
+        s.sides = [perimeter];
         s.positions = self
             .chain
             .positions()

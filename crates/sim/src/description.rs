@@ -8,6 +8,8 @@
 //! particles = 4000         # >= 2
 //! packing_fraction = 0.05  # 0 < phi <= 0.6 (3D), 0.8 (2D), 0.9 (1D); above 0.45 (3D),
 //!                          # 0.7 (2D) the spheres are grown (Lubachevsky-Stillinger)
+//! # or, instead of packing_fraction, a box with sides of its own (one per dimension):
+//! # box = [40.0, 20.0, 20.0]
 //! diameter = 1.0
 //! mass = 1.0
 //! # or, instead of diameter and mass, a mixture (number fractions, normalized):
@@ -311,7 +313,12 @@ pub struct SystemSection {
     #[serde(default = "three")]
     pub dimension: u32,
     pub particles: usize,
-    pub packing_fraction: f64,
+    /// The spheres' volume over the (cubic) box's; or `box`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub packing_fraction: Option<f64>,
+    /// The sides of the box, one per dimension (instead of `packing_fraction`).
+    #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
+    pub sides: Option<Vec<f64>>,
     /// 1.0 unless `species` is given (filled in by [`RunDescription::normalize`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub diameter: Option<f64>,
@@ -345,6 +352,15 @@ pub struct SpeciesEntry {
     /// Viscoelastic material of this species: dissipative constant A (a time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dissipative_constant: Option<f64>,
+}
+
+impl SystemSection {
+    /// Whether the box is a cube (`packing_fraction`, or a `box` of equal sides).
+    pub fn is_cubic(&self) -> bool {
+        self.sides
+            .as_ref()
+            .is_none_or(|l| l.iter().all(|&x| x == l[0]))
+    }
 }
 
 impl SpeciesEntry {
@@ -604,6 +620,57 @@ impl RunDescription {
     /// Reads and parses a TOML run file.
     pub fn from_path(path: &Path) -> Result<Self> {
         read_toml(path)
+    }
+
+    /// The packing fraction of the physical spheres: `system.packing_fraction`, or that of
+    /// the spheres (each simulated one standing for `run.particle_weight`) in `system.box`.
+    /// NaN if neither is given or the species do not split (validation refuses both first).
+    pub fn packing_fraction(&self) -> f64 {
+        let s = &self.system;
+        match (s.packing_fraction, &s.sides) {
+            (Some(phi), _) => phi,
+            (None, Some(sides)) => self.physical_sphere_volume() / sides.iter().product::<f64>(),
+            (None, None) => f64::NAN,
+        }
+    }
+
+    /// The sides of the box: `system.box`, or those of the cube that the physical spheres
+    /// fill to `system.packing_fraction` (the engines' sides up to rounding).
+    pub fn box_sides(&self) -> Vec<f64> {
+        let s = &self.system;
+        match &s.sides {
+            Some(sides) => sides.clone(),
+            None => {
+                let volume = self.physical_sphere_volume() / self.packing_fraction();
+                vec![volume.powf(1.0 / s.dimension as f64); s.dimension as usize]
+            }
+        }
+    }
+
+    /// The volume of the physical spheres: the simulated ones' (species split as the
+    /// initializer splits them) times `run.particle_weight`.
+    fn physical_sphere_volume(&self) -> f64 {
+        let s = &self.system;
+        let ball = |d: f64| match s.dimension {
+            1 => d,
+            2 => std::f64::consts::PI * d * d / 4.0,
+            _ => std::f64::consts::PI * d * d * d / 6.0,
+        };
+        let spheres = match &s.species {
+            None => s.particles as f64 * ball(s.diameter.unwrap_or(1.0)),
+            Some(entries) => {
+                let kinds = species(entries);
+                match gas::init::species_counts(s.particles, &kinds) {
+                    Ok(counts) => kinds
+                        .iter()
+                        .zip(counts)
+                        .map(|(x, c)| c as f64 * ball(x.diameter))
+                        .sum(),
+                    Err(_) => f64::NAN,
+                }
+            }
+        };
+        spheres * self.run.particle_weight.unwrap_or(1.0)
     }
 
     /// Fills in the defaults that depend on other keys: diameter = mass = 1 without species

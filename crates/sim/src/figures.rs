@@ -34,7 +34,7 @@ pub fn temperature(
     let tau = match (&plan.law, &s.species, samples.first()) {
         (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 && plan.driving.is_none() => {
             let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
-            let phi = s.packing_fraction;
+            let phi = plan.description.packing_fraction();
             let t0 = first.temperature;
             let omega0 = match s.dimension {
                 1 => enskog::<1>(phi, diameter, mass, t0),

@@ -392,7 +392,7 @@ fn ed_mc(
     let masses = ring.masses();
     let lengths = ring.rod_lengths();
     let system = gas::System::<1> {
-        length: ring.perimeter(),
+        sides: [ring.perimeter()],
         positions: start.positions.iter().map(|x| [*x]).collect(),
         velocities: start.velocities.iter().map(|v| [*v]).collect(),
         radii: lengths.iter().map(|l| 0.5 * l).collect(),

@@ -75,6 +75,16 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
             ));
         }
     }
+    // The shells of wave vectors (and g(r)'s pair counter) are those of a cube.
+    for (key, on) in [("output.modes", o.modes), ("output.structure", o.structure)] {
+        if on && !description.system.is_cubic() {
+            return Err(Error::input(
+                key,
+                "needs a cubic box (its shells of wave vectors): give system.box equal sides \
+                 or system.packing_fraction",
+            ));
+        }
+    }
     if let Some(shells) = o.mode_shells {
         if !o.modes {
             return Err(Error::input(
@@ -142,15 +152,15 @@ fn write_maps<const D: usize>(
     time: f64,
     cpp: f64,
 ) -> Result<()> {
-    let mean_density = system.len() as f64 / system.length.powi(D as i32);
+    let mean_density = system.len() as f64 / system.volume();
     let Some((density, vorticity)) = maps::plane(fields, mean_density) else {
         return Ok(());
     };
     let diameter = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
     let (side, unit) = if diameter > 0.0 {
-        (system.length / diameter, "sigma")
+        (system.sides[0] / diameter, "sigma")
     } else {
-        (system.length, "L unit")
+        (system.sides[0], "L unit")
     };
     let what = if D == 3 {
         "mid-plane slice z = L/2"
@@ -201,16 +211,17 @@ pub struct StructureResolution {
 /// of point particles).
 pub fn structure_resolution<const D: usize>(system: &System<D>) -> StructureResolution {
     let diameter = 2.0 * system.radii.iter().copied().fold(0.0, f64::max);
+    let length = system.shortest_side();
     let diameter = if diameter > 0.0 {
         diameter
     } else {
-        system.length / 100.0
+        length / 100.0
     };
     let max = MAX_STRUCTURE_GRID[D - 1];
-    let grid = ((system.length / diameter).ceil() as usize)
+    let grid = ((length / diameter).ceil() as usize)
         .next_power_of_two()
         .clamp(8, max);
-    let r_max = (5.0 * diameter).min(0.5 * system.length);
+    let r_max = (5.0 * diameter).min(0.5 * length);
     let bins = ((r_max / (0.05 * diameter)).ceil() as usize).clamp(10, 2000);
     StructureResolution { grid, r_max, bins }
 }
@@ -249,7 +260,7 @@ pub struct SpaceObserver {
 impl SpaceObserver {
     pub fn new(plan: &Plan) -> Self {
         let d = &plan.description;
-        let phi = d.system.packing_fraction;
+        let phi = d.packing_fraction();
         // DSMC particles are points placed independently: their S(0) is that of an ideal
         // gas, whatever the packing fraction that sets their collision rate.
         let points = plan.engine.abilities().point_particles;

@@ -244,7 +244,7 @@ pub fn summary(plan: &Plan, rows: &[SpeciesSample]) -> serde_json::Value {
     // The thermostat's steady state is the HCS scaled: its theory is the HCS's.
     let hcs = !matches!(plan.driving, Some(Driving::WhiteNoise(_)));
     if let (Some(alpha), true) = (alpha, hcs) {
-        let phi = plan.description.system.packing_fraction;
+        let phi = plan.description.packing_fraction();
         let theory = match plan.description.system.dimension {
             1 => hcs_theory::<1>(&table, &alpha, phi),
             2 => hcs_theory::<2>(&table, &alpha, phi),
@@ -304,7 +304,7 @@ pub fn driven_theory(plan: &Plan) -> Option<serde_json::Value> {
     let table = Kinds::of(plan);
     let alpha = restitution_matrix(plan, table.masses.len())?;
     let strength = vec![noise.strength; table.masses.len()];
-    let phi = s.packing_fraction;
+    let phi = plan.description.packing_fraction();
     match s.dimension {
         1 => steady::<1>(&table, &alpha, phi, &strength),
         2 => steady::<2>(&table, &alpha, phi, &strength),
@@ -353,6 +353,7 @@ pub(crate) fn default_driving_interval(plan: &Plan) -> f64 {
 /// [`default_driving_interval`]): an upper bound of the collision rate of a run.
 pub(crate) fn fastest_collision_frequency(plan: &Plan) -> Option<f64> {
     let s = &plan.description.system;
+    let phi = plan.description.packing_fraction();
     let table = Kinds::of(plan);
     let kinds = table.masses.len();
     let mut reference = vec![s.temperature; kinds];
@@ -363,9 +364,9 @@ pub(crate) fn fastest_collision_frequency(plan: &Plan) -> Option<f64> {
         Some(Driving::WhiteNoise(noise)) => {
             if let Some(alpha) = restitution_matrix(plan, kinds) {
                 let steady = match s.dimension {
-                    1 => white_noise_maxwellian::<1>(&table, &alpha, s.packing_fraction, noise),
-                    2 => white_noise_maxwellian::<2>(&table, &alpha, s.packing_fraction, noise),
-                    _ => white_noise_maxwellian::<3>(&table, &alpha, s.packing_fraction, noise),
+                    1 => white_noise_maxwellian::<1>(&table, &alpha, phi, noise),
+                    2 => white_noise_maxwellian::<2>(&table, &alpha, phi, noise),
+                    _ => white_noise_maxwellian::<3>(&table, &alpha, phi, noise),
                 };
                 for (r, t) in reference.iter_mut().zip(steady.unwrap_or_default()) {
                     *r = r.max(t);
@@ -376,9 +377,9 @@ pub(crate) fn fastest_collision_frequency(plan: &Plan) -> Option<f64> {
     }
     let elastic = vec![vec![1.0; kinds]; kinds];
     match s.dimension {
-        1 => fastest_frequency::<1>(&table, &elastic, s.packing_fraction, &reference),
-        2 => fastest_frequency::<2>(&table, &elastic, s.packing_fraction, &reference),
-        _ => fastest_frequency::<3>(&table, &elastic, s.packing_fraction, &reference),
+        1 => fastest_frequency::<1>(&table, &elastic, phi, &reference),
+        2 => fastest_frequency::<2>(&table, &elastic, phi, &reference),
+        _ => fastest_frequency::<3>(&table, &elastic, phi, &reference),
     }
 }
 

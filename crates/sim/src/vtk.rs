@@ -86,7 +86,7 @@ pub fn write_particles<const D: usize>(
     )
 }
 
-/// Writes coarse-grained fields as `path` (`.vti`): G^D cells of side `spacing` from the
+/// Writes coarse-grained fields as `path` (`.vti`): G^D cells of sides `spacing` from the
 /// origin, with the cell data density, velocity, temperature and vorticity.
 pub fn write_fields<const D: usize>(path: &Path, fields: &Fields<D>) -> Result<()> {
     let g = fields.grid as i32;
@@ -100,7 +100,8 @@ pub fn write_fields<const D: usize>(path: &Path, fields: &Fields<D>) -> Result<(
         Attribute::scalars("temperature", 1).with_data(fields.temperature.clone()),
         Attribute::vectors("vorticity").with_data(vorticity),
     ];
-    let h = fields.spacing as f32;
+    // Axes beyond the dimension take the first one's spacing (one cell thick).
+    let h: [f32; 3] = std::array::from_fn(|a| fields.spacing[if a < D { a } else { 0 }] as f32);
     export(
         Vtk {
             version: Version::new((1, 0)),
@@ -109,7 +110,7 @@ pub fn write_fields<const D: usize>(path: &Path, fields: &Fields<D>) -> Result<(
             data: DataSet::ImageData {
                 extent: extent.clone(),
                 origin: [0.0; 3],
-                spacing: [h; 3],
+                spacing: h,
                 meta: None,
                 pieces: vec![Piece::Inline(Box::new(ImageDataPiece {
                     extent,

@@ -54,6 +54,10 @@ pub struct WallSeries {
     pub weight: f64,
     /// The area of each wall, L^(D-1) (known from the first sample on).
     pub area: f64,
+    /// In a box that is not a cube, the area of the walls of each axis, V / L_axis (empty
+    /// in a cube: `area`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<f64>,
     /// Rows in sample order, each sample's walls in the order of `[[wall]]`.
     pub samples: Vec<WallSample>,
 }
@@ -65,6 +69,7 @@ impl WallSeries {
             walls: plan.walls.len(),
             weight: plan.particle_weight,
             area: 0.0,
+            areas: Vec::new(),
             samples: Vec::new(),
         })
     }
@@ -136,7 +141,12 @@ impl<const D: usize> Observer<D> for WallSeries {
         let (time, per_particle) = (engine.time(), engine.collisions_per_particle());
         if self.area == 0.0 {
             // Once: taking the engine's system copies every particle.
-            self.area = engine.system().length.powi(D as i32 - 1);
+            let system = engine.system();
+            self.area = system.sides[0].powi(D as i32 - 1);
+            if !system.is_cubic() {
+                let volume = system.volume();
+                self.areas = system.sides.iter().map(|l| volume / l).collect();
+            }
         }
         for w in walls {
             self.samples.push(WallSample {
@@ -156,9 +166,17 @@ impl<const D: usize> Observer<D> for WallSeries {
 /// `summary.json`'s `walls`: per wall, the pressure (normal momentum per unit time and
 /// area) and the energy flux into the gas (per unit time and area) over the second half
 /// of the run (from the first sample at or after half the last sample's time), with the
-/// collisions per unit time. The area of a wall is L^(D-1).
+/// collisions per unit time. The area of a wall is L^(D-1) in a cube, V / L_axis otherwise.
 pub fn summary(series: &WallSeries) -> serde_json::Value {
-    let (rows, walls, area) = (&series.samples, series.walls, series.area);
+    let (rows, walls) = (&series.samples, series.walls);
+    let area_of = |axis: &str| {
+        AXIS_NAMES
+            .iter()
+            .position(|a| *a == axis)
+            .and_then(|k| series.areas.get(k))
+            .copied()
+            .unwrap_or(series.area)
+    };
     let Some(last) = rows.len().checked_sub(walls).map(|i| &rows[i..]) else {
         return serde_json::Value::Null;
     };
@@ -173,6 +191,7 @@ pub fn summary(series: &WallSeries) -> serde_json::Value {
         .zip(last)
         .map(|(a, b)| {
             let rate = |x: f64| if span > 0.0 { Some(x / span) } else { None };
+            let area = area_of(&b.axis);
             serde_json::json!({
                 "axis": b.axis,
                 "side": b.side,

@@ -72,7 +72,7 @@ impl LangevinGas {
         LangevinGas {
             state,
             system: System {
-                length: 0.0,
+                sides: [0.0; 2],
                 positions: vec![],
                 velocities: vec![],
                 radii: vec![],
@@ -150,7 +150,7 @@ impl Engine<2> for LangevinGas {
     fn system(&mut self) -> &System<2> {
         let n = self.state.positions.len();
         self.system = System {
-            length: self.state.length,
+            sides: [self.state.length; 2],
             positions: self.state.positions.clone(),
             velocities: self.state.velocities.clone(),
             radii: vec![0.0; n],

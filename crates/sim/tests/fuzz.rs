@@ -269,7 +269,7 @@ fn small(description: &RunDescription) -> bool {
             species.iter().map(|x| x.mass).fold(f64::INFINITY, f64::min),
         ),
     };
-    let phi = s.packing_fraction;
+    let phi = description.packing_fraction();
     let rate = |d: usize| {
         let volume = match d {
             1 => gas::system::ball_volume::<1>(0.5 * diameter),

@@ -74,7 +74,7 @@ fn species_materials_collide_with_their_pair_s_beta() {
     assert!(unlike != pair_beta(0, 0) && unlike != pair_beta(1, 1));
     // Head-on at relative speed 2 in the event-driven engine.
     let system = System::<3> {
-        length: 20.0,
+        sides: [20.0; 3],
         positions: vec![[5.0, 10.0, 10.0], [8.0, 10.0, 10.0]],
         velocities: vec![[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]],
         radii: vec![SPECIES[0].0 / 2.0, SPECIES[1].0 / 2.0],

@@ -75,7 +75,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
     // Candidates drawn and collisions accepted in the timed runs (the majorant's efficiency).
     let (mut candidates, mut accepted) = (0u64, 0u64);
     for repeat in 0..repeats {
-        let system = point_gas::<3>(n, length, 1.0, 1.0, 1.0, 1 + repeat as u64)
+        let system = point_gas::<3>(n, [length; 3], 1.0, 1.0, 1.0, 1 + repeat as u64)
             .map_err(|e| CliError::argument("--particles", e))?;
         let spec = match scheme {
             Some(scheme) => EngineSpec::HomogeneousDsmc(scheme),

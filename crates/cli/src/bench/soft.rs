@@ -30,12 +30,13 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
         return Err(CliError::argument("RUN_FILE", "not a soft-sphere run"));
     };
     let s = &plan.description.system;
-    if s.dimension != 3 || s.species.is_some() {
+    if s.dimension != 3 || s.species.is_some() || s.sides.is_some() {
         return Err(CliError::argument(
             "RUN_FILE",
-            "the benchmark takes one kind of sphere in 3D",
+            "the benchmark takes one kind of sphere in 3D at system.packing_fraction",
         ));
     }
+    let phi = plan.description.packing_fraction();
     let steps = parse_count("--steps", &args.steps, 1, 1_000_000_000)? as u64;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
     let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
@@ -44,7 +45,7 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
     for repeat in 0..repeats {
         let system = gas::init::monodisperse::<3>(
             s.particles,
-            s.packing_fraction,
+            phi,
             diameter,
             mass,
             s.temperature,
@@ -66,7 +67,7 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
     let [median, min, max] = median_min_max(per_particle_step);
     let report = serde_json::json!({
         "particles": s.particles,
-        "packing_fraction": s.packing_fraction,
+        "packing_fraction": phi,
         "steps_per_repeat": steps,
         "repeats": repeats,
         "time_step": dt,
@@ -84,7 +85,7 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
             "N = {}, phi = {}, dt = {dt:.4e}: {median:.2} ns per particle per step (min {min:.2}, \
              max {max:.2}; median of {repeats} x {steps} steps), {contacts} contacts begun, \
              {builds} neighbour-list builds",
-            s.particles, s.packing_fraction
+            s.particles, phi
         )?,
     }
     Ok(out.flush()?)

@@ -367,7 +367,7 @@ fn check_scheme(scheme: &Scheme) -> Result<()> {
 
 fn empty_system<const D: usize>() -> System<D> {
     System {
-        length: 0.0,
+        sides: [0.0; D],
         positions: Vec::new(),
         velocities: Vec::new(),
         radii: Vec::new(),
@@ -541,13 +541,13 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
     }
 
     /// The current state: velocities, radii and masses in the engine's current order (the
-    /// block scheme permutes particles every step), positions all zero, `length` the side of
-    /// the cube of volume V. For `observe::{temperature, sonine_a2, ...}`. On several ranks,
+    /// block scheme permutes particles every step), positions all zero, the box the cube of
+    /// volume V. For `observe::{temperature, sonine_a2, ...}`. On several ranks,
     /// collective: the blocks of all ranks in order.
     fn system(&mut self) -> &System<D> {
         let core = &mut self.core;
         let s = &mut self.system;
-        s.length = core.volume.powf(1.0 / D as f64);
+        s.sides = [core.volume.powf(1.0 / D as f64); D];
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();

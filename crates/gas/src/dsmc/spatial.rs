@@ -80,8 +80,9 @@ pub struct SpatialDsmc<const D: usize> {
     options: SpatialOptions,
     phi: f64,
     seed: u64,
-    length: f64,
-    cells_per_side: u64,
+    /// The box's sides, and the collision cells along each axis.
+    sides: Vector<D>,
+    cells: [u64; D],
     /// Physical particles per simulated one.
     weight: f64,
     time: f64,
@@ -111,8 +112,8 @@ pub struct SpatialDsmc<const D: usize> {
 }
 
 impl<const D: usize> SpatialDsmc<D> {
-    /// An engine at time 0 from `system` (positions in the periodic box of side
-    /// `system.length`, wrapped into it), the physical packing fraction `phi`
+    /// An engine at time 0 from `system` (positions in the periodic box of
+    /// `system.sides`, wrapped into it), the physical packing fraction `phi`
     /// (0 < phi < close packing), the law, a seed and the options. Fails, naming the
     /// parameter, for bad input.
     pub fn new(
@@ -139,8 +140,11 @@ impl<const D: usize> SpatialDsmc<D> {
         comm: Arc<dyn Communicator>,
     ) -> Result<Self> {
         check_input(&system, phi)?;
-        let length = system.length;
-        require_positive("length", length)?;
+        let sides = system.sides;
+        for &l in &sides {
+            require_positive("length", l)?;
+        }
+        let shortest = system.shortest_side();
         let n = system.velocities.len();
         if system.positions.len() != n {
             return Err(Error::LengthMismatch {
@@ -160,7 +164,7 @@ impl<const D: usize> SpatialDsmc<D> {
         options.step.check()?;
         let (species, index) = Species::of::<D>(&system.radii, &system.masses, phi)?;
         let (law, pairs) = super::species::engine_laws(law, &species)?;
-        let box_volume = length.powi(D as i32);
+        let box_volume = system.volume();
         let weight = phi * box_volume / species.sphere_volume;
         let density = n as f64 * weight / box_volume;
         let mean_free_path = 1.0
@@ -171,35 +175,37 @@ impl<const D: usize> SpatialDsmc<D> {
                     (DEFAULT_MIN_PARTICLES_PER_CELL * box_volume / n as f64).powf(1.0 / D as f64);
                 (DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS * mean_free_path)
                     .max(crowded)
-                    .min(length)
+                    .min(shortest)
             }
-            Some(w) if w.is_finite() && w > 0.0 && w <= length => w,
+            Some(w) if w.is_finite() && w > 0.0 && w <= shortest => w,
             Some(w) => {
                 return Err(Error::out_of_range(
                     "cell_width",
                     w,
-                    format!("0 < width <= box side {length}"),
+                    format!("0 < width <= box side {shortest}"),
                 ))
             }
         };
-        // The largest number of cells that are at least `width` wide (floor).
-        let cells_per_side = (length / width * (1.0 + 1e-12)).floor().max(1.0);
-        if cells_per_side.powi(D as i32) > (1u64 << 62) as f64 {
+        // The largest number of cells along each axis that are at least `width` wide.
+        let per_axis: [f64; D] =
+            std::array::from_fn(|k| (sides[k] / width * (1.0 + 1e-12)).floor().max(1.0));
+        if per_axis.iter().product::<f64>() > (1u64 << 62) as f64 {
             return Err(Error::out_of_range(
                 "cell_width",
                 width,
-                format!("at most 2^62 cells (box side {length})"),
+                format!("at most 2^62 cells (box sides {sides:?})"),
             ));
         }
-        let cells_per_side = cells_per_side as u64;
+        let cells: [u64; D] = per_axis.map(|c| c as u64);
         let ranks = comm.size();
-        if ranks as u64 > cells_per_side {
+        if ranks as u64 > cells[D - 1] {
             return Err(Error::TooManyRanks {
                 ranks,
                 allowed: format!(
-                    "at most {cells_per_side}, the planes of collision cells along the last \
-                     axis (cell width {}): each rank owns whole planes",
-                    length / cells_per_side as f64
+                    "at most {}, the planes of collision cells along the last axis (cell \
+                     width {}): each rank owns whole planes",
+                    cells[D - 1],
+                    sides[D - 1] / cells[D - 1] as f64
                 ),
             });
         }
@@ -209,16 +215,16 @@ impl<const D: usize> SpatialDsmc<D> {
             .zip(&system.velocities)
             .zip(&index)
             .map(|((x, v), &s)| Simulator {
-                position: std::array::from_fn(|k| wrap(x[k], length)),
+                position: std::array::from_fn(|k| wrap(x[k], sides[k])),
                 velocity: *v,
                 species: s,
             })
             .collect();
         let temperature = Moments::of(&simulators, &species).spread / (n * D) as f64;
-        let width = length / cells_per_side as f64;
-        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells_per_side);
-        let cells_per_plane = cells_per_side.pow(D as u32 - 1);
-        let mut counts = vec![0u64; cells_per_side as usize];
+        let width: [f64; D] = std::array::from_fn(|k| sides[k] / cells[k] as f64);
+        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
+        let cells_per_plane = cells[..D - 1].iter().product::<u64>();
+        let mut counts = vec![0u64; cells[D - 1] as usize];
         simulators
             .iter()
             .for_each(|p| counts[(key(p) / cells_per_plane) as usize] += 1);
@@ -240,8 +246,8 @@ impl<const D: usize> SpatialDsmc<D> {
             options,
             phi,
             seed,
-            length,
-            cells_per_side,
+            sides,
+            cells,
             weight,
             time: 0.0,
             steps: 0,
@@ -249,7 +255,7 @@ impl<const D: usize> SpatialDsmc<D> {
             species_collisions: Vec::new(),
             temperature,
             system: System {
-                length,
+                sides,
                 positions: Vec::new(),
                 velocities: Vec::new(),
                 radii: Vec::new(),
@@ -340,14 +346,29 @@ impl<const D: usize> SpatialDsmc<D> {
         self.comm.size()
     }
 
-    /// Width of the collision cells.
+    /// Width of the collision cells (the narrowest side of a cell in a box that is not a
+    /// cube).
     pub fn cell_width(&self) -> f64 {
-        self.length / self.cells_per_side as f64
+        self.widths().into_iter().fold(f64::INFINITY, f64::min)
+    }
+
+    /// Widths of the collision cells along each axis.
+    fn widths(&self) -> [f64; D] {
+        std::array::from_fn(|k| self.sides[k] / self.cells[k] as f64)
+    }
+
+    /// Number of collision cells.
+    fn cell_count(&self) -> u64 {
+        self.cells.iter().product()
     }
 
     /// Mean number of particles per collision cell.
     pub fn particles_per_cell(&self) -> f64 {
-        self.len() as f64 / (self.cells_per_side as f64).powi(D as i32)
+        if crate::system::is_cube(&self.sides) {
+            self.len() as f64 / (self.cells[0] as f64).powi(D as i32)
+        } else {
+            self.len() as f64 / self.cell_count() as f64
+        }
     }
 
     /// The temperature at the end of the last step (sets the next step).
@@ -359,7 +380,7 @@ impl<const D: usize> SpatialDsmc<D> {
     fn run(&mut self, end: f64, target: u64, pause: u64) {
         let n = self.len() as f64;
         while self.tally.collisions < target.min(pause) && self.time < end {
-            let density = n * self.weight / self.length.powi(D as i32);
+            let density = n * self.weight / crate::system::box_volume(&self.sides);
             let omega = frequency_estimate::<D>(&self.species, density, 1.0, self.temperature);
             if !positive(omega) {
                 if end.is_finite() {
@@ -393,21 +414,21 @@ impl<const D: usize> SpatialDsmc<D> {
     /// collide in every cell, sum over the cells exactly.
     fn step(&mut self, dt: f64) {
         let clock = Instant::now();
-        let (length, cells) = (self.length, self.cells_per_side);
-        let width = self.cell_width();
-        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        let (sides, cells, width) = (self.sides, self.cells, self.widths());
+        let cell_count = self.cell_count();
+        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
         let stream = |p: &mut Simulator<D>| {
             for k in 0..D {
-                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
+                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, sides[k]);
             }
         };
         let starts = if self.comm.size() == 1 && self.walls.is_some() {
             self.stream_in_container(dt);
             self.sorter
-                .update_and_sort(&mut self.simulators, cells.pow(D as u32), |_| {}, key)
+                .update_and_sort(&mut self.simulators, cell_count, |_| {}, key)
         } else if self.comm.size() == 1 {
             self.sorter
-                .update_and_sort(&mut self.simulators, cells.pow(D as u32), stream, key)
+                .update_and_sort(&mut self.simulators, cell_count, stream, key)
         } else {
             self.stream_and_sort_over_ranks(dt)
         };
@@ -417,8 +438,13 @@ impl<const D: usize> SpatialDsmc<D> {
             species: &self.species,
             pairs: self.pairs.as_deref(),
         };
-        let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
-            / width.powi(D as i32);
+        let cell_volume = if crate::system::is_cube(&self.sides) {
+            width[0].powi(D as i32)
+        } else {
+            width.iter().product()
+        };
+        let pair_rate =
+            theory::cross_section_factor::<D>() * self.species.max_weight * self.weight / cell_volume;
         let (seed, step, species) = (self.seed, self.steps, &self.species);
         let results: Vec<(SpeciesTally, Moments<D>)> = groups
             .into_par_iter()
@@ -459,10 +485,10 @@ impl<const D: usize> SpatialDsmc<D> {
 
 /// Linear index of the cell holding x (in [0, L)^D): the last axis most significant.
 #[inline]
-fn cell_key<const D: usize>(x: &Vector<D>, width: f64, cells: u64) -> u64 {
+fn cell_key<const D: usize>(x: &Vector<D>, width: &[f64; D], cells: &[u64; D]) -> u64 {
     (0..D)
         .rev()
-        .fold(0, |key, k| key * cells + cell_index(x[k], width, cells))
+        .fold(0, |key, k| key * cells[k] + cell_index(x[k], width[k], cells[k]))
 }
 
 /// The index along one axis of the cell holding coordinate x (in [0, L)).

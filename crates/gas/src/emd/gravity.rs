@@ -74,7 +74,7 @@ impl<const D: usize> EventDriven<D> {
             ));
         }
         crate::walls::fit_gravity(self.walls.as_mut(), &g, rest_height)?;
-        let length = self.system.length;
+        let length = self.system.shortest_side();
         let largest = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         self.field = Some(Field {
             g,

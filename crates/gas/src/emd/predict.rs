@@ -131,9 +131,8 @@ impl<const D: usize> EventDriven<D> {
         cells: &mut [usize],
         count: usize,
     ) -> usize {
-        let n = self.grid.per_side;
-        let last = n as u32 - 1;
-        if !(0..D).any(|k| walls.closed(k) && (c[k] == 0 || c[k] == last)) {
+        let per_side = self.grid.per_side;
+        if !(0..D).any(|k| walls.closed(k) && (c[k] == 0 || c[k] as usize == per_side[k] - 1)) {
             return count;
         }
         let mut kept = 0;
@@ -142,6 +141,7 @@ impl<const D: usize> EventDriven<D> {
             let mut stride = 1;
             let mut inside = true;
             for (k, &ck) in c.iter().enumerate() {
+                let n = per_side[k];
                 let x = (cell / stride % n) as u32;
                 inside &= !walls.closed(k) || x.abs_diff(ck) <= 1;
                 stride *= n;
@@ -251,12 +251,9 @@ impl<const D: usize> EventDriven<D> {
             std::array::from_fn(|k| if field.g[k] == 0.0 { u[k] } else { 0.0 });
         let mut first = self.grid.exit(cell, &x, &straight);
         first = self.first_wall_contact(walls, i, &x, &straight, first);
-        let (radius, width, last) = (
-            self.particles[i].radius,
-            self.grid.width,
-            self.grid.per_side as u32 - 1,
-        );
+        let radius = self.particles[i].radius;
         for k in (0..D).filter(|&k| field.g[k] != 0.0) {
+            let (width, last) = (self.grid.width[k], self.grid.per_side[k] as u32 - 1);
             // The axis is closed: the end cells' outer faces are the walls' contact planes.
             let low = if cell[k] == 0 {
                 radius
@@ -264,7 +261,7 @@ impl<const D: usize> EventDriven<D> {
                 cell[k] as f64 * width
             };
             let high = if cell[k] == last {
-                self.system.length - radius
+                self.system.sides[k] - radius
             } else {
                 (cell[k] + 1) as f64 * width
             };
@@ -296,12 +293,13 @@ impl<const D: usize> EventDriven<D> {
         mut first: Option<(f64, usize, bool)>,
     ) -> Option<(f64, usize, bool)> {
         use crate::walls::Side;
-        let (radius, length, t0) = (self.particles[i].radius, self.system.length, self.time);
+        let (radius, t0) = (self.particles[i].radius, self.time);
         for (index, wall) in walls.walls().iter().enumerate() {
             let Some(motion) = walls.motion(index) else {
                 continue;
             };
             let k = wall.axis;
+            let length = self.system.sides[k];
             let horizon = first.map_or(f64::INFINITY, |f| f.0);
             // Distance of the centre from the wall's face, its speed and acceleration away.
             let (y, w, c) = match wall.side {
@@ -358,13 +356,10 @@ impl<const D: usize> EventDriven<D> {
         let cell = &self.particles[i].cell;
         // A wall can only be touched from the cell along it (a cell is at least a diameter
         // wide), before the particle would leave that cell through the wall's face.
-        let (radius, length, last) = (
-            self.particles[i].radius,
-            self.system.length,
-            self.grid.per_side as u32 - 1,
-        );
+        let radius = self.particles[i].radius;
         let mut first = exit;
         for k in (0..D).filter(|&k| walls.closed(k)) {
+            let (length, last) = (self.system.sides[k], self.grid.per_side[k] as u32 - 1);
             let contact = if cell[k] == 0 && v[k] < 0.0 {
                 Some(((p[k] - radius) / -v[k], false))
             } else if cell[k] == last && v[k] > 0.0 {

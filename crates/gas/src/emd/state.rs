@@ -187,7 +187,7 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
 
     /// The state with every position at the current time (wrapped into the box).
     fn system(&mut self) -> &System<D> {
-        let (time, length) = (self.time, self.system.length);
+        let (time, sides) = (self.time, self.system.sides);
         let s = &mut self.system;
         s.positions.clear();
         s.velocities.clear();
@@ -199,7 +199,7 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
                 Some(f) => f.to_box(&p.position_at(time), &p.velocity, time),
             };
             s.positions
-                .push(std::array::from_fn(|k| wrap(x[k], length)));
+                .push(std::array::from_fn(|k| wrap(x[k], sides[k])));
             s.velocities.push(v);
             s.radii.push(p.radius);
             s.masses.push(p.mass);

@@ -72,7 +72,7 @@ impl Next {
 
 /// The spheres while they grow.
 struct Grower<const D: usize> {
-    length: f64,
+    sides: Vector<D>,
     /// Positions at `at`, velocities, final radii, masses, collision counts.
     position: Vec<Vector<D>>,
     velocity: Vec<Vector<D>>,
@@ -91,13 +91,13 @@ struct Grower<const D: usize> {
 }
 
 /// Grows spheres of final `radii` and `masses`, placed at `positions` (no overlap at the
-/// scale `s0` of their final radii) in the periodic box of side `length`, from scale `s0`
+/// scale `s0` of their final radii) in the periodic box with `sides`, from scale `s0`
 /// to 1, with velocities `velocities` kept at `temperature`; returns their positions (no
 /// overlap at the final radii) and the report. Fails if they jam before (more than
 /// [`MAX_COLLISIONS_PER_PARTICLE`]) or the box holds fewer than 4 cells of the largest
 /// final diameter per side.
 pub(crate) fn grow<const D: usize>(
-    length: f64,
+    sides: Vector<D>,
     positions: Vec<Vector<D>>,
     velocities: Vec<Vector<D>>,
     radii: &[f64],
@@ -109,19 +109,19 @@ pub(crate) fn grow<const D: usize>(
     let n = positions.len();
     let largest = radii.iter().copied().fold(0.0, f64::max);
     let lightest = masses.iter().copied().fold(f64::INFINITY, f64::min);
-    let cells = CellGrid::<D>::new(length, 2.0 * largest * (1.0 + 1e-6), n);
-    if cells.grid.per_side < 4 {
+    let cells = CellGrid::<D>::new(&sides, 2.0 * largest * (1.0 + 1e-6), n);
+    if cells.grid.fewest_per_side() < 4 {
         return Err(Error::BoxTooSmall {
-            length,
+            length: sides.iter().copied().fold(f64::INFINITY, f64::min),
             width: 2.0 * largest,
         });
     }
     let rate = GROWTH_RATE * (temperature / lightest).sqrt() / (2.0 * largest);
     let mut g = Grower {
-        length,
+        sides,
         position: positions
             .iter()
-            .map(|p| std::array::from_fn(|k| wrap(p[k], length)))
+            .map(|p| std::array::from_fn(|k| wrap(p[k], sides[k])))
             .collect(),
         velocity: velocities,
         at: vec![0.0; n],
@@ -182,7 +182,7 @@ pub(crate) fn grow<const D: usize>(
         if report.collisions > limit {
             let volume: f64 = g.radius.iter().map(|&r| ball_volume::<D>(r)).sum();
             return Err(Error::Jammed {
-                phi: volume * g.scale().powi(D as i32) / length.powi(D as i32),
+                phi: volume * g.scale().powi(D as i32) / crate::system::box_volume(&sides),
                 collisions_per_particle: MAX_COLLISIONS_PER_PARTICLE,
             });
         }
@@ -202,7 +202,7 @@ impl<const D: usize> Grower<D> {
     /// The position of i now, in the box.
     fn now(&self, i: usize) -> Vector<D> {
         let p = self.unwrapped(i);
-        std::array::from_fn(|k| wrap(p[k], self.length))
+        std::array::from_fn(|k| wrap(p[k], self.sides[k]))
     }
 
     /// The position of i now, possibly just outside the box (differences take the minimum
@@ -300,7 +300,7 @@ impl<const D: usize> Grower<D> {
                     return;
                 }
                 let q = self.unwrapped(j);
-                let r: Vector<D> = std::array::from_fn(|k| minimum_image(q[k] - p[k], self.length));
+                let r: Vector<D> = std::array::from_fn(|k| minimum_image(q[k] - p[k], self.sides[k]));
                 let w: Vector<D> = std::array::from_fn(|k| self.velocity[j][k] - v[k]);
                 let contact = self.radius[i] + self.radius[j];
                 let (sigma, a) = (contact * s, contact * self.rate);
@@ -330,7 +330,7 @@ impl<const D: usize> Grower<D> {
         self.bring_to_now(i);
         self.bring_to_now(j);
         let r: Vector<D> = std::array::from_fn(|k| {
-            minimum_image(self.position[j][k] - self.position[i][k], self.length)
+            minimum_image(self.position[j][k] - self.position[i][k], self.sides[k])
         });
         let distance = dot(&r, &r).sqrt();
         let normal: Vector<D> = std::array::from_fn(|k| r[k] / distance);

@@ -35,7 +35,7 @@ pub fn isolated_contact_eps(
     // Start one step (minus the phase) before touching: gap closes at speed v.
     let gap = (1.0 - phase) * dt * v;
     let system = System {
-        length,
+        sides: [length],
         positions: vec![
             [0.5 * length - r1 - 0.5 * gap],
             [0.5 * length + r2 + 0.5 * gap],

@@ -70,10 +70,11 @@ impl<const D: usize> SoftSphere<D> {
                 "elastic, restitution (the material's contact) or vibrating in soft-sphere MD",
             ));
         }
-        let length = self.system.length;
+        let sides = self.system.sides;
         let largest = self.system.radii.iter().copied().fold(0.0, f64::max);
-        walls.check_sweeps(length, 2.0 * largest)?;
+        walls.check_sweeps(&sides, 2.0 * largest)?;
         for k in (0..D).filter(|&k| walls.closed(k)) {
+            let length = sides[k];
             let (low, high) = (
                 walls.displacement(k, Side::Low, self.time),
                 length - walls.displacement(k, Side::High, self.time),
@@ -191,7 +192,7 @@ impl<const D: usize> SoftSphere<D> {
             return;
         };
         let t = *time + predicting.unwrap_or(0.0);
-        let (a, length) = (material.dissipative_constant, s.length);
+        let a = material.dissipative_constant;
         c.pushes.clear();
         c.step.iter_mut().for_each(|x| *x = (0, 0.0, 0.0));
         for (w, wall) in c.walls.walls().iter().enumerate() {
@@ -216,7 +217,7 @@ impl<const D: usize> SoftSphere<D> {
                 // Distance of the centre from the plane, inward.
                 let distance = match wall.side {
                     Side::Low => s.positions[i][k] - plane,
-                    Side::High => length - plane - s.positions[i][k],
+                    Side::High => s.sides[k] - plane - s.positions[i][k],
                 };
                 if distance >= r {
                     c.touching[i] &= !bit;

@@ -6,24 +6,27 @@
 use crate::cells::{max_cells, Grid};
 
 /// The cells adjacent to the cell of coordinates `c` (itself included, each once) in a grid
-/// of `per_side` cells per side, as ranges [first, end) of linear cell indices: the cells
+/// of `per_side` cells along each axis, as ranges [first, end) of linear cell indices: the cells
 /// along dimension 0 have consecutive indices, so the neighbours form rows of three cells
 /// (two ranges where a row wraps around the box, one of all cells with fewer than three
 /// per side), whose particles are consecutive in the counting sort: 9 ranges in 3D in
 /// place of 27 cells.
-fn neighbor_rows<const D: usize>(per_side: usize, c: &[u32; D]) -> ([(usize, usize); 18], usize) {
-    let near = |x: usize| -> ([usize; 3], usize) {
-        if per_side < 3 {
-            ([0, 1, 2], per_side)
+fn neighbor_rows<const D: usize>(
+    per_side: &[usize; D],
+    c: &[u32; D],
+) -> ([(usize, usize); 18], usize) {
+    let near = |x: usize, n: usize| -> ([usize; 3], usize) {
+        if n < 3 {
+            ([0, 1, 2], n)
         } else {
-            ([(x + per_side - 1) % per_side, x, (x + 1) % per_side], 3)
+            ([(x + n - 1) % n, x, (x + 1) % n], 3)
         }
     };
     // Linear index of the start of each row (coordinate 0 along dimension 0).
     let (mut bases, mut count) = ([0usize; 9], 1);
-    let mut stride = per_side;
-    for &x in &c[1..] {
-        let (values, m) = near(x as usize);
+    let mut stride = per_side[0];
+    for (d, &x) in c.iter().enumerate().skip(1) {
+        let (values, m) = near(x as usize, per_side[d]);
         // Each row start spawns m (in place, from the last).
         for e in (0..count).rev() {
             let base = bases[e];
@@ -32,9 +35,9 @@ fn neighbor_rows<const D: usize>(per_side: usize, c: &[u32; D]) -> ([(usize, usi
             }
         }
         count *= m;
-        stride *= per_side;
+        stride *= per_side[d];
     }
-    let x = c[0] as usize;
+    let (x, per_side) = (c[0] as usize, per_side[0]);
     let mut rows = [(0, 0); 18];
     let mut n = 0;
     for &base in &bases[..count] {
@@ -133,7 +136,7 @@ impl NeighborList {
         self.largest_radius = largest;
         let reach = 2.0 * largest + self.skin;
         let n = system.len();
-        let grid = Grid::<D>::new(system.length, reach, max_cells(n));
+        let grid = Grid::<D>::new(&system.sides, reach, max_cells(n));
         // Counting sort of the particles by cell.
         let coords: Vec<[u32; D]> = system.positions.iter().map(|x| grid.coords_of(x)).collect();
         let cells: Vec<usize> = coords.iter().map(|c| grid.index(c)).collect();
@@ -152,7 +155,7 @@ impl NeighborList {
         }
         self.pairs.clear();
         for (i, x) in system.positions.iter().enumerate() {
-            let (rows, count) = neighbor_rows(grid.per_side, &coords[i]);
+            let (rows, count) = neighbor_rows(&grid.per_side, &coords[i]);
             for &(first, end) in &rows[..count] {
                 for &j in &members[start[first] as usize..start[end] as usize] {
                     let j = j as usize;
@@ -162,14 +165,14 @@ impl NeighborList {
                     let cutoff = system.radii[i] + system.radii[j] + self.skin;
                     let d2: f64 = (0..D)
                         .map(|k| {
-                            minimum_image(system.positions[j][k] - x[k], system.length).powi(2)
+                            minimum_image(system.positions[j][k] - x[k], system.sides[k]).powi(2)
                         })
                         .sum();
                     // Across a closed axis the nearest image lies behind a wall.
                     let across = self.closed != 0
                         && (0..D).any(|k| {
                             self.closed & (1 << k) != 0
-                                && (system.positions[j][k] - x[k]).abs() > 0.5 * system.length
+                                && (system.positions[j][k] - x[k]).abs() > 0.5 * system.sides[k]
                         });
                     if d2 < cutoff * cutoff && !across {
                         self.pairs.push((i as u32, j as u32));
@@ -205,7 +208,7 @@ mod tests {
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
         System {
-            length,
+            sides: [length; D],
             positions: (0..n)
                 .map(|_| std::array::from_fn(|_| uniform() * length))
                 .collect(),

@@ -55,12 +55,21 @@ impl<const D: usize> SoftSphere<D> {
     pub(super) fn step(&mut self, dt: f64) {
         let (power_before, virial_before) = self.contact_rates();
         self.half_kick(dt);
-        drift(
-            self.system.positions.as_flattened_mut(),
-            self.system.velocities.as_flattened(),
-            dt,
-            self.system.length,
-        );
+        if self.system.is_cubic() {
+            drift(
+                self.system.positions.as_flattened_mut(),
+                self.system.velocities.as_flattened(),
+                dt,
+                self.system.sides[0],
+            );
+        } else {
+            let s = &mut self.system;
+            for (x, v) in s.positions.iter_mut().zip(&s.velocities) {
+                for k in 0..D {
+                    x[k] = wrap(x[k] + dt * v[k], s.sides[k]);
+                }
+            }
+        }
         self.neighbors.drifted(dt);
         let (power, virial, begun) = self.compute_forces(Some(dt));
         self.tally_walls(dt);
@@ -103,7 +112,7 @@ impl<const D: usize> SoftSphere<D> {
         for &(i, j) in &self.neighbors.pairs {
             let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
             let d2: f64 = (0..D)
-                .map(|k| image_of_difference(xj[k] - xi[k], s.length).powi(2))
+                .map(|k| image_of_difference(xj[k] - xi[k], s.sides[k]).powi(2))
                 .sum();
             if d2 < widest2 {
                 let contact = s.radii[i as usize] + s.radii[j as usize];
@@ -120,7 +129,7 @@ impl<const D: usize> SoftSphere<D> {
         for &(i, j) in &self.current {
             let (i, j) = (i as usize, j as usize);
             let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
             });
             let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
             let contact = s.radii[i] + s.radii[j];
@@ -196,7 +205,7 @@ impl<const D: usize> SoftSphere<D> {
         for &(i, j) in &self.contacts {
             let (i, j) = (i as usize, j as usize);
             let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.length)
+                minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
             });
             let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
             let xi = s.radii[i] + s.radii[j] - d;

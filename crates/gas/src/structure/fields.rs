@@ -11,8 +11,8 @@ use crate::system::{wrap, System};
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fields<const D: usize> {
     pub grid: usize,
-    /// Side of one cell.
-    pub spacing: f64,
+    /// Sides of one cell, per axis (L_a / G).
+    pub spacing: [f64; D],
     pub density: Vec<f64>,
     pub velocity: Vec<[f64; D]>,
     pub temperature: Vec<f64>,
@@ -23,8 +23,8 @@ pub struct Fields<const D: usize> {
 /// The fields of `system` on a `grid`^D grid (grid ≥ 3 for the differences).
 pub fn coarse_grained_fields<const D: usize>(system: &System<D>, grid: usize) -> Fields<D> {
     let g = grid;
-    let l = system.length;
-    let h = l / g as f64;
+    let l = system.sides;
+    let h: [f64; D] = std::array::from_fn(|a| l[a] / g as f64);
     let cells = g.pow(D as u32);
     let (mut count, mut mass) = (vec![0.0; cells], vec![0.0; cells]);
     let mut momentum = vec![[0.0; D]; cells];
@@ -32,7 +32,7 @@ pub fn coarse_grained_fields<const D: usize>(system: &System<D>, grid: usize) ->
     let cell_of = |r: &[f64; D]| {
         let mut index = 0;
         for a in (0..D).rev() {
-            index = index * g + ((wrap(r[a], l) / h) as usize).min(g - 1);
+            index = index * g + ((wrap(r[a], l[a]) / h[a]) as usize).min(g - 1);
         }
         index
     };
@@ -50,7 +50,11 @@ pub fn coarse_grained_fields<const D: usize>(system: &System<D>, grid: usize) ->
         }
         energy[c] += m * v.iter().map(|x| x * x).sum::<f64>();
     }
-    let volume = h.powi(D as i32);
+    let volume = if system.is_cubic() {
+        h[0].powi(D as i32)
+    } else {
+        h.iter().product()
+    };
     let velocity: Vec<[f64; D]> = (0..cells)
         .map(|c| {
             if mass[c] > 0.0 {
@@ -87,7 +91,7 @@ pub fn coarse_grained_fields<const D: usize>(system: &System<D>, grid: usize) ->
                 }
             };
             let derivative = |a: usize, b: usize| {
-                (velocity[neighbour(b, true)][a] - velocity[neighbour(b, false)][a]) / (2.0 * h)
+                (velocity[neighbour(b, true)][a] - velocity[neighbour(b, false)][a]) / (2.0 * h[b])
             };
             match D {
                 2 => [0.0, 0.0, derivative(1, 0) - derivative(0, 1)],
@@ -131,7 +135,7 @@ mod tests {
         }
         let n = positions.len();
         let s = System::<2> {
-            length: l,
+            sides: [l; 2],
             positions,
             velocities,
             radii: vec![0.0; n],

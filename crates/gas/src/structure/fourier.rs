@@ -77,7 +77,7 @@ pub fn fourier_amplitudes<const D: usize>(
         density: vec![Complex64::new(0.0, 0.0); vectors.len()],
         momentum: vec![[Complex64::new(0.0, 0.0); D]; vectors.len()],
     };
-    let angle = -2.0 * PI / system.length;
+    let angle: [f64; D] = std::array::from_fn(|a| -2.0 * PI / system.sides[a]);
     // Fixed chunks summed in order: the result does not depend on the thread count or
     // scheduling (a resumed run writes the same bits).
     const CHUNK: usize = 2048;
@@ -89,7 +89,7 @@ pub fn fourier_amplitudes<const D: usize>(
             for j in chunk * CHUNK..((chunk + 1) * CHUNK).min(system.len()) {
                 let r = &system.positions[j];
                 for a in 0..D {
-                    let (s, c) = (angle * r[a]).sin_cos();
+                    let (s, c) = (angle[a] * r[a]).sin_cos();
                     let base = Complex64::new(c, s);
                     for p in 1..=m_max {
                         powers[p][a] = powers[p - 1][a] * base;
@@ -145,7 +145,7 @@ mod tests {
     #[test]
     fn amplitudes_match_the_definition() {
         let system = System::<2> {
-            length: 3.0,
+            sides: [3.0; 2],
             positions: vec![[0.1, 0.2], [1.5, 2.9], [2.2, 0.7]],
             velocities: vec![[1.0, -0.5], [0.3, 0.2], [-0.4, 0.9]],
             radii: vec![0.1; 3],
@@ -187,7 +187,7 @@ mod tests {
         let n = 2 * 2048 + 263;
         let length = 7.0;
         let system = System::<3> {
-            length,
+            sides: [length; 3],
             positions: (0..n)
                 .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
                 .collect(),

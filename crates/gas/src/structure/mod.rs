@@ -14,6 +14,17 @@ mod pair_avx2;
 pub mod structure_factor;
 
 pub use fields::{coarse_grained_fields, Fields};
+
+/// The side of a cubic box: the shells of wave vectors (and the pair counter's rows) are
+/// those of a cube. Callers refuse other boxes first (`sim` names the output key).
+pub(crate) fn cube_side<const D: usize>(system: &crate::System<D>, what: &str) -> f64 {
+    assert!(
+        system.is_cubic(),
+        "{what} needs a cubic box (sides {:?})",
+        system.sides
+    );
+    system.sides[0]
+}
 pub use fourier::{half_space_shells, Shell};
 pub use modes::{hydrodynamic_modes, ModeShell};
 pub use pair::{pair_correlation, StructurePoint};
@@ -28,7 +39,7 @@ pub(crate) mod test_points {
     pub(crate) fn random_system<const D: usize>(n: usize, length: f64, seed: u64) -> System<D> {
         let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
         System {
-            length,
+            sides: [length; D],
             positions: (0..n)
                 .map(|_| std::array::from_fn(|_| rng.random::<f64>() * length))
                 .collect(),

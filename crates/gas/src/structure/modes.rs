@@ -72,7 +72,7 @@ pub fn hydrodynamic_modes<const D: usize>(
         let scale = t * total_mass * count;
         out.push(ModeShell {
             norm2: shell.norm2,
-            k: 2.0 * PI * (shell.norm2 as f64).sqrt() / system.length,
+            k: 2.0 * PI * (shell.norm2 as f64).sqrt() / super::cube_side(system, "the modes"),
             transverse_energy: if D > 1 {
                 transverse / ((D - 1) as f64 * scale)
             } else {
@@ -104,7 +104,7 @@ mod tests {
         let mut counts = [0; 3];
         for _ in 0..configs {
             let system = System::<3> {
-                length: 10.0,
+                sides: [10.0; 3],
                 positions: (0..n)
                     .map(|_| std::array::from_fn(|_| rng.random::<f64>() * 10.0))
                     .collect(),
@@ -148,7 +148,7 @@ mod tests {
         }
         let n = positions.len();
         let system = System::<3> {
-            length: l,
+            sides: [l; 3],
             positions,
             velocities,
             radii: vec![0.0; n],

@@ -48,7 +48,7 @@ pub fn pair_correlation<const D: usize>(
     r_max: f64,
     bins: usize,
 ) -> Vec<StructurePoint> {
-    let r_max = r_max.min(0.5 * system.length);
+    let r_max = r_max.min(0.5 * super::cube_side(system, "g(r)"));
     let dr = r_max / bins as f64;
     let counts = PairCounter::new(system, r_max, bins).ordered_pair_counts();
     let n = system.len() as f64;
@@ -92,7 +92,7 @@ struct PairCounter<const D: usize> {
 
 impl<const D: usize> PairCounter<D> {
     fn new(system: &System<D>, r_max: f64, bins: usize) -> Self {
-        let l = system.length;
+        let l = super::cube_side(system, "g(r)");
         let reach = r_max * (1.0 + 1e-9);
         let side = (l / reach).floor() as usize;
         let rows = (D == 1 || side >= 3).then_some(if D == 1 { 1 } else { side });
@@ -483,7 +483,7 @@ mod tests {
             .collect();
         let n = positions.len();
         let s = System::<2> {
-            length: side as f64,
+            sides: [side as f64; 2],
             positions,
             velocities: vec![[0.0; 2]; n],
             radii: vec![0.0; n],
@@ -500,7 +500,7 @@ mod tests {
     /// The ordered pairs per bin by the plain definition: every pair (i, j ≠ i), minimum
     /// image.
     fn all_pairs_counts<const D: usize>(s: &System<D>, r_max: f64, bins: usize) -> Vec<u64> {
-        let r_max = r_max.min(0.5 * s.length);
+        let r_max = r_max.min(0.5 * s.sides[0]);
         let dr = r_max / bins as f64;
         let mut counts = vec![0; bins];
         for (i, a) in s.positions.iter().enumerate() {
@@ -516,11 +516,11 @@ mod tests {
     }
 
     fn assert_counts_match<const D: usize>(s: &System<D>, r_max: f64, bins: usize) {
-        let mut counter = PairCounter::new(s, r_max.min(0.5 * s.length), bins);
+        let mut counter = PairCounter::new(s, r_max.min(0.5 * s.sides[0]), bins);
         let expected = all_pairs_counts(s, r_max, bins);
         let what = format!(
             "{D}D, L = {}, r_max = {r_max}, {:?} rows",
-            s.length, counter.rows
+            s.sides[0], counter.rows
         );
         assert_eq!(counter.ordered_pair_counts(), expected, "{what}");
         // the loops without AVX2 too

@@ -107,7 +107,7 @@ pub fn structure_factor<const D: usize>(system: &System<D>, grid: usize) -> Vec<
             total.2 += count;
         }
     }
-    shell_means(&sums, system.length)
+    shell_means(&sums, crate::structure::cube_side(system, "the structure factor"))
 }
 
 /// The points of the occupied shells from their sums (S, |n|, count): mean k and mean S.
@@ -302,12 +302,13 @@ struct Deposits<const D: usize> {
 impl<const D: usize> Deposits<D> {
     fn new(system: &System<D>, grid: usize) -> Self {
         let g = grid;
-        let h = system.length / g as f64;
+        let length = crate::structure::cube_side(system, "the structure factor");
+        let h = length / g as f64;
         let cic = |r: &[f64; D]| {
             let mut base = [0usize; D];
             let mut frac = [0.0f64; D];
             for a in 0..D {
-                let x = wrap(r[a], system.length) / h;
+                let x = wrap(r[a], length) / h;
                 // x ≥ 0: truncation is the floor (which is a library call on baseline
                 // x86-64), and x/h ≤ G so one subtraction is the remainder
                 let i = x as usize;
@@ -383,13 +384,14 @@ mod tests {
         system: &System<D>,
         g: usize,
     ) -> Vec<StructurePoint> {
-        let h = system.length / g as f64;
+        let length = crate::structure::cube_side(system, "the structure factor");
+        let h = length / g as f64;
         let mut rho = vec![Complex64::new(0.0, 0.0); g.pow(D as u32)];
         for r in &system.positions {
             let mut base = [0usize; D];
             let mut frac = [0.0f64; D];
             for a in 0..D {
-                let x = wrap(r[a], system.length) / h;
+                let x = wrap(r[a], length) / h;
                 let i = x.floor();
                 base[a] = i as usize % g;
                 frac[a] = x - i;
@@ -448,7 +450,7 @@ mod tests {
             sums[shell].1 += (norm2 as f64).sqrt();
             sums[shell].2 += 1;
         }
-        shell_means(&sums, system.length)
+        shell_means(&sums, crate::structure::cube_side(system, "the structure factor"))
     }
 
     fn assert_same(pruned: &[StructurePoint], full: &[StructurePoint], what: &str) {

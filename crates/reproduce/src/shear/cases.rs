@@ -138,7 +138,7 @@ pub(super) fn simulate_in<const D: usize>(case: &Case, seed: u64) -> Result<Run>
         ),
         Method::Dsmc { .. } => (
             EngineSpec::SpatialDsmc(SpatialOptions::default()),
-            point_gas::<D>(n, side, 1.0, 1.0, 1.0, seed),
+            point_gas::<D>(n, [side; D], 1.0, 1.0, 1.0, seed),
         ),
     };
     let engine = engines::build(&spec, system.map_err(engine_error)?, setup)?;

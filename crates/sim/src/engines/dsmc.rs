@@ -207,7 +207,7 @@ fn setup(plan: &Plan, law: Box<dyn Restitution>) -> Setup {
     let s = &plan.description.system;
     Setup {
         law,
-        packing_fraction: s.packing_fraction,
+        packing_fraction: plan.description.packing_fraction(),
         seed: s.seed,
         baths: None,
     }
@@ -351,7 +351,8 @@ fn check_state<const D: usize>(
 ) -> std::result::Result<(), String> {
     super::initial::particles(plan, system)?;
     let s = &plan.description.system;
-    if !same_options || state.packing_fraction() != s.packing_fraction || state.seed() != s.seed {
+    let phi = plan.description.packing_fraction();
+    if !same_options || state.packing_fraction() != phi || state.seed() != s.seed {
         return Err("the DSMC options, packing fraction or seed differ from the run file's".into());
     }
     if in_box {

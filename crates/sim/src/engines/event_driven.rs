@@ -194,25 +194,28 @@ impl Work {
 pub(crate) fn work<const D: usize>(plan: &Plan) -> Work {
     let s = &plan.description.system;
     let n = s.particles as f64;
+    let phi = plan.description.packing_fraction();
     let volume: f64 = plan
         .species
         .iter()
         .map(|x| x.count as f64 * gas::system::ball_volume::<D>(x.radius()))
         .sum::<f64>()
-        / s.packing_fraction;
+        / phi;
     let diameter = plan.species.iter().map(|x| x.diameter).fold(0.0, f64::max);
-    let grid = gas::cells::Grid::<D>::new(
-        volume.powf(1.0 / D as f64),
-        diameter,
-        gas::cells::max_cells(s.particles),
-    );
-    let free_path = gas::theory::mean_free_path::<D>(n / volume, diameter, s.packing_fraction);
+    let sides: [f64; D] = match &s.sides {
+        Some(sides) => std::array::from_fn(|k| sides[k]),
+        None => [volume.powf(1.0 / D as f64); D],
+    };
+    let grid =
+        gas::cells::Grid::<D>::new(&sides, diameter, gas::cells::max_cells(s.particles));
+    let free_path = gas::theory::mean_free_path::<D>(n / volume, diameter, phi);
     let faces = match D {
         1 => 1.0,
         2 => 4.0 / std::f64::consts::PI,
         _ => 1.5,
     };
-    let events_per_collision = 1.0 + 2.0 * faces * free_path / grid.width;
+    let width = grid.width.iter().sum::<f64>() / D as f64;
+    let events_per_collision = 1.0 + 2.0 * faces * free_path / width;
     let frequency =
         crate::species::fastest_collision_frequency(plan).filter(|nu| *nu > 0.0 && nu.is_finite());
     let nu = frequency.unwrap_or(0.0);

@@ -14,24 +14,34 @@ use gas::System;
 /// independently; and the report of a growth.
 pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<GrowthReport>)> {
     let s = &plan.description.system;
-    let phi = s.packing_fraction;
     let weight = plan.particle_weight;
     let Species { diameter, mass, .. } = plan.species[0];
     let closed: [bool; D] = std::array::from_fn(|k| plan.walls.iter().any(|w| w.axis == k));
+    let given: Option<[f64; D]> = s.sides.as_ref().map(|l| std::array::from_fn(|k| l[k]));
+    let phi = plan.description.packing_fraction();
     match &s.species {
+        // Weighted particles (DSMC: points) are placed at the physical packing fraction,
+        // then spread uniformly over the wider box.
         Some(entries) => gas::init::polydisperse_reporting::<D>(
             s.particles,
-            phi,
+            match given {
+                Some(sides) if weight == 1.0 => gas::init::BoxSize::Sides(sides),
+                _ => gas::init::BoxSize::PackingFraction(phi),
+            },
             &species(entries),
             s.temperature,
             s.seed,
             closed,
         )
-        .map(|(system, report)| (widened(system, phi, weight), report)),
+        .map(|(system, report)| match given {
+            Some(sides) if weight != 1.0 => (stretched(system, sides), report),
+            Some(_) => (system, report),
+            None => (widened(system, phi, weight), report),
+        }),
         // Points need not be placed without overlaps.
         None if plan.engine.abilities().point_particles => gas::dsmc::point_gas::<D>(
             s.particles,
-            monodisperse_side::<D>(s.particles, diameter, phi, weight),
+            given.unwrap_or([monodisperse_side::<D>(s.particles, diameter, phi, weight); D]),
             diameter,
             mass,
             s.temperature,
@@ -40,7 +50,10 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
         .map(|system| (system, None)),
         None => gas::init::monodisperse_reporting::<D>(
             s.particles,
-            phi,
+            match given {
+                Some(sides) => gas::init::BoxSize::Sides(sides),
+                None => gas::init::BoxSize::PackingFraction(phi),
+            },
             diameter,
             mass,
             s.temperature,
@@ -48,7 +61,7 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
             closed,
         ),
     }
-    .map_err(|e| Error::input("system", e))
+    .map_err(|e| Error::input(if given.is_some() { "system.box" } else { "system" }, e))
 }
 
 /// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical
@@ -70,13 +83,26 @@ fn widened<const D: usize>(mut system: System<D>, phi: f64, weight: f64) -> Syst
         return system;
     }
     let length = mixture_side::<D>(&system, phi, weight);
-    let scale = length / system.length;
+    let scale = length / system.sides[0];
     for x in &mut system.positions {
         for c in x.iter_mut() {
             *c = gas::system::wrap(*c * scale, length);
         }
     }
-    system.length = length;
+    system.sides = [length; D];
+    system
+}
+
+/// `system` (points placed uniformly) with its positions scaled, axis by axis, into the box
+/// with `sides`.
+fn stretched<const D: usize>(mut system: System<D>, sides: [f64; D]) -> System<D> {
+    let scale: [f64; D] = std::array::from_fn(|k| sides[k] / system.sides[k]);
+    for x in &mut system.positions {
+        for k in 0..D {
+            x[k] = gas::system::wrap(x[k] * scale[k], sides[k]);
+        }
+    }
+    system.sides = sides;
     system
 }
 
@@ -122,32 +148,43 @@ pub(super) fn particles<const D: usize>(
     Ok(())
 }
 
-/// The box side is the one of `[system]` (the spheres' volume at the packing fraction),
-/// exactly for one kind of sphere (the initializer computes it the same way), to the
-/// round-off of the initializer's sum over the particles for a mixture (n ulp).
+/// The box is the one of `[system]`: `system.box` exactly, or the cube of the spheres'
+/// volume at the packing fraction, exactly for one kind of sphere (the initializer
+/// computes it the same way), to the round-off of the initializer's sum over the particles
+/// for a mixture (n ulp).
 pub(super) fn box_side<const D: usize>(
     plan: &Plan,
     system: &System<D>,
 ) -> std::result::Result<(), String> {
     let s = &plan.description.system;
+    if let Some(sides) = &s.sides {
+        if system.sides.as_slice() == sides.as_slice() {
+            return Ok(());
+        }
+        return Err(format!(
+            "box sides {:?} where system.box gives {sides:?}",
+            system.sides
+        ));
+    }
     let weight = plan.particle_weight;
+    let phi = plan.description.packing_fraction();
     let (expected, tolerance) = match &s.species {
         None => {
             let diameter = plan.species[0].diameter;
-            let side = monodisperse_side::<D>(s.particles, diameter, s.packing_fraction, weight);
+            let side = monodisperse_side::<D>(s.particles, diameter, phi, weight);
             (side, 0.0)
         }
         Some(_) => {
-            let side = mixture_side::<D>(system, s.packing_fraction, weight);
+            let side = mixture_side::<D>(system, phi, weight);
             (side, 2.0 * f64::EPSILON * system.len() as f64 * side)
         }
     };
-    if (system.length - expected).abs() <= tolerance {
+    if system.is_cubic() && (system.sides[0] - expected).abs() <= tolerance {
         Ok(())
     } else {
         Err(format!(
-            "box side {} where system.packing_fraction gives {expected}",
-            system.length
+            "box sides {:?} where system.packing_fraction gives {expected}",
+            system.sides
         ))
     }
 }

@@ -123,7 +123,7 @@ fn check_steps(
     let time = match stop {
         Stop::Time(end) => end,
         Stop::CollisionsPerParticle(c) => {
-            let phi = s.packing_fraction;
+            let phi = description.packing_fraction();
             let omega = match s.dimension {
                 1 => enskog_frequency::<1>(phi, diameter, mass, s.temperature),
                 2 => enskog_frequency::<2>(phi, diameter, mass, s.temperature),

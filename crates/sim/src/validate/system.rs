@@ -22,18 +22,7 @@ pub(super) fn check_system(description: &RunDescription) -> Result<Vec<Species>>
             "2 <= N <= 1e8",
         ));
     }
-    let max_phi = gas::init::packing_limit(s.dimension as usize);
-    if !(s.packing_fraction >= MIN_PACKING && s.packing_fraction <= max_phi) {
-        let allowed = format!(
-            "{MIN_PACKING:e} <= phi <= {max_phi} in {} dimensions",
-            s.dimension
-        );
-        return Err(Error::out_of_range(
-            "system.packing_fraction",
-            s.packing_fraction,
-            &allowed,
-        ));
-    }
+    check_box(description)?;
     match &s.species {
         None => {
             in_scale("system.diameter", s.diameter.unwrap_or(1.0))?;
@@ -71,7 +60,82 @@ pub(super) fn check_system(description: &RunDescription) -> Result<Vec<Species>>
         }
     }
     in_scale("system.temperature", s.temperature)?;
-    species_of(description)
+    let species = species_of(description)?;
+    check_packing(description)?;
+    Ok(species)
+}
+
+/// `system.packing_fraction` or `system.box`, one of them: the box one side per dimension,
+/// each in scale.
+fn check_box(description: &RunDescription) -> Result<()> {
+    let s = &description.system;
+    match (&s.packing_fraction, &s.sides) {
+        (Some(_), Some(_)) => Err(Error::input(
+            "system.box",
+            "give either system.packing_fraction (a cube) or system.box (its sides), not both",
+        )),
+        (None, None) => Err(Error::input(
+            "system.packing_fraction",
+            "missing: give system.packing_fraction (a cube) or system.box (its sides)",
+        )),
+        (Some(_), None) => Ok(()),
+        (None, Some(sides)) => {
+            if sides.len() != s.dimension as usize {
+                return Err(Error::out_of_range(
+                    "system.box",
+                    format!("{} sides", sides.len()),
+                    &format!("one side per dimension: {}", s.dimension),
+                ));
+            }
+            for (k, &side) in sides.iter().enumerate() {
+                in_scale(&format!("system.box[{k}]"), side)?;
+            }
+            Ok(())
+        }
+    }
+}
+
+/// `system.box` needs an engine with space (the spatial ones, which have walls too).
+pub(super) fn check_box_engine(
+    description: &RunDescription,
+    engine: &crate::engines::Abilities,
+) -> Result<()> {
+    if description.system.sides.is_some() && !engine.walls {
+        return Err(Error::input(
+            "system.box",
+            "this engine has no space (homogeneous DSMC: only the volume counts); give \
+             system.packing_fraction, or run.engine = \"event-driven\" | \"soft-sphere\" | \
+             run.dsmc_scheme = \"spatial\" for a box with sides of its own",
+        ));
+    }
+    Ok(())
+}
+
+/// The packing fraction, given or of the spheres in the box, within what the initializer
+/// places.
+fn check_packing(description: &RunDescription) -> Result<()> {
+    let s = &description.system;
+    let max_phi = gas::init::packing_limit(s.dimension as usize);
+    let phi = description.packing_fraction();
+    if phi >= MIN_PACKING && phi <= max_phi {
+        return Ok(());
+    }
+    let allowed = format!(
+        "{MIN_PACKING:e} <= phi <= {max_phi} in {} dimensions",
+        s.dimension
+    );
+    match s.packing_fraction {
+        Some(phi) => Err(Error::out_of_range(
+            "system.packing_fraction",
+            phi,
+            &allowed,
+        )),
+        None => Err(Error::out_of_range(
+            "system.box",
+            format!("a box the spheres fill to phi = {phi}"),
+            &allowed,
+        )),
+    }
 }
 
 /// The particles of `[system]` with every default resolved: `system.species` (fractions

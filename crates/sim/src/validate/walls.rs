@@ -124,24 +124,10 @@ pub fn wall_impact_speed(plan: &super::Plan) -> f64 {
         .fold(0.0, f64::max);
     let fall = plan.gravity.as_ref().map_or(0.0, |g| {
         let largest = g.acceleration.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        (2.0 * largest * box_side(&plan.description, &plan.species)).sqrt()
+        let tallest = plan.description.box_sides().into_iter().fold(0.0, f64::max);
+        (2.0 * largest * tallest).sqrt()
     });
     plan.max_impact_speed() * (hottest / t0).sqrt() + 2.0 * wall_speed + fall
-}
-
-/// The box side of the run (the engines' value up to rounding).
-fn box_side(description: &RunDescription, species: &[Species]) -> f64 {
-    let dimension = description.system.dimension as i32;
-    let ball = |d: f64| match dimension {
-        1 => d,
-        2 => std::f64::consts::PI * d * d / 4.0,
-        _ => std::f64::consts::PI * d * d * d / 6.0,
-    };
-    let volume: f64 = species
-        .iter()
-        .map(|s| s.count as f64 * ball(s.diameter))
-        .sum();
-    (volume / description.system.packing_fraction).powf(1.0 / dimension as f64)
 }
 
 /// The walls of the run, checked against the dimension and the engine.
@@ -258,9 +244,10 @@ fn check_sweeps(
     species: &[Species],
 ) -> Result<()> {
     let dimension = description.system.dimension as i32;
-    let length = box_side(description, species);
+    let sides = description.box_sides();
     let largest = species.iter().map(|s| s.diameter).fold(0.0, f64::max);
     for axis in 0..dimension as usize {
+        let length = sides[axis];
         let sweeps: Vec<(usize, f64)> = specs
             .iter()
             .enumerate()

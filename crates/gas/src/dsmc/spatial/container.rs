@@ -35,7 +35,7 @@ impl<const D: usize> SpatialDsmc<D> {
                     "walls in spatial DSMC on one rank",
                 ));
             }
-            w.check_sweeps(self.length, 0.0)?;
+            w.check_sweeps(&self.sides, 0.0)?;
         }
         crate::walls::take_up(walls.as_mut(), self.saved_walls.take())?;
         self.walls = walls;
@@ -68,7 +68,7 @@ impl<const D: usize> SpatialDsmc<D> {
         let flight = Flight {
             walls,
             g: self.gravity.unwrap_or([0.0; D]),
-            length: self.length,
+            sides: self.sides,
             start: self.time,
             dt,
             seed: self.seed,
@@ -104,7 +104,7 @@ impl<const D: usize> SpatialDsmc<D> {
 struct Flight<'a, const D: usize> {
     walls: &'a Walls<D>,
     g: Vector<D>,
-    length: f64,
+    sides: Vector<D>,
     start: f64,
     dt: f64,
     seed: u64,
@@ -114,7 +114,7 @@ struct Flight<'a, const D: usize> {
 impl<const D: usize> Flight<'_, D> {
     /// Streams particle `p` (mass `mass`) for the step, wall contacts included.
     fn stream(&self, p: &mut Simulator<D>, mass: f64, sums: &mut [ContactSums]) {
-        let (walls, g, length) = (self.walls, &self.g, self.length);
+        let (walls, g, sides) = (self.walls, &self.g, &self.sides);
         let mut stream: Option<Stream> = None;
         let key = state_key(p);
         let (mut x, mut v) = (p.position, p.velocity);
@@ -136,7 +136,7 @@ impl<const D: usize> Flight<'_, D> {
             let plane = walls.motion(index).map_or(0.0, |m| m.displacement(t));
             x[wall.axis] = match wall.side {
                 Side::Low => plane,
-                Side::High => length - plane,
+                Side::High => sides[wall.axis] - plane,
             };
             let stream = stream
                 .get_or_insert_with(|| Stream::new(self.seed, Purpose::Walls, self.step, key));
@@ -152,10 +152,10 @@ impl<const D: usize> Flight<'_, D> {
         }
         // Positions stay in [0, L) on every axis (check-points and cells expect it): a
         // point on the high wall is kept a rounding below it.
-        let below = f64::from_bits(length.to_bits() - 1);
         for (k, c) in x.iter_mut().enumerate() {
+            let length = sides[k];
             *c = if walls.closed(k) {
-                c.clamp(0.0, below)
+                c.clamp(0.0, f64::from_bits(length.to_bits() - 1))
             } else {
                 wrap(*c, length)
             };
@@ -198,7 +198,7 @@ impl<const D: usize> Flight<'_, D> {
         x[k] = if inward > 0.0 {
             plane
         } else {
-            self.length - plane
+            self.sides[k] - plane
         };
         v[k] = inward * speed;
         // The wall's impulse on the point along k, m dv − m g dt, given back to the wall.
@@ -212,9 +212,10 @@ impl<const D: usize> Flight<'_, D> {
 
     /// The first wall contact within `left` of a point at x with velocity v: (delay, wall).
     fn first_contact(&self, x: &Vector<D>, v: &Vector<D>, left: f64) -> Option<(f64, usize)> {
-        let (walls, g, length) = (self.walls, &self.g, self.length);
+        let (walls, g) = (self.walls, &self.g);
         let mut first: Option<(f64, usize)> = None;
         for k in (0..D).filter(|&k| walls.closed(k)) {
+            let length = self.sides[k];
             let reach = if g[k] != 0.0 {
                 Some(fall_exit(x[k], v[k], g[k], 0.0, length))
             } else if v[k] < 0.0 {
@@ -241,6 +242,7 @@ impl<const D: usize> Flight<'_, D> {
                 continue;
             };
             let k = wall.axis;
+            let length = self.sides[k];
             let (y, w, c) = match wall.side {
                 Side::Low => (x[k], v[k], g[k]),
                 Side::High => (length - x[k], -v[k], -g[k]),

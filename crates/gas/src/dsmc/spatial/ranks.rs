@@ -46,14 +46,13 @@ impl<const D: usize> SpatialDsmc<D> {
     /// ranks and receives the arrivals, and sorts the rank's particles by cell in the
     /// global order; returns where each non-empty cell starts.
     pub(super) fn stream_and_sort_over_ranks(&mut self, dt: f64) -> Vec<usize> {
-        let (length, cells) = (self.length, self.cells_per_side);
-        let width = self.cell_width();
-        let key = |p: &Simulator<D>| cell_key(&p.position, width, cells);
+        let (sides, cells, width) = (self.sides, self.cells, self.widths());
+        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
         // The most significant digit of the key.
-        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width, cells);
+        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width[D - 1], cells[D - 1]);
         let stream = |p: &mut Simulator<D>| {
             for k in 0..D {
-                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, length);
+                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, sides[k]);
             }
         };
         if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {

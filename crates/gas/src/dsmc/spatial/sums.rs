@@ -40,7 +40,7 @@ impl<const D: usize> SpatialDsmc<D> {
             &self.simulators,
             &self.species,
             self.total,
-            self.length.powi(D as i32),
+            crate::system::box_volume(&self.sides),
             self.comm.as_ref(),
             &mut self.traffic,
         ))
