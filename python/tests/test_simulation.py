@@ -272,6 +272,24 @@ def test_profiles_as_a_frame_like_profiles_csv(tmp_path):
         haff.Simulation(dict(boxed, output={"profiles": {"axis": "z", "bins": 8}}))
 
 
+def test_a_box_with_sides_of_its_own():
+    """`system.box` from a dict: the disks fill the slabs of the long axis (x, 40 wide)
+    of a 40 x 10 channel; giving the packing fraction too is refused naming the key."""
+    channel = {"system": {"dimension": 2, "particles": 150, "box": [40.0, 10.0], "seed": 2},
+               "collision": {"law": "constant", "restitution": 0.9},
+               "run": {"collisions_per_particle": 5.0, "samples": 3},
+               "output": {"profiles": {"axis": "x", "bins": 4}},
+               "wall": [{"axis": "y", "side": "low", "kind": "elastic"},
+                        {"axis": "y", "side": "high", "kind": "elastic"}]}
+    frame = haff.Simulation(channel).run(progress=False).profiles()
+    assert sorted(frame["position"].unique()) == [5.0, 15.0, 25.0, 35.0]
+    for _, sample in frame.groupby("time"):
+        assert sample["density"].sum() * 10.0 * 10.0 == pytest.approx(150, rel=1e-12)
+    both = dict(channel, system=dict(channel["system"], packing_fraction=0.1))
+    with pytest.raises(haff.ConfigError, match=r"system\.box"):
+        haff.Simulation(both)
+
+
 def test_write_gives_the_files_of_the_command(tmp_path, cli):
     config = CONFIGS["event-driven"]
     sim = haff.Simulation(config).run(progress=False)

@@ -6,7 +6,7 @@
 //! keeps its list links inside its particle records instead (one cache line per
 //! neighbour visited) and uses [`Grid`] alone.
 
-use crate::system::{minimum_image, wrap, Vector};
+use crate::system::{minimum_image_within, wrap, Vector};
 
 /// The end of a cell list.
 pub const NONE: u32 = u32::MAX;
@@ -18,6 +18,12 @@ pub struct Grid<const D: usize> {
     pub per_side: [usize; D],
     /// Width of a cell along each axis.
     pub width: [f64; D],
+    /// The box's sides (width times cells).
+    pub sides: [f64; D],
+    /// Half the sides (the minimum image's bounds).
+    pub halves: [f64; D],
+    /// The fewest cells along an axis (one test in the scans instead of one per axis).
+    pub fewest: usize,
 }
 
 /// The most cells a grid for `n` particles has: 1024 per particle (and 2^20 for few): a
@@ -47,12 +53,19 @@ impl<const D: usize> Grid<D> {
                 if total <= max_cells as f64 {
                     break per;
                 }
-                width *= (total / max_cells as f64).powf(1.0 / D as f64).max(1.0 + 1e-9);
+                width *= (total / max_cells as f64)
+                    .powf(1.0 / D as f64)
+                    .max(1.0 + 1e-9);
             }
         };
+        let width: [f64; D] = std::array::from_fn(|k| sides[k] / per_side[k] as f64);
+        let sides: [f64; D] = std::array::from_fn(|k| width[k] * per_side[k] as f64);
         Grid {
             per_side,
-            width: std::array::from_fn(|k| sides[k] / per_side[k] as f64),
+            width,
+            sides,
+            halves: sides.map(|l| 0.5 * l),
+            fewest: per_side.iter().copied().min().unwrap_or(1),
         }
     }
 
@@ -63,19 +76,13 @@ impl<const D: usize> Grid<D> {
 
     /// The fewest cells along any axis.
     pub fn fewest_per_side(&self) -> usize {
-        self.per_side.iter().copied().min().unwrap_or(1)
-    }
-
-    /// The box's sides.
-    pub fn sides(&self) -> Vector<D> {
-        std::array::from_fn(|k| self.width[k] * self.per_side[k] as f64)
+        self.fewest
     }
 
     /// The cell coordinates of a position (wrapped into the box first).
     pub fn coords_of(&self, p: &Vector<D>) -> [u32; D] {
         std::array::from_fn(|k| {
-            let length = self.width[k] * self.per_side[k] as f64;
-            let c = (wrap(p[k], length) / self.width[k]) as usize;
+            let c = (wrap(p[k], self.sides[k]) / self.width[k]) as usize;
             c.min(self.per_side[k] - 1) as u32
         })
     }
@@ -120,6 +127,31 @@ impl<const D: usize> Grid<D> {
     #[inline]
     pub fn neighbor_cells(&self, c: &[u32; D]) -> ([usize; 27], usize) {
         let mut cells = [0; 27];
+        if self.fewest >= 3 {
+            // Three cells along every axis (the engines' case), the loop unrolled.
+            // Linear-index contributions of coordinates c-1, c, c+1 along each axis.
+            let mut stride = 1;
+            let parts: [[usize; 3]; D] = std::array::from_fn(|k| {
+                let (x, n) = (c[k] as usize, self.per_side[k]);
+                let below = if x == 0 { n - 1 } else { x - 1 };
+                let above = if x + 1 == n { 0 } else { x + 1 };
+                let part = [below * stride, x * stride, above * stride];
+                stride *= n;
+                part
+            });
+            let mut count = 1;
+            for part in &parts {
+                // Each existing entry spawns three: (entry + part[0], + part[1], + part[2]).
+                for e in (0..count).rev() {
+                    let base = cells[e];
+                    cells[3 * e] = base + part[0];
+                    cells[3 * e + 1] = base + part[1];
+                    cells[3 * e + 2] = base + part[2];
+                }
+                count *= 3;
+            }
+            return (cells, count);
+        }
         if self.per_side.iter().all(|&n| n < 3) {
             // Every cell is adjacent: each once, in linear order.
             let count = self.cells();
@@ -130,8 +162,8 @@ impl<const D: usize> Grid<D> {
         }
         let mut stride = 1;
         let mut count = 1;
-        for k in 0..D {
-            let (part, width) = self.adjacent_parts(c[k] as usize, k, stride);
+        for (k, &ck) in c.iter().enumerate() {
+            let (part, width) = self.adjacent_parts(ck as usize, k, stride);
             stride *= self.per_side[k];
             // Each existing entry spawns `width`: (entry + part[0], + part[1], ...).
             for e in (0..count).rev() {
@@ -185,14 +217,14 @@ impl<const D: usize> Grid<D> {
     pub fn exit(&self, c: &[u32; D], p: &Vector<D>, v: &Vector<D>) -> Option<(f64, usize, bool)> {
         let mut best: Option<(f64, usize, bool)> = None;
         for k in 0..D {
-            if v[k] == 0.0 || self.per_side[k] < 2 {
+            if v[k] == 0.0 || (self.fewest < 2 && self.per_side[k] < 2) {
                 continue;
             }
             let width = self.width[k];
-            let length = width * self.per_side[k] as f64;
             // Offset from the cell's lower face, robust to positions just across a wrap.
             let centre = (c[k] as f64 + 0.5) * width;
-            let x = minimum_image(p[k] - centre, length) + 0.5 * width;
+            let x =
+                minimum_image_within(p[k] - centre, self.sides[k], self.halves[k]) + 0.5 * width;
             let dt = if v[k] > 0.0 {
                 (width - x) / v[k]
             } else {
@@ -305,14 +337,19 @@ mod tests {
     /// Neighbour and layer cells agree with a brute-force periodic distance test.
     #[test]
     fn neighbour_cells_are_the_adjacent_ones() {
-        let shapes = [1usize, 2, 3, 4, 7]
-            .map(|n| [n; 3])
-            .into_iter()
-            .chain([[1, 3, 5], [4, 2, 3], [3, 3, 6], [5, 4, 3]]);
+        let shapes = [1usize, 2, 3, 4, 7].map(|n| [n; 3]).into_iter().chain([
+            [1, 3, 5],
+            [4, 2, 3],
+            [3, 3, 6],
+            [5, 4, 3],
+        ]);
         for per_side in shapes {
             let grid = Grid::<3> {
                 per_side,
                 width: [1.0; 3],
+                sides: per_side.map(|n| n as f64),
+                halves: per_side.map(|n| 0.5 * n as f64),
+                fewest: per_side.into_iter().min().unwrap(),
             };
             let adjacent = |a: &[u32; 3], b: &[u32; 3]| {
                 (0..3).all(|k| {

@@ -86,11 +86,40 @@ pub const COLLAPSE_COLLISIONS_PER_PARTICLE: u64 = 1000;
 /// overlapped misses win (docs/event-driven.md). The choice changes no event.
 const PREFETCH_OCCUPANCY: f64 = 0.15;
 
+/// The minimum image in the box: its sides and half sides, copied into the pair loops
+/// (loaded once per scan, not once per pair).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MinimumImage<const D: usize> {
+    sides: Vector<D>,
+    halves: Vector<D>,
+}
+
+impl<const D: usize> MinimumImage<D> {
+    /// The separation b - a of two positions less than 1.5 L apart per component (see
+    /// [`EventDriven::separation`]).
+    #[inline(always)]
+    fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+        std::array::from_fn(|k| {
+            let (length, half) = (self.sides[k], self.halves[k]);
+            let d = b[k] - a[k];
+            if d > half {
+                d - length
+            } else if d < -half {
+                d + length
+            } else {
+                d
+            }
+        })
+    }
+}
+
 /// The event-driven engine.
 pub struct EventDriven<const D: usize> {
     /// The box; positions, velocities, radii and masses live in `particles` and are copied
     /// here only when [`EventDriven::system`] is called.
     system: System<D>,
+    /// The box's sides and half sides (a copy the pair loops keep in registers).
+    image: MinimumImage<D>,
     particles: Vec<Particle<D>>,
     /// The contact distance if all spheres have the same radius (no radius lookups).
     uniform_sigma: Option<f64>,
@@ -249,6 +278,10 @@ impl<const D: usize> EventDriven<D> {
             }
         };
         let mut engine = EventDriven {
+            image: MinimumImage {
+                sides: system.sides,
+                halves: system.sides.map(|l| 0.5 * l),
+            },
             system,
             particles,
             uniform_sigma,
@@ -339,18 +372,7 @@ impl<const D: usize> EventDriven<D> {
     /// the pairs they see lie in adjacent cells, whose nearest image is the direct one.
     #[inline]
     fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
-        let sides = &self.system.sides;
-        std::array::from_fn(|k| {
-            let (length, half) = (sides[k], 0.5 * sides[k]);
-            let d = b[k] - a[k];
-            if d > half {
-                d - length
-            } else if d < -half {
-                d + length
-            } else {
-                d
-            }
-        })
+        self.image.separation(a, b)
     }
 
     fn bring_to_now(&mut self, i: usize) {
@@ -381,7 +403,7 @@ impl<const D: usize> EventDriven<D> {
                 if self.across_a_wall(&pi, &self.particles[j].position_at(self.time)) {
                     continue;
                 }
-                if let Some(dt) = self.collision_delay(&pi, &vi, j, self.sigma(i, j)) {
+                if let Some(dt) = self.collision_delay(&pi, &vi, j, self.sigma(i, j), &self.image) {
                     let t = self.time + dt;
                     let scheduled = self.queue.time_of(i).min(self.queue.time_of(j));
                     if t < scheduled * (1.0 - 1e-12) - 1e-12 {
@@ -397,9 +419,9 @@ impl<const D: usize> EventDriven<D> {
     /// meet there).
     fn across_a_wall(&self, a: &Vector<D>, b: &Vector<D>) -> bool {
         let sides = &self.system.sides;
-        self.walls.as_ref().is_some_and(|w| {
-            (0..D).any(|k| w.closed(k) && (b[k] - a[k]).abs() > 0.5 * sides[k])
-        })
+        self.walls
+            .as_ref()
+            .is_some_and(|w| (0..D).any(|k| w.closed(k) && (b[k] - a[k]).abs() > 0.5 * sides[k]))
     }
 
     /// Processes the next event; false if there is none (all particles at rest).

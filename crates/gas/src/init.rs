@@ -103,9 +103,7 @@ pub fn monodisperse_reporting<const D: usize>(
     let size = size.into();
     size.check()?;
     let volume = n as f64 * ball_volume::<D>(0.5 * diameter);
-    let (sides, phi) = size.resolve(volume, |phi| {
-        monodisperse_box_side::<D>(n, diameter, phi)
-    });
+    let (sides, phi) = size.resolve(volume, |phi| monodisperse_box_side::<D>(n, diameter, phi));
     check_count_and_packing::<D>(n, phi, size.key())?;
     let mut rng = Pcg64::seed_from_u64(seed);
     let (positions, grown_report) = if phi > lattice_limit(D) {
@@ -624,12 +622,15 @@ fn maxwellian<const D: usize>(
 /// The order of `positions` along a Morton (Z-order) curve of cells `width` wide, so that
 /// neighbours in space are neighbours in memory (fewer cache misses in large systems).
 /// Stable: particles in the same cell keep their order.
-fn space_order<const D: usize>(positions: &[Vector<D>], sides: Vector<D>, width: f64) -> Vec<usize> {
+fn space_order<const D: usize>(
+    positions: &[Vector<D>],
+    sides: Vector<D>,
+    width: f64,
+) -> Vec<usize> {
     let cells: [f64; D] = std::array::from_fn(|k| (sides[k] / width).floor().max(1.0));
     let key = |p: &Vector<D>| -> u64 {
-        let c: [u64; D] = std::array::from_fn(|k| {
-            ((p[k] / sides[k] * cells[k]) as u64).min(cells[k] as u64 - 1)
-        });
+        let c: [u64; D] =
+            std::array::from_fn(|k| ((p[k] / sides[k] * cells[k]) as u64).min(cells[k] as u64 - 1));
         (0..21).fold(0u64, |acc, bit| {
             (0..D).fold(acc, |acc, k| {
                 acc | (((c[k] >> bit) & 1) << (bit * D as u64 + k as u64))

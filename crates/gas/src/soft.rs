@@ -386,7 +386,9 @@ impl<const D: usize> SoftSphere<D> {
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
                 let d2: f64 = (0..D)
-                    .map(|k| minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k]).powi(2))
+                    .map(|k| {
+                        minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k]).powi(2)
+                    })
                     .sum();
                 let xi = (s.radii[i] + s.radii[j] - d2.sqrt()).max(0.0);
                 0.4 * self.material.elastic_constant(s.radii[i], s.radii[j]) * xi.powf(2.5)

@@ -178,8 +178,13 @@ pub fn monodisperse_box_side<const D: usize>(n: usize, diameter: f64, phi: f64) 
 /// x wrapped into [-L/2, L/2].
 #[inline]
 pub fn minimum_image(x: f64, length: f64) -> f64 {
+    minimum_image_within(x, length, 0.5 * length)
+}
+
+/// [`minimum_image`] with the half side `half` = L / 2 given (computed once for a loop).
+#[inline]
+pub fn minimum_image_within(x: f64, length: f64, half: f64) -> f64 {
     // Comparisons first: round() is a library call on baseline x86-64.
-    let half = 0.5 * length;
     if (-half..=half).contains(&x) {
         x
     } else {

@@ -96,7 +96,9 @@ fn check_mixture<const D: usize>(s: &System<D>, phi: f64, t: f64, species: &[Spe
         assert!((tk / t - 1.0).abs() < 0.15, "species {k}: T = {tk}");
     }
     for i in 0..n {
-        assert!(s.positions[i].iter().all(|&x| (0.0..s.sides[0]).contains(&x)));
+        assert!(s.positions[i]
+            .iter()
+            .all(|&x| (0.0..s.sides[0]).contains(&x)));
         for j in i + 1..n {
             let r = s.separation(&s.positions[i], &s.positions[j]);
             let sigma = s.radii[i] + s.radii[j];

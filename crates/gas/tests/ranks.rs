@@ -228,3 +228,57 @@ fn velocity_statistics_are_the_gathered_gas_s() {
         }
     }
 }
+
+/// A container on ranks: a 2D column in a box of sides 30 x 60 (the slabs cut across the
+/// walls' axis y), a vibrating floor, a thermal ceiling, thermal side walls on x, gravity
+/// along y. Each rank streams its particles against the walls (thermal draws keyed by the
+/// particle, not the rank) and the walls' tallies are summed over the ranks exactly: the
+/// state, counters and every wall's tallies are the single process's, bit for bit, on 1 to
+/// 4 ranks.
+#[test]
+fn a_container_on_ranks_is_the_single_process_run() {
+    use gas::walls::{Motion, Side, Wall, WallKind, WallRecord, Walls, Waveform};
+    let system = point_gas::<2>(4000, [30.0, 60.0], 1.0, 1.0, 1.0, 11).unwrap();
+    let options = SpatialOptions::default();
+    let walls = || {
+        let wall = |axis, side, kind| Wall { axis, side, kind };
+        let floor = WallKind::Vibrating {
+            law: Box::new(Constant::new(0.9).unwrap()),
+            motion: Motion {
+                amplitude: 0.5,
+                frequency: 0.3,
+                waveform: Waveform::Sine,
+            },
+        };
+        let thermal = || WallKind::Thermal { temperature: 1.5 };
+        let list = vec![
+            wall(1, Side::Low, floor),
+            wall(1, Side::High, thermal()),
+            wall(0, Side::Low, thermal()),
+            wall(0, Side::High, thermal()),
+        ];
+        Walls::new(list, 7).unwrap()
+    };
+    let run = |comm: Arc<dyn Communicator>| -> (End<2>, Vec<WallRecord>) {
+        let mut e =
+            SpatialDsmc::distributed(system.clone(), 0.05, law(), 7, options, comm).unwrap();
+        e.set_walls(Some(walls())).unwrap();
+        e.set_gravity(Some([0.0, -0.05]), 1e-3).unwrap();
+        e.run_collisions(40_000);
+        let records = e.walls().unwrap();
+        (end(&mut e), records)
+    };
+    let want = run(Arc::new(gas::parallel::Local));
+    assert!(
+        want.1.iter().all(|w| w.tally.collisions > 100),
+        "{:?}",
+        want.1
+    );
+    for ranks in [2, 3, 4] {
+        let ends = InProcess::run(ranks, |comm| run(Arc::new(comm)));
+        for got in &ends {
+            same(&got.0, &want.0, &format!("{ranks} ranks in a container"));
+            assert_eq!(got.1, want.1, "{ranks} ranks: the walls' tallies");
+        }
+    }
+}

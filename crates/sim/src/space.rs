@@ -143,8 +143,9 @@ fn every(key: &str, k: usize) -> Result<()> {
 }
 
 /// `fields_NNNNNN.png`: the density and vorticity maps of a field sample ([`crate::maps`]),
-/// the whole box in 2D, the mid-plane layer of cells at z = L/2 in 3D, nothing in 1D; axes
-/// in units of the largest particle diameter.
+/// the whole box in 2D, the mid-plane layer of cells at z = L/2 in 3D, nothing in 1D (nor
+/// in a box of unequal sides: the maps are square); axes in units of the largest particle
+/// diameter.
 fn write_maps<const D: usize>(
     path: &Path,
     system: &gas::system::System<D>,
@@ -152,6 +153,9 @@ fn write_maps<const D: usize>(
     time: f64,
     cpp: f64,
 ) -> Result<()> {
+    if !system.is_cubic() {
+        return Ok(());
+    }
     let mean_density = system.len() as f64 / system.volume();
     let Some((density, vorticity)) = maps::plane(fields, mean_density) else {
         return Ok(());

@@ -109,7 +109,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let stop = run::stop(r)?;
     let engine = engines::spec(description, &species, stop)?;
     let abilities = engine.abilities();
-    system::check_box_engine(description, &abilities)?;
+    system::check_box_engine(description, &abilities, &species)?;
     run::check_histograms(r, stop)?;
     crate::space::check_output(description, &abilities)?;
     run::check_ranks(r, &abilities)?;

@@ -42,7 +42,7 @@ const SEEDS: [&str; 12] = [
     "[system]\nparticles = 40\npacking_fraction = 0.1\ndiameter = 2e-3\ntemperature = 1e-5\n\
      [collision]\nlaw = \"viscoelastic\"\nmaterial = \"ice\"\ndissipative_constant = 1e-9\n\
      [run]\nengine = \"soft-sphere\"\nend_time = 1e-4\nsamples = 3\ntime_step = 2e-7\n",
-    "[system]\ndimension = 2\nparticles = 60\npacking_fraction = 0.1\n\
+    "[system]\ndimension = 2\nparticles = 60\nbox = [20.0, 40.0]\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
      [run]\ncollisions_per_particle = 5\nsamples = 4\n\
      [output]\nprofiles = { axis = \"y\", bins = 6 }\n\
@@ -55,7 +55,7 @@ const SEEDS: [&str; 12] = [
      [field]\ngravity = [0.0, -1.0]\nrest_height = 1e-3\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"vibrating\"\namplitude = 0.3\nfrequency = 1.0\nwaveform = \"triangle\"\n\
      [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"elastic\"\n",
-    "[system]\ndimension = 2\nparticles = 200\npacking_fraction = 0.05\n\
+    "[system]\ndimension = 2\nparticles = 200\nbox = [40.0, 80.0]\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
      [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 3\nsamples = 3\n\
      [field]\ngravity = [0.0, -0.1]\n\
@@ -70,7 +70,7 @@ const SEEDS: [&str; 12] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 42] = [
+const KEYS: [&str; 43] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -113,6 +113,7 @@ const KEYS: [&str; 42] = [
     "field",
     "gravity",
     "rest_height",
+    "box",
 ];
 
 /// Values of every TOML type, in and out of range.

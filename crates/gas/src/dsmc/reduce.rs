@@ -158,3 +158,39 @@ fn all_ranks_sum(values: &mut [i64], comm: &dyn Communicator, traffic: &mut Traf
         traffic.communication_seconds += clock.elapsed().as_secs_f64();
     }
 }
+
+/// The walls' contact sums of a step over all ranks, exactly (the counts and the limbs of
+/// every exact sum in one all-reduce): every rank then holds the same totals, those of the
+/// run in one process.
+pub(crate) fn contact_sums_over_ranks(
+    sums: &[crate::walls::ContactSums],
+    comm: &dyn Communicator,
+    traffic: &mut Traffic,
+) -> Vec<crate::walls::ContactSums> {
+    let width = 2 + 3 * (LIMBS + 1);
+    let mut values: Vec<i64> = Vec::with_capacity(width * sums.len());
+    for s in sums {
+        values.push(s.collisions as i64);
+        values.push(s.lifts as i64);
+        for sum in [&s.momentum, &s.energy, &s.lift_energy] {
+            values.extend(sum.to_limbs());
+        }
+    }
+    all_ranks_sum(&mut values, comm, traffic);
+    values
+        .chunks_exact(width)
+        .map(|v| {
+            let limbs = |i: usize| {
+                let start = 2 + i * (LIMBS + 1);
+                ExactSum::from_limbs(&v[start..start + LIMBS + 1])
+            };
+            crate::walls::ContactSums {
+                collisions: v[0] as u64,
+                lifts: v[1] as u64,
+                momentum: limbs(0),
+                energy: limbs(1),
+                lift_energy: limbs(2),
+            }
+        })
+        .collect()
+}

@@ -418,8 +418,8 @@ impl<const D: usize> SpatialDsmc<D> {
         let cell_count = self.cell_count();
         let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
         let stream = |p: &mut Simulator<D>| {
-            for k in 0..D {
-                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, sides[k]);
+            for (k, x) in p.position.iter_mut().enumerate() {
+                *x = wrap(*x + p.velocity[k] * dt, sides[k]);
             }
         };
         let starts = if self.comm.size() == 1 && self.walls.is_some() {
@@ -429,6 +429,10 @@ impl<const D: usize> SpatialDsmc<D> {
         } else if self.comm.size() == 1 {
             self.sorter
                 .update_and_sort(&mut self.simulators, cell_count, stream, key)
+        } else if self.walls.is_some() {
+            // Each rank streams its particles in the container, then they migrate.
+            self.stream_in_container(dt);
+            self.stream_and_sort_over_ranks(0.0)
         } else {
             self.stream_and_sort_over_ranks(dt)
         };
@@ -443,8 +447,8 @@ impl<const D: usize> SpatialDsmc<D> {
         } else {
             width.iter().product()
         };
-        let pair_rate =
-            theory::cross_section_factor::<D>() * self.species.max_weight * self.weight / cell_volume;
+        let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
+            / cell_volume;
         let (seed, step, species) = (self.seed, self.steps, &self.species);
         let results: Vec<(SpeciesTally, Moments<D>)> = groups
             .into_par_iter()
@@ -486,9 +490,9 @@ impl<const D: usize> SpatialDsmc<D> {
 /// Linear index of the cell holding x (in [0, L)^D): the last axis most significant.
 #[inline]
 fn cell_key<const D: usize>(x: &Vector<D>, width: &[f64; D], cells: &[u64; D]) -> u64 {
-    (0..D)
-        .rev()
-        .fold(0, |key, k| key * cells[k] + cell_index(x[k], width[k], cells[k]))
+    (0..D).rev().fold(0, |key, k| {
+        key * cells[k] + cell_index(x[k], width[k], cells[k])
+    })
 }
 
 /// The index along one axis of the cell holding coordinate x (in [0, L)).

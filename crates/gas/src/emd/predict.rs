@@ -7,17 +7,18 @@ use crate::system::{dot, Vector};
 
 impl<const D: usize> EventDriven<D> {
     /// Time from now until a sphere at `pi` with velocity `vi` touches j (contact
-    /// distance `sigma`), if they approach.
-    #[inline]
+    /// distance `sigma`), if they approach. (Always inlined: the pair loop's body.)
+    #[inline(always)]
     pub(super) fn collision_delay(
         &self,
         pi: &Vector<D>,
         vi: &Vector<D>,
         j: usize,
         sigma: f64,
+        image: &super::MinimumImage<D>,
     ) -> Option<f64> {
         let pj = &self.particles[j];
-        let r = self.separation(pi, &pj.position_at(self.time));
+        let r = image.separation(pi, &pj.position_at(self.time));
         let v: Vector<D> = std::array::from_fn(|k| pj.velocity[k] - vi[k]);
         let b = dot(&r, &v);
         if b >= 0.0 {
@@ -39,7 +40,8 @@ impl<const D: usize> EventDriven<D> {
         self.predict_crossing(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
-        self.for_each_neighbor(i, |j| self.consider(i, &pi, &vi, j, &mut best));
+        let image = self.image;
+        self.for_each_neighbor(i, |j| self.consider(i, &pi, &vi, j, &mut best, &image));
         self.keep_if_earlier(i, best);
     }
 
@@ -57,7 +59,8 @@ impl<const D: usize> EventDriven<D> {
                 let (pi, vi) = this.now(i);
                 let exit = this.exit_of(i, &pi, &vi);
                 let mut best = Best::NONE;
-                this.for_each_neighbor(i, |j| this.consider(i, &pi, &vi, j, &mut best));
+                let image = this.image;
+                this.for_each_neighbor(i, |j| this.consider(i, &pi, &vi, j, &mut best, &image));
                 (exit, best)
             })
             .collect();
@@ -81,14 +84,14 @@ impl<const D: usize> EventDriven<D> {
         self.predict_crossing(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
-        let cell = self.particles[i].cell;
+        let (cell, image) = (self.particles[i].cell, self.image);
         let (mut cells, mut count) = self.grid.layer_cells(&cell, dim, up);
         if let Some(walls) = &self.walls {
             count = self.keep_inside(walls, &cell, &mut cells, count);
         }
         self.prefetch_heads(&cells[..count]);
         for &cell in &cells[..count] {
-            self.for_each_in_cell(cell, |j| self.consider(i, &pi, &vi, j, &mut best));
+            self.for_each_in_cell(cell, |j| self.consider(i, &pi, &vi, j, &mut best, &image));
         }
         self.keep_if_earlier(i, best);
     }
@@ -402,9 +405,10 @@ impl<const D: usize> EventDriven<D> {
         vi: &Vector<D>,
         j: usize,
         best: &mut Best,
+        image: &super::MinimumImage<D>,
     ) {
         if j != i {
-            if let Some(dt) = self.collision_delay(pi, vi, j, self.sigma(i, j)) {
+            if let Some(dt) = self.collision_delay(pi, vi, j, self.sigma(i, j), image) {
                 if self.time + dt < best.time {
                     *best = Best {
                         time: self.time + dt,

@@ -300,7 +300,8 @@ impl<const D: usize> Grower<D> {
                     return;
                 }
                 let q = self.unwrapped(j);
-                let r: Vector<D> = std::array::from_fn(|k| minimum_image(q[k] - p[k], self.sides[k]));
+                let r: Vector<D> =
+                    std::array::from_fn(|k| minimum_image(q[k] - p[k], self.sides[k]));
                 let w: Vector<D> = std::array::from_fn(|k| self.velocity[j][k] - v[k]);
                 let contact = self.radius[i] + self.radius[j];
                 let (sigma, a) = (contact * s, contact * self.rate);

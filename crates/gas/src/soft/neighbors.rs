@@ -12,7 +12,7 @@ use crate::cells::{max_cells, Grid};
 /// per side), whose particles are consecutive in the counting sort: 9 ranges in 3D in
 /// place of 27 cells.
 fn neighbor_rows<const D: usize>(
-    per_side: &[usize; D],
+    per_side: [usize; D],
     c: &[u32; D],
 ) -> ([(usize, usize); 18], usize) {
     let near = |x: usize, n: usize| -> ([usize; 3], usize) {
@@ -25,13 +25,21 @@ fn neighbor_rows<const D: usize>(
     // Linear index of the start of each row (coordinate 0 along dimension 0).
     let (mut bases, mut count) = ([0usize; 9], 1);
     let mut stride = per_side[0];
+    // Three rows along every axis (the usual case): the spawning loop unrolled.
+    let three = per_side.iter().all(|&n| n >= 3);
     for (d, &x) in c.iter().enumerate().skip(1) {
         let (values, m) = near(x as usize, per_side[d]);
         // Each row start spawns m (in place, from the last).
         for e in (0..count).rev() {
             let base = bases[e];
-            for (v, &value) in values[..m].iter().enumerate() {
-                bases[e * m + v] = base + value * stride;
+            if three {
+                for (v, &value) in values.iter().enumerate() {
+                    bases[e * 3 + v] = base + value * stride;
+                }
+            } else {
+                for (v, &value) in values[..m].iter().enumerate() {
+                    bases[e * m + v] = base + value * stride;
+                }
             }
         }
         count *= m;
@@ -155,7 +163,7 @@ impl NeighborList {
         }
         self.pairs.clear();
         for (i, x) in system.positions.iter().enumerate() {
-            let (rows, count) = neighbor_rows(&grid.per_side, &coords[i]);
+            let (rows, count) = neighbor_rows(grid.per_side, &coords[i]);
             for &(first, end) in &rows[..count] {
                 for &j in &members[start[first] as usize..start[end] as usize] {
                     let j = j as usize;

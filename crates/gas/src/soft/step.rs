@@ -13,8 +13,7 @@ use crate::system::{minimum_image, wrap, Vector};
 /// d = x_j − x_i for coordinates in [0, L) (|d| < L), as [`minimum_image`] but without
 /// its rounding (select instructions instead of branches in the pair loop).
 #[inline(always)]
-fn image_of_difference(d: f64, length: f64) -> f64 {
-    let half = 0.5 * length;
+fn image_of_difference(d: f64, length: f64, half: f64) -> f64 {
     if d > half {
         d - length
     } else if d < -half {
@@ -109,10 +108,12 @@ impl<const D: usize> SoftSphere<D> {
         // far from contact (most of them); r_i + r_j <= 2 r_max also in floating point.
         let widest = 2.0 * self.neighbors.largest_radius;
         let widest2 = widest * widest;
+        // The sides and half sides out of the pair loop.
+        let (sides, halves) = (s.sides, s.sides.map(|l| 0.5 * l));
         for &(i, j) in &self.neighbors.pairs {
             let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
             let d2: f64 = (0..D)
-                .map(|k| image_of_difference(xj[k] - xi[k], s.sides[k]).powi(2))
+                .map(|k| image_of_difference(xj[k] - xi[k], sides[k], halves[k]).powi(2))
                 .sum();
             if d2 < widest2 {
                 let contact = s.radii[i as usize] + s.radii[j as usize];

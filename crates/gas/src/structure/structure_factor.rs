@@ -107,7 +107,10 @@ pub fn structure_factor<const D: usize>(system: &System<D>, grid: usize) -> Vec<
             total.2 += count;
         }
     }
-    shell_means(&sums, crate::structure::cube_side(system, "the structure factor"))
+    shell_means(
+        &sums,
+        crate::structure::cube_side(system, "the structure factor"),
+    )
 }
 
 /// The points of the occupied shells from their sums (S, |n|, count): mean k and mean S.
@@ -450,7 +453,10 @@ mod tests {
             sums[shell].1 += (norm2 as f64).sqrt();
             sums[shell].2 += 1;
         }
-        shell_means(&sums, crate::structure::cube_side(system, "the structure factor"))
+        shell_means(
+            &sums,
+            crate::structure::cube_side(system, "the structure factor"),
+        )
     }
 
     fn assert_same(pruned: &[StructurePoint], full: &[StructurePoint], what: &str) {

@@ -206,8 +206,7 @@ pub(crate) fn work<const D: usize>(plan: &Plan) -> Work {
         Some(sides) => std::array::from_fn(|k| sides[k]),
         None => [volume.powf(1.0 / D as f64); D],
     };
-    let grid =
-        gas::cells::Grid::<D>::new(&sides, diameter, gas::cells::max_cells(s.particles));
+    let grid = gas::cells::Grid::<D>::new(&sides, diameter, gas::cells::max_cells(s.particles));
     let free_path = gas::theory::mean_free_path::<D>(n / volume, diameter, phi);
     let faces = match D {
         1 => 1.0,

@@ -61,7 +61,16 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
             closed,
         ),
     }
-    .map_err(|e| Error::input(if given.is_some() { "system.box" } else { "system" }, e))
+    .map_err(|e| {
+        Error::input(
+            if given.is_some() {
+                "system.box"
+            } else {
+                "system"
+            },
+            e,
+        )
+    })
 }
 
 /// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical

@@ -95,12 +95,18 @@ fn check_box(description: &RunDescription) -> Result<()> {
     }
 }
 
-/// `system.box` needs an engine with space (the spatial ones, which have walls too).
+/// `system.box` needs an engine with space (the spatial ones, which have walls too), and,
+/// for spheres with extent, sides of at least [`MIN_SIDE_IN_DIAMETERS`] largest diameters
+/// (the event-driven engine's cells; the soft-sphere engine's neighbour cells need 2.6).
 pub(super) fn check_box_engine(
     description: &RunDescription,
     engine: &crate::engines::Abilities,
+    species: &[Species],
 ) -> Result<()> {
-    if description.system.sides.is_some() && !engine.walls {
+    let Some(sides) = &description.system.sides else {
+        return Ok(());
+    };
+    if !engine.walls {
         return Err(Error::input(
             "system.box",
             "this engine has no space (homogeneous DSMC: only the volume counts); give \
@@ -108,8 +114,26 @@ pub(super) fn check_box_engine(
              run.dsmc_scheme = \"spatial\" for a box with sides of its own",
         ));
     }
+    if engine.point_particles {
+        return Ok(());
+    }
+    let largest = species.iter().map(|s| s.diameter).fold(0.0, f64::max);
+    let least = MIN_SIDE_IN_DIAMETERS * largest;
+    if let Some(k) = sides.iter().position(|&l| l < least) {
+        return Err(Error::out_of_range(
+            &format!("system.box[{k}]"),
+            crate::output::number(sides[k]),
+            &format!(
+                "at least {MIN_SIDE_IN_DIAMETERS} largest diameters, {}",
+                crate::output::number(least)
+            ),
+        ));
+    }
     Ok(())
 }
+
+/// The shortest side of a box of spheres, in largest diameters.
+const MIN_SIDE_IN_DIAMETERS: f64 = 4.0;
 
 /// The packing fraction, given or of the spheres in the box, within what the initializer
 /// places.

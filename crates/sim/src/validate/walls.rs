@@ -151,12 +151,6 @@ pub(crate) fn walls_spec(
             ),
         ));
     }
-    if description.run.ranks.is_some_and(|r| r > 1) {
-        return Err(Error::input(
-            "wall",
-            "walls in spatial DSMC run on one rank; allowed: run.ranks = 1",
-        ));
-    }
     let dimension = description.system.dimension as usize;
     let mut specs: Vec<WallSpec> = Vec::with_capacity(walls.len());
     for (i, wall) in walls.iter().enumerate() {
@@ -243,11 +237,9 @@ fn check_sweeps(
     specs: &[WallSpec],
     species: &[Species],
 ) -> Result<()> {
-    let dimension = description.system.dimension as i32;
     let sides = description.box_sides();
     let largest = species.iter().map(|s| s.diameter).fold(0.0, f64::max);
-    for axis in 0..dimension as usize {
-        let length = sides[axis];
+    for (axis, &length) in sides.iter().enumerate() {
         let sweeps: Vec<(usize, f64)> = specs
             .iter()
             .enumerate()

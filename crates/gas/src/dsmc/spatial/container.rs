@@ -10,7 +10,7 @@
 
 use super::super::kernel::Simulator;
 use super::SpatialDsmc;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::rng::{Purpose, Stream};
 use crate::system::{wrap, Vector};
 use crate::walls::{fall_exit, first_contact, ContactSums, Side, Walls, WallsState};
@@ -22,19 +22,13 @@ use rayon::prelude::*;
 const MAX_CONTACTS_PER_STEP: usize = 64;
 
 impl<const D: usize> SpatialDsmc<D> {
-    /// Puts the gas into a container with `walls` (None: periodic again). Fails on several
-    /// ranks (walls run on one), or if vibrating walls sweep the whole box. Takes up the
-    /// walls' tallies from a restored check-point.
+    /// Puts the gas into a container with `walls` (None: periodic again). Fails if
+    /// vibrating walls sweep the whole box. Takes up the walls' tallies from a restored
+    /// check-point. On several ranks each streams its particles; the walls' tallies are
+    /// summed over the ranks exactly every step.
     pub fn set_walls(&mut self, walls: Option<Walls<D>>) -> Result<()> {
         let mut walls = walls;
         if let Some(w) = walls.as_mut() {
-            if self.comm.size() > 1 {
-                return Err(Error::out_of_range(
-                    "wall",
-                    format!("{} ranks", self.comm.size()),
-                    "walls in spatial DSMC on one rank",
-                ));
-            }
             w.check_sweeps(&self.sides, 0.0)?;
         }
         crate::walls::take_up(walls.as_mut(), self.saved_walls.take())?;
@@ -93,6 +87,15 @@ impl<const D: usize> SpatialDsmc<D> {
                     a
                 },
             );
+        let sums = if self.comm.size() > 1 {
+            super::super::reduce::contact_sums_over_ranks(
+                &sums,
+                self.comm.as_ref(),
+                &mut self.traffic,
+            )
+        } else {
+            sums
+        };
         let walls = self.walls.as_mut().expect("walls present");
         for (index, s) in sums.iter().enumerate() {
             walls.add_sums(index, s);

@@ -42,17 +42,20 @@ impl<const D: usize> SpatialDsmc<D> {
         gathered
     }
 
-    /// Streams the particles for `dt`, moves those that left the rank's slab to their
-    /// ranks and receives the arrivals, and sorts the rank's particles by cell in the
-    /// global order; returns where each non-empty cell starts.
+    /// Streams the particles for `dt` (0: streamed already, in a container), moves those
+    /// that left the rank's slab to their ranks and receives the arrivals, and sorts the
+    /// rank's particles by cell in the global order; returns where each non-empty cell
+    /// starts.
     pub(super) fn stream_and_sort_over_ranks(&mut self, dt: f64) -> Vec<usize> {
         let (sides, cells, width) = (self.sides, self.cells, self.widths());
         let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
         // The most significant digit of the key.
         let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width[D - 1], cells[D - 1]);
         let stream = |p: &mut Simulator<D>| {
-            for k in 0..D {
-                p.position[k] = wrap(p.position[k] + p.velocity[k] * dt, sides[k]);
+            if dt != 0.0 {
+                for (k, x) in p.position.iter_mut().enumerate() {
+                    *x = wrap(*x + p.velocity[k] * dt, sides[k]);
+                }
             }
         };
         if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
