@@ -300,6 +300,20 @@ impl MaterialPair {
         4.0 / 3.0 * self.combined_modulus * (r1 * r2 / (r1 + r2)).sqrt()
     }
 
+    /// ρ_w = (4/3) E* √r of a sphere of radius r (this pair's first material) against a
+    /// half-space (the second): Eq. (3) of MP2011 with the second radius infinite
+    /// (R_eff = r); for one material 2 Y √r / (3 (1 − ν²)).
+    pub fn wall_elastic_constant(&self, r: f64) -> f64 {
+        4.0 / 3.0 * self.combined_modulus * r.sqrt()
+    }
+
+    /// β = (3/2) A_12 (ρ_w / m)^(2/5) of a sphere (r, m) against an immovable half-space
+    /// (m_eff = m): Eq. (8) of MP2011 with the second mass and radius infinite. For one
+    /// material it is 2^(-1/5) times the β of two such spheres (ρ_w / ρ = √2, m / m_eff = 2).
+    pub fn wall_beta(&self, r: f64, m: f64) -> f64 {
+        1.5 * self.dissipative_constant * (self.wall_elastic_constant(r) / m).powf(0.4)
+    }
+
     /// β = (3/2) A_12 (ρ / m_eff)^(2/5) of spheres (r1, m1) and (r2, m2), Eq. (8) of MP2011.
     pub fn beta(&self, r1: f64, r2: f64, m1: f64, m2: f64) -> f64 {
         let effective_mass = m1 * m2 / (m1 + m2);

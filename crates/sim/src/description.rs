@@ -126,6 +126,16 @@ pub struct WallSection {
     /// `law = "viscoelastic"`: the form of eps(v) (default as in `[collision]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub form: Option<FormName>,
+    /// `law = "viscoelastic"` without `beta`: the wall's material, Young modulus (a key
+    /// left out is the particles' of `[collision]`; none: a wall of the particles' material).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub young: Option<f64>,
+    /// The wall's material: Poisson ratio.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub poisson: Option<f64>,
+    /// The wall's material: dissipative constant A (a time).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dissipative_constant: Option<f64>,
     /// Thermal walls: the wall's temperature.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub temperature: Option<f64>,

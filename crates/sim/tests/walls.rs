@@ -417,3 +417,76 @@ fn walls_take_the_laws_of_collisions() {
         assert!(error.to_string().contains(key), "{key}: {error}");
     }
 }
+
+/// A viscoelastic wall may be given by its material instead of beta. A wall of the
+/// particles' own material (no keys) has beta_w = 2^(-1/5) beta of two such spheres
+/// (rho_w / rho = sqrt 2 from R_eff = R instead of R/2, m / m_eff = 2: Eq. (8) of Müller
+/// & Pöschel 2011 with the wall's radius and mass infinite); a stiffer wall of another
+/// material has E* = 1 / (D_1 + D_2) and the compliance-weighted A (MaterialPair), computed
+/// here by hand. Beta and material together, a mixture, and particles without a material
+/// are refused naming the key.
+#[test]
+fn a_viscoelastic_wall_takes_a_material() {
+    use sim::validate::{WallLaw, WallSpecKind};
+    let gas = "[system]\ndimension = 2\nparticles = 200\npacking_fraction = 0.1\nseed = 7\n\
+               [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
+               dissipative_constant = 1e-3\n\
+               [run]\ncollisions_per_particle = 5\nsamples = 3\n";
+    let floor = |keys: &str| {
+        format!(
+            "{gas}[[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"restitution\"\n\
+             law = \"viscoelastic\"\n{keys}\
+             [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"elastic\"\n"
+        )
+    };
+    let beta_of = |text: &str| -> f64 {
+        let run = Simulation::from_toml(text, "wall.toml".as_ref()).unwrap();
+        match run.plan().walls[0].kind {
+            WallSpecKind::Restitution(WallLaw::Viscoelastic { beta, .. }) => beta,
+            ref other => panic!("{other:?}"),
+        }
+    };
+    let pair = match Simulation::from_toml(&floor(""), "pair.toml".as_ref())
+        .unwrap()
+        .plan()
+        .law
+    {
+        sim::validate::LawSpec::Viscoelastic { beta, .. } => beta,
+        ref other => panic!("{other:?}"),
+    };
+    let own = beta_of(&floor(""));
+    assert!(
+        (own / (pair * 2f64.powf(-0.2)) - 1.0).abs() < 1e-14,
+        "{own} {pair}"
+    );
+    // A wall ten times stiffer, Poisson 0.2, A = 2e-3 (unit spheres of mass 1).
+    let (d1, d2) = ((1.0 - 0.09) / 1e5, (1.0 - 0.04) / 1e6);
+    let combined = 1.0 / (d1 + d2);
+    let a = (1e-3 * d1 + 2e-3 * d2) / (d1 + d2);
+    let expected = 1.5 * a * (4.0 / 3.0 * combined * 0.5f64.sqrt()).powf(0.4);
+    let other = beta_of(&floor(
+        "young = 1e6\npoisson = 0.2\ndissipative_constant = 2e-3\n",
+    ));
+    assert!((other / expected - 1.0).abs() < 1e-14, "{other} {expected}");
+    let mixture = floor("young = 1e6\n").replace(
+        "particles = 200\n",
+        "particles = 200\nspecies = [{ diameter = 1.0, mass = 1.0, fraction = 1 }, \
+         { diameter = 1.2, mass = 1.5, fraction = 1 }]\n",
+    );
+    let without = floor("young = 1e6\n").replace(
+        "young = 1e5\npoisson = 0.3\ndissipative_constant = 1e-3\n",
+        "beta = 0.1\n",
+    );
+    for (text, key) in [
+        (floor("beta = 0.1\nyoung = 1e6\n"), "wall[0].beta"),
+        (floor("poisson = 0.7\n"), "wall[0].poisson"),
+        (mixture, "wall[0].young"),
+        (without, "wall[0].young"),
+    ] {
+        let error = Simulation::from_toml(&text, "bad.toml".as_ref())
+            .err()
+            .unwrap_or_else(|| panic!("accepted, expected {key}"));
+        assert!(error.is_input(), "{error}");
+        assert!(error.to_string().starts_with(key), "{key}: {error}");
+    }
+}

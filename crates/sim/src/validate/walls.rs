@@ -178,7 +178,7 @@ pub(crate) fn walls_spec(
                 ),
             ));
         }
-        let kind = wall_kind(wall, description.system.temperature, &key)?;
+        let kind = wall_kind(wall, description, species, &key)?;
         if description.run.engine == EngineKind::SoftSphere {
             soft_wall(wall, &key)?;
         }
@@ -272,13 +272,15 @@ fn check_sweeps(
 /// the run's clock resolves (a run at t ~ 1 resolves ~1e-16), and the run stalls.
 const WALL_TEMPERATURE_RATIO: f64 = 1e12;
 
-/// A wall's kind with its own keys, refusing the keys of the other kinds (`gas_temperature`:
-/// `system.temperature`).
+/// A wall's kind with its own keys, refusing the keys of the other kinds (the run's
+/// `system.temperature`, particles and their material set its bounds and β).
 fn wall_kind(
     wall: &WallSection,
-    gas_temperature: f64,
+    description: &RunDescription,
+    species: &[Species],
     key: &dyn Fn(&str) -> String,
 ) -> Result<WallSpecKind> {
+    let gas_temperature = description.system.temperature;
     let kind = wall.kind;
     let refuse = |name: &str, present: bool, for_kinds: &str| -> Result<()> {
         if present {
@@ -310,7 +312,12 @@ fn wall_kind(
     }
     match kind {
         WallKindName::Elastic => Ok(WallSpecKind::Elastic),
-        WallKindName::Restitution => Ok(WallSpecKind::Restitution(wall_law(wall, key)?)),
+        WallKindName::Restitution => Ok(WallSpecKind::Restitution(wall_law(
+            wall,
+            key,
+            description,
+            species,
+        )?)),
         WallKindName::Thermal => {
             let t = wall
                 .temperature
@@ -333,7 +340,7 @@ fn wall_kind(
             Ok(WallSpecKind::Thermal(t))
         }
         WallKindName::Vibrating => {
-            let law = wall_law(wall, key)?;
+            let law = wall_law(wall, key, description, species)?;
             let positive = |name: &str, x: Option<f64>| {
                 let x = x.ok_or_else(|| Error::input(key(name), "missing for a vibrating wall"))?;
                 if (1e-30..=1e30).contains(&x) {
@@ -383,24 +390,89 @@ fn wall_kind(
 }
 
 /// The law keys of a wall, and whether each is given.
-fn law_keys(wall: &WallSection) -> [(&'static str, bool); 5] {
+fn law_keys(wall: &WallSection) -> [(&'static str, bool); 8] {
     [
         ("law", wall.law.is_some()),
         ("damping_ratio", wall.damping_ratio.is_some()),
         ("criterion", wall.criterion.is_some()),
         ("beta", wall.beta.is_some()),
         ("form", wall.form.is_some()),
+        ("young", wall.young.is_some()),
+        ("poisson", wall.poisson.is_some()),
+        ("dissipative_constant", wall.dissipative_constant.is_some()),
     ]
+}
+
+/// β of a viscoelastic wall given by its material (instead of `beta`): a half-space of
+/// the wall's `young`, `poisson`, `dissipative_constant` (each left out: the particles' of
+/// `[collision]`; all left out: a wall of the particles' own material, as the soft-sphere
+/// engine's walls), hit by the spheres of the one species of the run
+/// ([`restitution::material::MaterialPair::wall_beta`]). A mixture's spheres would each
+/// need their own β: refused, naming the key.
+fn wall_material_beta(
+    wall: &WallSection,
+    key: &dyn Fn(&str) -> String,
+    description: &RunDescription,
+    species: &[Species],
+) -> Result<f64> {
+    let given = [
+        ("young", wall.young),
+        ("poisson", wall.poisson),
+        ("dissipative_constant", wall.dissipative_constant),
+    ];
+    let named = given.iter().find(|g| g.1.is_some()).map_or("beta", |g| g.0);
+    let particles = super::material::material(description)?.ok_or_else(|| {
+        Error::input(
+            key(named),
+            "a wall's material needs the particles' (collision.young, poisson, \
+             dissipative_constant, or collision.material); or give the wall's beta",
+        )
+    })?;
+    if species.len() > 1 || description.system.species.is_some() {
+        return Err(Error::input(
+            key(named),
+            "a wall's material with a mixture (a beta per species) is not built; give the \
+             wall's beta",
+        ));
+    }
+    let wall_material = (
+        wall.young.unwrap_or(particles.young),
+        wall.poisson.unwrap_or(particles.poisson),
+        wall.dissipative_constant
+            .unwrap_or(particles.dissipative_constant),
+    );
+    let sphere = (
+        particles.young,
+        particles.poisson,
+        particles.dissipative_constant,
+    );
+    let pair = restitution::material::MaterialPair::new(sphere, wall_material).map_err(|e| {
+        let name = match &e {
+            restitution::Error::OutOfRange { name, .. } if name.contains("poisson") => "poisson",
+            restitution::Error::OutOfRange { name, .. } if name.contains("dissipative") => {
+                "dissipative_constant"
+            }
+            _ => "young",
+        };
+        Error::input(key(name), e)
+    })?;
+    let kind = &species[0];
+    Ok(pair.wall_beta(kind.radius(), kind.mass))
 }
 
 /// The law of a restitution or vibrating wall: `law` (default constant) with its own keys
 /// only.
-fn wall_law(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallLaw> {
+fn wall_law(
+    wall: &WallSection,
+    key: &dyn Fn(&str) -> String,
+    description: &RunDescription,
+    species: &[Species],
+) -> Result<WallLaw> {
     let law = wall.law.unwrap_or(LawKind::Constant);
     let own: &[&str] = match law {
         LawKind::Constant => &["restitution"],
         LawKind::Dashpot => &["damping_ratio", "criterion"],
-        LawKind::Viscoelastic => &["beta", "form"],
+        LawKind::Viscoelastic => &["beta", "form", "young", "poisson", "dissipative_constant"],
         LawKind::Stochastic => {
             return Err(Error::input(
                 key("law"),
@@ -432,9 +504,20 @@ fn wall_law(wall: &WallSection, key: &dyn Fn(&str) -> String) -> Result<WallLaw>
             criterion: wall.criterion.unwrap_or(Criterion::Improved),
         }),
         LawKind::Viscoelastic => {
-            let beta = wall
-                .beta
-                .ok_or_else(|| Error::input(key("beta"), "missing for law = \"viscoelastic\""))?;
+            let material = wall.young.is_some()
+                || wall.poisson.is_some()
+                || wall.dissipative_constant.is_some();
+            let beta = match wall.beta {
+                Some(_) if material => {
+                    return Err(Error::input(
+                        key("beta"),
+                        "give the wall's beta or its material (young, poisson, \
+                         dissipative_constant), not both",
+                    ))
+                }
+                Some(beta) => beta,
+                None => wall_material_beta(wall, key, description, species)?,
+            };
             if !(beta.is_finite() && beta >= 0.0) {
                 return Err(Error::out_of_range(
                     &key("beta"),
