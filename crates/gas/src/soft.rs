@@ -590,6 +590,60 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 index: i,
             });
         }
+        // Radii and masses within the scales a run file allows (a mass of 1e-300 makes
+        // any contact force overflow the velocities).
+        for (what, list) in [
+            ("radii", &state.system.radii),
+            ("masses", &state.system.masses),
+        ] {
+            if let Some(i) = list.iter().position(|x| !(1e-30..=1e30).contains(x)) {
+                return Err(Error::out_of_range(
+                    format!("{what}[{i}]"),
+                    list[i],
+                    "1e-30 ..= 1e30",
+                ));
+            }
+        }
+        // No sphere may cross its own radius in a step: the step could not resolve its
+        // contacts (and a wall's overlap would exceed its size). A run's time step resolves
+        // contacts at its fastest impacts, orders of magnitude below this.
+        let smallest = state
+            .system
+            .radii
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        if let Some(i) = state.system.velocities.iter().position(|v| {
+            (0..D).map(|k| v[k] * v[k]).sum::<f64>().sqrt() * state.time_step > smallest
+        }) {
+            return Err(Error::out_of_range(
+                format!("velocities[{i}]"),
+                format!("{:?}", state.system.velocities[i]),
+                format!(
+                    "speeds that move a sphere less than the smallest radius ({smallest}) per \
+                     time step ({})",
+                    state.time_step
+                ),
+            ));
+        }
+        // Forces that would kick the velocities of one step beyond the range of f64 (the
+        // observers' sums of m u^2 and its square) come from a forged state, not a run.
+        let (mut energy, mut fourth) = (0.0f64, 0.0f64);
+        let s = &state.system;
+        for ((v, f), &m) in s.velocities.iter().zip(&state.forces).zip(&s.masses) {
+            let u2: f64 = (0..D)
+                .map(|k| (v[k] + state.time_step * f[k] / m).powi(2))
+                .sum();
+            energy += m * u2;
+            fourth += (m * u2).powi(2);
+        }
+        if !(energy.is_finite() && fourth.is_finite()) {
+            return Err(Error::out_of_range(
+                "forces",
+                "forces that kick a step's velocities beyond the range of f64",
+                "forces of the contacts of a run",
+            ));
+        }
         let overlap = state.statistics.max_relative_overlap;
         if !(overlap.is_finite() && overlap >= 0.0) {
             return Err(Error::out_of_range(

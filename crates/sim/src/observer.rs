@@ -208,6 +208,7 @@ impl<const D: usize> Observer<D> for TimeSeries {
         }
         records.check_samples(schedule)?;
         let (time, events) = (engine.time(), engine.counters().events);
+        records.check_last_virial(engine.counters().virial)?;
         if let Some(last) = records.samples.last() {
             let complete = done == schedule.targets.len();
             let behind = time < last.time || events < last.events;
@@ -259,6 +260,24 @@ impl TimeSeries {
             previous = now;
         }
         Ok(())
+    }
+
+    /// The pressure's interval starts at the last sample (time 0 before the first), with a
+    /// finite virial counter of at most twice the engine's now in size (it grows, but for
+    /// the soft contacts' short attractive ends): a forged one would give an infinite
+    /// pressure.
+    fn check_last_virial(&self, virial_now: f64) -> std::result::Result<(), String> {
+        let (time, virial) = self.last_virial;
+        let start = self.samples.last().map_or(0.0, |s| s.time);
+        if time == start && virial.is_finite() && virial.abs() <= 2.0 * virial_now.abs() {
+            Ok(())
+        } else {
+            Err(format!(
+                "the pressure's interval starts at time {time} with the virial {virial}, \
+                 where the last sample (time {start}) and the engine's virial {virial_now} \
+                 allow neither"
+            ))
+        }
     }
 
     /// Writes `timeseries.csv`.
