@@ -161,10 +161,11 @@ pub struct Snapshot<const D: usize, O> {
     /// of its particles), in the engine's species order (that of its
     /// `species_collisions`); empty for one species.
     pub species_collisions: Vec<u64>,
-    /// The walls' tallies of a spatial engine in a container (absent otherwise: the other
-    /// states stay byte for byte as before; the last field, read as None where missing).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub walls: Option<crate::walls::WallsState>,
+    /// The walls' tallies of a spatial engine in a container, the shear, the tensor
+    /// virial (absent otherwise: the other states stay byte for byte as before; the last
+    /// field, read as None where missing: [`crate::shear::Tail`]).
+    #[serde(default, skip_serializing_if = "crate::shear::Tail::is_empty")]
+    pub tail: crate::shear::Tail<crate::walls::WallsState>,
 }
 
 impl<const D: usize, O> Snapshot<D, O> {
@@ -197,6 +198,7 @@ impl<const D: usize, O> Snapshot<D, O> {
             });
         }
         self.counters.check("candidates")?;
+        self.tail.check()?;
         self.system.check(in_box)
     }
 

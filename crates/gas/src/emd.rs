@@ -11,6 +11,7 @@
 use crate::cells::{Grid, NONE};
 use crate::engine::Counters;
 use crate::error::{Error, Result};
+use crate::shear::Virial;
 use crate::sorter::{Sorter, SorterKind};
 use crate::system::{dot, wrap, System, Vector};
 use crate::walls::{Side, Walls, WallsState};
@@ -18,6 +19,7 @@ use restitution::Restitution;
 
 mod driving;
 mod gravity;
+mod lees_edwards;
 mod models;
 mod predict;
 mod state;
@@ -162,6 +164,10 @@ pub struct EventDriven<const D: usize> {
     /// Gravity ([`EventDriven::set_gravity`]); with it, particles' positions and
     /// velocities are kept in the falling frame (module `gravity`).
     field: Option<Field<D>>,
+    /// Lees–Edwards boundaries ([`EventDriven::set_shear`]); None: periodic.
+    shear: Option<lees_edwards::LeesEdwards>,
+    /// The tensor virial, if asked for ([`EventDriven::set_virial_tensor`]).
+    virial: Option<Virial>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -180,14 +186,21 @@ impl<const D: usize> EventDriven<D> {
         law: Box<dyn Restitution>,
         min_width: f64,
     ) -> Result<Self> {
-        let mut engine = Self::assemble(system, law, min_width)?;
+        let mut engine = Self::assemble(system, law, min_width, None, 0.0)?;
         engine.predict_all();
         Ok(engine)
     }
 
-    /// The engine at time 0 with its particles in the cell lists and nothing predicted;
-    /// fails if spheres overlap.
-    fn assemble(mut system: System<D>, law: Box<dyn Restitution>, min_width: f64) -> Result<Self> {
+    /// The engine at time `time` with its particles (all valid then) in the cell lists and
+    /// nothing predicted, sheared by `shear` (its lab velocities as given); fails if
+    /// spheres overlap.
+    fn assemble(
+        mut system: System<D>,
+        law: Box<dyn Restitution>,
+        min_width: f64,
+        shear: Option<crate::shear::Shear>,
+        time: f64,
+    ) -> Result<Self> {
         let n = system.len();
         if system.velocities.len() != n || system.radii.len() != n || system.masses.len() != n {
             return Err(Error::LengthMismatch {
@@ -304,7 +317,14 @@ impl<const D: usize> EventDriven<D> {
             walls: None,
             saved_walls: None,
             field: None,
+            shear: None,
+            virial: None,
         };
+        engine.time = time;
+        for p in &mut engine.particles {
+            p.valid_at = time;
+        }
+        engine.shear = shear.map(|s| engine.lees_edwards(s));
         for i in 0..n {
             let c = grid.coords_of(&engine.particles[i].position);
             engine.insert(i, c);
@@ -321,16 +341,21 @@ impl<const D: usize> EventDriven<D> {
             .into_par_iter()
             .find_map_first(|i| {
                 let mut overlap = None;
-                let pi = self.particles[i].position_at(self.time);
-                self.for_each_neighbor(i, |j| {
+                let (pi, vi) = self.now(i);
+                let mut check = |p: &Vector<D>, j: usize| {
                     if j > i {
-                        let r = self.separation(&pi, &self.particles[j].position_at(self.time));
+                        let r = self.separation(p, &self.particles[j].position_at(self.time));
                         let sigma = self.sigma(i, j);
                         if dot(&r, &r) < sigma * sigma * (1.0 - 1e-12) {
                             overlap = Some(j);
                         }
                     }
-                });
+                };
+                if self.shear.is_some() && self.on_a_face(i) {
+                    self.for_each_sheared_neighbor(i, &pi, &vi, |p, _, j| check(p, j));
+                } else {
+                    self.for_each_neighbor(i, |j| check(&pi, j));
+                }
                 overlap.map(|j| (i, j))
             });
         match first {
@@ -377,9 +402,15 @@ impl<const D: usize> EventDriven<D> {
 
     fn bring_to_now(&mut self, i: usize) {
         let sides = self.system.sides;
+        let sheared = self.shear.is_some();
         let p = &mut self.particles[i];
         let x = p.position_at(self.time);
         p.position = match &self.field {
+            // Under shear y is not wrapped: only a crossing of a face moves a sphere to
+            // its image (module `lees_edwards`).
+            None if sheared => {
+                std::array::from_fn(|k| if k == 1 { x[k] } else { wrap(x[k], sides[k]) })
+            }
             None => std::array::from_fn(|k| wrap(x[k], sides[k])),
             // Axes with gravity are closed: the falling frame's y is not wrapped.
             Some(f) => std::array::from_fn(|k| {
@@ -401,6 +432,12 @@ impl<const D: usize> EventDriven<D> {
             let (pi, vi) = self.now(i);
             for j in i + 1..n {
                 if self.across_a_wall(&pi, &self.particles[j].position_at(self.time)) {
+                    continue;
+                }
+                if self.shear.is_some() {
+                    if let Some(t) = self.missed_across(i, j) {
+                        return Some((i, j, t));
+                    }
                     continue;
                 }
                 if let Some(dt) = self.collision_delay(&pi, &vi, j, self.sigma(i, j), &self.image) {
@@ -430,6 +467,13 @@ impl<const D: usize> EventDriven<D> {
             return false;
         }
         let next_event = self.queue.peek();
+        if let Some(shift) = self.next_shift() {
+            let first = self.next_kick().is_none_or(|kick| shift < kick);
+            if first && next_event.is_none_or(|(_, t)| shift <= t) {
+                self.shift();
+                return true;
+            }
+        }
         if let Some(kick) = self.next_kick() {
             if next_event.is_none_or(|(_, t)| kick <= t) {
                 self.kick();
@@ -455,6 +499,8 @@ impl<const D: usize> EventDriven<D> {
             if dim >= D {
                 self.hit_wall(i, dim - D, up);
                 self.predict(i);
+            } else if self.through_a_face(&next.cell, dim, up) {
+                self.cross_face(i, up);
             } else {
                 self.bring_to_now(i);
                 self.remove(i);
@@ -476,15 +522,30 @@ impl<const D: usize> EventDriven<D> {
 
     /// The collision of i and j at the current time.
     fn collide(&mut self, i: usize, j: usize) {
+        // Across a sheared face the image of the second sphere is computed (with its
+        // rounding): the pair in one order, whichever of the two the sorter gives first
+        // among equal times, so that a restored engine collides it with the same bits.
+        let (i, j) = if self.shear.is_some() && j < i {
+            (j, i)
+        } else {
+            (i, j)
+        };
         self.bring_to_now(i);
         self.bring_to_now(j);
         let (a, b) = (self.particles[i], self.particles[j]);
-        let r = self.separation(&a.position, &b.position);
+        let (r, jump) = match self.shear {
+            None => (self.separation(&a.position, &b.position), 0.0),
+            Some(_) => self.sheared_separation(&a, &b),
+        };
         let distance = dot(&r, &r).sqrt();
         let n: Vector<D> = std::array::from_fn(|k| r[k] / distance);
-        let approach = -(0..D)
+        let mut approach = -(0..D)
             .map(|k| (b.velocity[k] - a.velocity[k]) * n[k])
             .sum::<f64>();
+        if jump != 0.0 {
+            // b's image across a sheared face moves with b's velocity + jump e_x.
+            approach -= jump * n[0];
+        }
         let (mi, mj) = (a.mass, b.mass);
         let reduced = mi * mj / (mi + mj);
         let mut elastic = false;
@@ -515,6 +576,9 @@ impl<const D: usize> EventDriven<D> {
         self.watch_for_collapse();
         self.tally.energy_lost += lost;
         self.tally.virial += impulse * distance;
+        if let Some(virial) = &mut self.virial {
+            virial.add(impulse, distance, &n);
+        }
     }
 
     /// The contact of i with the wall on the high (`up`) or low side of axis k, now.
@@ -620,9 +684,24 @@ impl<const D: usize> EventDriven<D> {
     /// The time of the next event or application of the driving, whichever first.
     fn upcoming(&mut self) -> Option<f64> {
         let event = self.queue.peek().map(|(_, t)| t);
-        match (event, self.next_kick()) {
+        let first = match (event, self.next_kick()) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
+        };
+        match (first, self.next_shift()) {
+            // A shift alone is no reason to go on: nothing moves.
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, _) => a,
+        }
+    }
+
+    /// Sums the tensor virial of the collisions from now on (`true`, from zero unless it
+    /// is summed already) or stops (`false`).
+    pub fn set_virial_tensor(&mut self, on: bool) {
+        if !on {
+            self.virial = None;
+        } else if self.virial.is_none() {
+            self.virial = Some(Virial::default());
         }
     }
 

@@ -168,6 +168,42 @@ pub trait Engine<const D: usize> {
         }
     }
 
+    /// The uniform shear flow the engine imposes (None: none). Under shear,
+    /// [`Engine::system`]'s velocities are the peculiar ones (relative to the flow).
+    fn shear(&self) -> Option<crate::shear::Shear> {
+        None
+    }
+
+    /// Imposes the uniform shear flow u = rate y e_x from now on (None: none), the gas's
+    /// velocities taken as the peculiar ones. Part of the engine's state. The default
+    /// refuses any shear.
+    fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
+        match shear {
+            None => Ok(()),
+            Some(_) => Err(Error::Unsupported {
+                what: "shear".into(),
+            }),
+        }
+    }
+
+    /// The tensor virial of the collisions summed since it was asked for
+    /// ([`Engine::set_virial_tensor`]), for the pressure tensor
+    /// ([`crate::observe::pressure_tensor`]); None if not summed.
+    fn virial_tensor(&self) -> Option<crate::shear::Virial> {
+        None
+    }
+
+    /// Sums the tensor virial from now on (part of the engine's state), or stops. The
+    /// default refuses to sum it.
+    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
+        if on {
+            return Err(Error::Unsupported {
+                what: "the tensor virial".into(),
+            });
+        }
+        Ok(())
+    }
+
     /// The temperature and Sonine a2 of all particles ([`crate::observe::temperature`],
     /// [`crate::observe::sonine_a2`]) and the box volume, from sums over the particles where
     /// they are (a distributed engine: exact sums over ranks, collective, the same bits on

@@ -20,6 +20,7 @@ pub mod observe;
 pub mod parallel;
 mod prefetch;
 pub mod profile;
+pub mod shear;
 pub(crate) mod rng;
 mod serde_util;
 pub mod soft;

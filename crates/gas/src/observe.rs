@@ -165,6 +165,50 @@ pub fn pressure<const D: usize>(
     weight * particles as f64 / volume * temperature + collisional
 }
 
+/// The pressure tensor over an interval: its kinetic part and the whole (components xx,
+/// yy, zz, xy, xz, yz; 2D: zz, xz, yz are 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PressureTensor {
+    pub kinetic: [f64; 6],
+    pub total: [f64; 6],
+}
+
+/// The pressure tensor over an interval of duration `dt` (see [`crate::shear`]): the
+/// kinetic part F Σ m V_a V_b / V of the velocities V about their mean (under shear
+/// [`crate::Engine::system`] gives the peculiar ones), plus the collisional part
+/// F W_ab / (V dt) of the tensor virial `virial_increment` summed over the interval (none
+/// for dt = 0), F the physical particles each simulated one stands for. Its trace / D is
+/// [`pressure`] with the temperature of [`temperature`].
+pub fn pressure_tensor<const D: usize>(
+    s: &System<D>,
+    weight: f64,
+    virial_increment: &crate::shear::Virial,
+    dt: f64,
+) -> PressureTensor {
+    use crate::shear::component;
+    let volume = s.volume();
+    let (mean, _) = mean_velocity(s);
+    let mut kinetic = [0.0; 6];
+    for (v, m) in s.velocities.iter().zip(&s.masses) {
+        let u: [f64; D] = std::array::from_fn(|k| v[k] - mean[k]);
+        for a in 0..D {
+            for b in a..D {
+                kinetic[component(a, b)] += m * u[a] * u[b];
+            }
+        }
+    }
+    let kinetic = kinetic.map(|x| weight * x / volume);
+    let total = std::array::from_fn(|c| {
+        let collisional = if dt > 0.0 {
+            weight * virial_increment.0[c] / (volume * dt)
+        } else {
+            0.0
+        };
+        kinetic[c] + collisional
+    });
+    PressureTensor { kinetic, total }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,6 +26,8 @@ pub mod gauss;
 pub mod hydrodynamics;
 pub mod mixture;
 pub mod sonine;
+pub mod transport;
+pub mod usf;
 
 pub use hydrodynamics::{
     dilute_elastic_viscosity, enskog_thermal_conductivity, long_wavelength_structure_factor,
@@ -33,6 +35,8 @@ pub use hydrodynamics::{
 };
 pub use mixture::{DrivenState, MixtureHcs, MixtureTheory};
 pub use sonine::{second_sonine, SonineHierarchy};
+pub use transport::{NavierStokes, ReducedTransport};
+pub use usf::ShearState;
 use std::f64::consts::PI;
 
 /// The dimensions the engines support.

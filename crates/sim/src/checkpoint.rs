@@ -75,15 +75,14 @@ impl Sections {
         serde_json::from_slice(&self.records).map_err(|e| self.error(format!("records: {e}")))
     }
 
-    /// The engine state, as `S`. A state may end with an optional part written only when
-    /// present (the event-driven engine's walls: `#[serde(skip_serializing_if)]` writes
-    /// nothing for None, which postcard cannot tell from the end of the data); a zero byte
-    /// after the end reads as its absence. Bytes after a state are never read otherwise,
+    /// The engine state, as `S`. A state may end with optional parts written only when
+    /// present (`gas::shear::Tail`: walls, shear, tensor virial; postcard cannot tell their
+    /// absence from the end of the data); zero bytes after the end read as their absence. Bytes after a state are never read otherwise,
     /// and the file's lengths and checksum are verified before.
     pub fn engine<S: DeserializeOwned>(&self) -> Result<S> {
-        let mut bytes = Vec::with_capacity(self.engine.len() + 1);
+        let mut bytes = Vec::with_capacity(self.engine.len() + gas::shear::TAIL_PADDING);
         bytes.extend_from_slice(&self.engine);
-        bytes.push(0);
+        bytes.extend([0; gas::shear::TAIL_PADDING]);
         postcard::from_bytes(&bytes).map_err(|e| self.error(format!("engine state: {e}")))
     }
 

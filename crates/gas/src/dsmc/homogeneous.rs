@@ -17,6 +17,7 @@ use crate::engine::{Checkpoint, Counters, Engine, SpeciesCollisions, VelocitySta
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
+use crate::shear::{Shear, Tail, Virial};
 use crate::system::{System, Vector};
 use crate::theory;
 use blocks::{run_blocks, Blocks};
@@ -69,6 +70,10 @@ struct Core<const D: usize> {
     comm: Arc<dyn Communicator>,
     total: usize,
     traffic: Traffic,
+    /// Uniform shear flow in the frame moving with it (block scheme; see [`blocks`]).
+    shear: Option<Shear>,
+    /// The tensor virial of the collisions, if summed.
+    virial: Option<Virial>,
 }
 
 /// A record of the homogeneous engine as it travels between ranks: its velocity, then its
@@ -192,6 +197,8 @@ impl<const D: usize> HomogeneousDsmc<D> {
             comm,
             total: n,
             traffic: Traffic::default(),
+            shear: None,
+            virial: None,
         };
         let mut store = make_store(&core.species, system.velocities, &index);
         let (bound, moments) = match &store {
@@ -246,9 +253,9 @@ impl<const D: usize> HomogeneousDsmc<D> {
             draws,
             temperature,
             species_collisions,
-            walls,
+            tail,
         } = snapshot;
-        if walls.is_some() {
+        if tail.walls.is_some() {
             return Err(Error::out_of_range(
                 "walls",
                 "a container",
@@ -256,6 +263,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             ));
         }
         let mut engine = Self::distributed(system, packing_fraction, law, seed, options, comm)?;
+        engine.set_shear_of(tail.shear)?;
         // The exact scheme's majorant (finite: `Snapshot::check`) must bound every speed (it
         // only ever grows to the largest one seen): a smaller one would accept with
         // probabilities above 1.
@@ -281,6 +289,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         core.stream = Stream::at(seed, Purpose::Exact, 0, 0, draws);
         core.temperature = temperature;
         core.species_collisions = species_collisions;
+        core.virial = tail.virial;
         Ok(engine)
     }
 
@@ -292,6 +301,11 @@ impl<const D: usize> HomogeneousDsmc<D> {
         let (reference, speed_bound, draws, temperature) =
             (c.reference, c.speed_bound, c.stream.draws(), c.temperature);
         let species_collisions = c.species_collisions.clone();
+        let tail = Tail {
+            shear: c.shear,
+            virial: c.virial,
+            ..Default::default()
+        };
         HomogeneousSnapshot {
             system: self.system().clone(),
             packing_fraction: phi,
@@ -305,8 +319,34 @@ impl<const D: usize> HomogeneousDsmc<D> {
             draws,
             temperature,
             species_collisions,
-            walls: None,
+            tail,
         }
+    }
+
+    /// Shears the gas (None: no more): the USF in the frame moving with the flow, whose
+    /// peculiar velocities obey dV_x/dt = -a V_y between collisions (module
+    /// [`blocks`]: exact streaming around each step's collisions). The block scheme only
+    /// (`shear`).
+    fn set_shear_of(&mut self, shear: Option<Shear>) -> Result<()> {
+        if let Some(s) = &shear {
+            Shear::new(s.rate)?;
+            if D < 2 {
+                return Err(Error::out_of_range(
+                    "shear",
+                    "1 dimension",
+                    "2 or 3 dimensions (the gradient is along y)",
+                ));
+            }
+            if matches!(self.core.scheme, Scheme::Exact) {
+                return Err(Error::out_of_range(
+                    "shear",
+                    "the exact scheme",
+                    "the block scheme (the flow streams the velocities around each step)",
+                ));
+            }
+        }
+        self.core.shear = shear;
+        Ok(())
     }
 
     /// Steps of [`Scheme::Blocks`] so far (0 for the exact scheme).
@@ -488,6 +528,7 @@ fn run_exact<const D: usize, R: Record<D>>(
         });
         let mut tally = SpeciesTally::new(core.species.len());
         tally.counters = core.tally;
+        tally.virial = core.virial;
         core.time = collider.run_classes(
             records,
             &mut core.class,
@@ -499,6 +540,7 @@ fn run_exact<const D: usize, R: Record<D>>(
             &mut tally,
         );
         core.tally = tally.counters;
+        core.virial = tally.virial;
         add_counts(&mut core.species_collisions, &tally.collisions);
         core.speed_bound = classes.bound();
         if core.tally.collisions == next_recompute {
@@ -622,6 +664,30 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
 
     fn particles(&self) -> usize {
         self.len()
+    }
+
+    /// Shears the gas from now on (block scheme; see [`HomogeneousDsmc::set_shear_of`]).
+    fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
+        self.set_shear_of(shear)
+    }
+
+    fn shear(&self) -> Option<Shear> {
+        self.core.shear
+    }
+
+    fn virial_tensor(&self) -> Option<Virial> {
+        self.core.virial
+    }
+
+    /// Sums the tensor virial of the collisions (Enskog's collisional transfer: the
+    /// impact direction's n n), from zero unless summed already.
+    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
+        if !on {
+            self.core.virial = None;
+        } else if self.core.virial.is_none() {
+            self.core.virial = Some(Virial::default());
+        }
+        Ok(())
     }
 
     /// Drives the gas from now on (None: freely cooling) at every step of the block scheme;

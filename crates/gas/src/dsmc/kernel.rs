@@ -25,6 +25,7 @@ use super::positive;
 use super::species::Species;
 use crate::engine::Counters;
 use crate::rng::Stream;
+use crate::shear::Virial;
 use crate::system::{dot, Vector};
 use rand_distr::{Beta, Distribution, Poisson};
 use restitution::Restitution;
@@ -101,6 +102,11 @@ pub(crate) trait Tally {
     /// A collision of a particle of species `a` with one of species `b` (mixtures).
     #[inline(always)]
     fn pair(&mut self, _a: usize, _b: usize) {}
+    /// The tensor virial, if summed.
+    #[inline(always)]
+    fn virial(&mut self) -> Option<&mut Virial> {
+        None
+    }
 }
 
 impl Tally for Counters {
@@ -118,6 +124,8 @@ pub(crate) struct SpeciesTally {
     pub counters: Counters,
     pub collisions: Vec<u64>,
     species: usize,
+    /// The tensor virial of the collisions, if summed.
+    pub virial: Option<Virial>,
 }
 
 impl SpeciesTally {
@@ -141,6 +149,10 @@ impl Tally for SpeciesTally {
         }
         self.collisions[a] += 1;
         self.collisions[b] += 1;
+    }
+    #[inline(always)]
+    fn virial(&mut self) -> Option<&mut Virial> {
+        self.virial.as_mut()
     }
 }
 
@@ -336,6 +348,9 @@ impl Collider<'_> {
         counters.collisions += 1;
         counters.energy_lost += 0.5 * pair.reduced * (1.0 - eps * eps) * approach * approach;
         counters.virial += kick * pair.reduced * pair.sigma;
+        if let Some(virial) = tally.virial() {
+            virial.add(kick * pair.reduced, pair.sigma, &e);
+        }
         if R::MIXED {
             tally.pair(a.species(), b.species());
         }

@@ -21,6 +21,8 @@ pub(crate) struct StepSums<const D: usize> {
     pub spread: f64,
     /// Collisions suffered by the particles of each species (empty for one species).
     pub species_collisions: Vec<u64>,
+    /// The tensor virial of the step's collisions, if the groups summed it.
+    pub virial: Option<crate::shear::Virial>,
 }
 
 impl<const D: usize> StepSums<D> {
@@ -31,26 +33,34 @@ impl<const D: usize> StepSums<D> {
 }
 
 /// The counters, mass and momentum (and, if `with_spread`, the spreads) of the groups of a
-/// step, `results`, summed over all ranks exactly, with the collisions of each of the
+/// step, `results`, summed over all ranks exactly (and the tensor virial, if
+/// `with_tensor`: the groups summed it), with the collisions of each of the
 /// `species` (if more than one): one all-reduce of [`crate::parallel::reduction_bytes`]
 /// (with the spread; 8 B more per species of a mixture) per rank.
 pub(crate) fn step_sums<const D: usize>(
     results: &[(SpeciesTally, Moments<D>)],
     species: usize,
     with_spread: bool,
+    with_tensor: bool,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
 ) -> StepSums<D> {
-    // Mass, momentum, energy lost, virial, spread; then collisions, events, TC-elastic.
-    let count = D + 3 + with_spread as usize;
-    let sums = sums_of(results, count, |(t, m), s| {
-        let t = &t.counters;
+    // Mass, momentum, energy lost, virial, spread, the tensor virial if summed; then
+    // collisions, events, TC-elastic.
+    let spread_at = D + 3;
+    let tensor_at = spread_at + with_spread as usize;
+    let count = tensor_at + if with_tensor { 6 } else { 0 };
+    let sums = sums_of(results, count, |(tally, m), s| {
+        let t = &tally.counters;
         s[0].add(m.mass);
         (0..D).for_each(|k| s[1 + k].add(m.momentum[k]));
         s[D + 1].add(t.energy_lost);
         s[D + 2].add(t.virial);
         if with_spread {
-            s[D + 3].add(m.spread);
+            s[spread_at].add(m.spread);
+        }
+        if let Some(v) = &tally.virial {
+            (0..6).for_each(|c| s[tensor_at + c].add(v.0[c]));
         }
     });
     let counter =
@@ -87,8 +97,10 @@ pub(crate) fn step_sums<const D: usize>(
         },
         mass: values[0],
         momentum: std::array::from_fn(|k| values[1 + k]),
-        spread: if with_spread { values[D + 3] } else { 0.0 },
+        spread: if with_spread { values[spread_at] } else { 0.0 },
         species_collisions: packed[start..].iter().map(|&c| c as u64).collect(),
+        virial: with_tensor
+            .then(|| crate::shear::Virial(std::array::from_fn(|c| values[tensor_at + c]))),
     }
 }
 

@@ -296,7 +296,14 @@ impl<const D: usize> SpatialDsmc<D> {
         engine.tally = snapshot.counters;
         engine.species_collisions = snapshot.species_collisions;
         engine.temperature = snapshot.temperature;
-        engine.saved_walls = snapshot.walls;
+        if snapshot.tail.shear.is_some() || snapshot.tail.virial.is_some() {
+            return Err(Error::out_of_range(
+                "shear",
+                "a sheared state",
+                "none: the spatial DSMC has no Lees-Edwards boundaries yet",
+            ));
+        }
+        engine.saved_walls = snapshot.tail.walls;
         Ok(engine)
     }
 
@@ -324,7 +331,10 @@ impl<const D: usize> SpatialDsmc<D> {
             draws: 0,
             temperature,
             species_collisions: self.species_collisions.clone(),
-            walls: self.walls_state(),
+            tail: crate::shear::Tail {
+                walls: self.walls_state(),
+                ..Default::default()
+            },
         }
     }
 

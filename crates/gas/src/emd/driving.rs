@@ -104,13 +104,20 @@ impl<const D: usize> EventDriven<D> {
                 }
             }
             Driving::Thermostat(thermostat) => {
+                for i in 0..self.particles.len() {
+                    self.bring_to_now(i);
+                }
+                // Under shear the peculiar velocities are scaled (about their mean).
                 let (mean, temperature) = self.mean_and_temperature();
                 let factor = thermostat.factor(temperature);
                 for i in 0..self.particles.len() {
-                    self.bring_to_now(i);
+                    let p = &self.particles[i];
+                    let flow = self.peculiar(&p.position, &p.velocity);
                     let v = &mut self.particles[i].velocity;
                     for k in 0..D {
-                        v[k] = mean[k] + factor * (v[k] - mean[k]);
+                        // v = flow + V: the flow part v - V stays.
+                        let u = flow[k];
+                        v[k] = (v[k] - u) + mean[k] + factor * (u - mean[k]);
                     }
                 }
             }
@@ -118,8 +125,12 @@ impl<const D: usize> EventDriven<D> {
         self.synchronize();
     }
 
-    /// The mass-weighted mean velocity and the temperature about it.
+    /// The mass-weighted mean velocity and the temperature about it (of the peculiar
+    /// velocities under shear; every particle brought to now).
     fn mean_and_temperature(&self) -> (Vector<D>, f64) {
+        if self.shear().is_some() {
+            return self.peculiar_mean_and_temperature();
+        }
         let mut mass = 0.0;
         let mut momentum: Vector<D> = [0.0; D];
         for p in &self.particles {
@@ -138,6 +149,24 @@ impl<const D: usize> EventDriven<D> {
                         .map(|k| (p.velocity[k] - mean[k]).powi(2))
                         .sum::<f64>()
             })
+            .sum();
+        (mean, spread / (self.particles.len() * D) as f64)
+    }
+
+    /// [`Self::mean_and_temperature`] of the peculiar velocities.
+    #[cold]
+    fn peculiar_mean_and_temperature(&self) -> (Vector<D>, f64) {
+        let velocities: Vec<Vector<D>> = self
+            .particles
+            .iter()
+            .map(|p| self.peculiar(&p.position, &p.velocity))
+            .collect();
+        let masses: Vec<f64> = self.particles.iter().map(|p| p.mass).collect();
+        let mean = crate::observe::mass_weighted_mean(&velocities, &masses);
+        let spread: f64 = velocities
+            .iter()
+            .zip(&masses)
+            .map(|(v, m)| m * (0..D).map(|k| (v[k] - mean[k]).powi(2)).sum::<f64>())
             .sum();
         (mean, spread / (self.particles.len() * D) as f64)
     }

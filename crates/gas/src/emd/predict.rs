@@ -40,9 +40,20 @@ impl<const D: usize> EventDriven<D> {
         self.predict_crossing(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
-        let image = self.image;
-        self.for_each_neighbor(i, |j| self.consider(i, &pi, &vi, j, &mut best, &image));
+        self.scan(i, &pi, &vi, &mut best);
         self.keep_if_earlier(i, best);
+    }
+
+    /// The earliest collision of i (now at `pi` with `vi`) with its neighbours, into
+    /// `best`: across a sheared face with the images of the row across.
+    #[inline(always)]
+    fn scan(&self, i: usize, pi: &Vector<D>, vi: &Vector<D>, best: &mut Best) {
+        if self.shear.is_some() && self.on_a_face(i) {
+            self.scan_sheared(i, pi, vi, best);
+            return;
+        }
+        let image = self.image;
+        self.for_each_neighbor(i, |j| self.consider(i, pi, vi, j, best, &image));
     }
 
     /// Predicts every particle's events from scratch, as [`Self::predict`] for i = 0, 1, ...
@@ -59,8 +70,7 @@ impl<const D: usize> EventDriven<D> {
                 let (pi, vi) = this.now(i);
                 let exit = this.exit_of(i, &pi, &vi);
                 let mut best = Best::NONE;
-                let image = this.image;
-                this.for_each_neighbor(i, |j| this.consider(i, &pi, &vi, j, &mut best, &image));
+                this.scan(i, &pi, &vi, &mut best);
                 (exit, best)
             })
             .collect();
@@ -81,6 +91,11 @@ impl<const D: usize> EventDriven<D> {
 
     /// After i entered a new cell: only the layer of cells beyond it is new to i.
     pub(super) fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
+        if self.shear.is_some() && self.on_a_face(i) {
+            // Its neighbours across the face are not one layer of cells.
+            self.predict(i);
+            return;
+        }
         self.predict_crossing(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);

@@ -6,6 +6,7 @@ use crate::driving::Drive;
 use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{Error, Result};
 use crate::serde_util;
+use crate::shear::{Tail, Virial};
 use crate::sorter::SorterKind;
 use crate::system::{wrap, System, Vector};
 use crate::walls::{WallRecord, WallsState};
@@ -22,6 +23,16 @@ impl<const D: usize> EventDriven<D> {
         self.occupied.iter_mut().for_each(|w| *w = 0);
         for i in 0..n {
             self.bring_to_now(i);
+            if self.shear.is_some() {
+                let p = &self.particles[i];
+                let (x, v) = self.brought_into_box(&p.position, &p.velocity);
+                let p = &mut self.particles[i];
+                (p.position, p.velocity) = (x, v);
+            }
+        }
+        if let Some(le) = self.shear {
+            // The interval of shifts from the time alone (the canonical form).
+            self.shear = Some(self.lees_edwards(le.shear));
         }
         // With gravity, the falling frame is the box's now: positions are the box's.
         self.move_frame();
@@ -34,6 +45,36 @@ impl<const D: usize> EventDriven<D> {
             self.insert(i, c);
         }
         self.predict_all();
+    }
+
+    /// Fills the output system with every position at the current time (wrapped into the
+    /// box) and the lab velocities, or the peculiar ones (`peculiar`, under shear).
+    fn fill_system(&mut self, peculiar: bool) {
+        let (time, sides) = (self.time, self.system.sides);
+        let mut positions = std::mem::take(&mut self.system.positions);
+        let mut velocities = std::mem::take(&mut self.system.velocities);
+        let (mut radii, mut masses) = (
+            std::mem::take(&mut self.system.radii),
+            std::mem::take(&mut self.system.masses),
+        );
+        positions.clear();
+        velocities.clear();
+        radii.clear();
+        masses.clear();
+        for p in &self.particles {
+            let (x, v) = match &self.field {
+                None => (p.position_at(time), p.velocity),
+                Some(f) => f.to_box(&p.position_at(time), &p.velocity, time),
+            };
+            let (x, v) = self.brought_into_box(&x, &v);
+            let v = if peculiar { self.peculiar(&x, &v) } else { v };
+            positions.push(std::array::from_fn(|k| wrap(x[k], sides[k])));
+            velocities.push(v);
+            radii.push(p.radius);
+            masses.push(p.mass);
+        }
+        let s = &mut self.system;
+        (s.positions, s.velocities, s.radii, s.masses) = (positions, velocities, radii, masses);
     }
 
     /// Collision counts per particle modulo 2^32 (for snapshots; contacts with walls
@@ -78,11 +119,12 @@ pub struct EventDrivenState<const D: usize> {
     /// Collisions without time advancing since `stall_since` (collapse detection).
     pub stall_since: f64,
     pub stall_collisions: u64,
-    /// The walls' tallies, in a container (absent from periodic runs' states, which stay
-    /// as they were byte for byte; the last field, so that a reader of postcard can take
-    /// the end of the data for None: `sim::checkpoint::Sections::engine`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub walls: Option<WallsState>,
+    /// The walls' tallies in a container, the shear, the tensor virial (absent from
+    /// periodic runs' states, which stay as they were byte for byte; the last field, so
+    /// that a reader of postcard can take the end of the data for None:
+    /// [`crate::shear::Tail`]).
+    #[serde(default, skip_serializing_if = "Tail::is_empty")]
+    pub tail: Tail<WallsState>,
 }
 
 impl<const D: usize> EventDrivenState<D> {
@@ -105,6 +147,7 @@ impl<const D: usize> EventDrivenState<D> {
             });
         }
         self.counters.check("events")?;
+        self.tail.check()?;
         if !(self.min_cell_width.is_finite() && self.min_cell_width >= 0.0) {
             return Err(Error::out_of_range(
                 "min_cell_width",
@@ -185,26 +228,30 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
         self.particles.len()
     }
 
-    /// The state with every position at the current time (wrapped into the box).
+    /// The state with every position at the current time (wrapped into the box); under
+    /// shear, velocities relative to the flow (peculiar: v - a y e_x).
     fn system(&mut self) -> &System<D> {
-        let (time, sides) = (self.time, self.system.sides);
-        let s = &mut self.system;
-        s.positions.clear();
-        s.velocities.clear();
-        s.radii.clear();
-        s.masses.clear();
-        for p in &self.particles {
-            let (x, v) = match &self.field {
-                None => (p.position_at(time), p.velocity),
-                Some(f) => f.to_box(&p.position_at(time), &p.velocity, time),
-            };
-            s.positions
-                .push(std::array::from_fn(|k| wrap(x[k], sides[k])));
-            s.velocities.push(v);
-            s.radii.push(p.radius);
-            s.masses.push(p.mass);
-        }
+        self.fill_system(true);
         &self.system
+    }
+
+    /// The tensor virial summed so far, if asked for
+    /// ([`EventDriven::set_virial_tensor`]).
+    fn virial_tensor(&self) -> Option<Virial> {
+        self.virial
+    }
+
+    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
+        EventDriven::set_virial_tensor(self, on);
+        Ok(())
+    }
+
+    fn shear(&self) -> Option<crate::shear::Shear> {
+        EventDriven::shear(self)
+    }
+
+    fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
+        EventDriven::set_shear(self, shear)
     }
 
     /// Bath temperature of each particle, if the law is stochastic.
@@ -251,7 +298,11 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         self.synchronize();
         EventDrivenState {
             time: self.time,
-            system: self.system().clone(),
+            system: {
+                // Lab velocities: the flow is part of the state.
+                self.fill_system(false);
+                self.system.clone()
+            },
             counts: self.counts(),
             counters: self.tally,
             min_cell_width: self.min_cell_width,
@@ -263,7 +314,11 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             baths: self.bath_state(),
             stall_since: self.stall.0,
             stall_collisions: self.stall.1,
-            walls: self.walls.as_ref().map(|w| w.state()),
+            tail: Tail {
+                walls: self.walls.as_ref().map(|w| w.state()),
+                shear: self.shear(),
+                virial: self.virial,
+            },
         }
     }
 
@@ -282,7 +337,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             baths,
             stall_since,
             stall_collisions,
-            walls,
+            tail,
         } = state;
         if counts.len() != system.len() {
             return Err(Error::LengthMismatch {
@@ -290,7 +345,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             });
         }
         // Predicted once, by `synchronize` below.
-        let mut engine = Self::assemble(system, law, min_cell_width)?;
+        let mut engine = Self::assemble(system, law, min_cell_width, tail.shear, time)?;
         engine.time = time;
         for (p, count) in engine.particles.iter_mut().zip(counts) {
             p.valid_at = time;
@@ -301,7 +356,8 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         engine.stall = (stall_since, stall_collisions);
         engine.idle = (time, 0);
         // Taken up when the walls are set again (they are not part of the state).
-        engine.saved_walls = walls;
+        engine.saved_walls = tail.walls;
+        engine.virial = tail.virial;
         if sorter != SorterKind::default() {
             engine.set_sorter(sorter);
         }

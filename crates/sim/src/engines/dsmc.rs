@@ -299,7 +299,7 @@ pub(super) fn restore_spatial<const D: usize>(
     };
     check_state(plan, &state.system, &state, state.options == options, true)
         .map_err(state_error(sections))?;
-    if state.walls.as_ref().map(|w| w.tallies.len())
+    if state.tail.walls.as_ref().map(|w| w.tallies.len())
         != (!plan.walls.is_empty()).then_some(plan.walls.len())
     {
         return Err(state_error(sections)(

@@ -142,7 +142,7 @@ fn check_state<const D: usize>(
         None if !stochastic => {}
         _ => return Err("the baths do not belong to collision.law".into()),
     }
-    match &state.walls {
+    match &state.tail.walls {
         Some(w) if w.tallies.len() == plan.walls.len() => {}
         None if plan.walls.is_empty() => {}
         _ => return Err("the walls differ from [[wall]]".into()),

@@ -3,6 +3,13 @@
 //! particles from a random block). Over ranks, each holds a run of whole blocks and the
 //! lanes travel between ranks ([`exchange_lanes`]); the step is the single process's, bit
 //! for bit: the same blocks, lanes and random streams, and exact sums over the blocks.
+//!
+//! Uniform shear flow (`Core::shear`, u = a y e_x): the records are the peculiar velocities
+//! V, which between collisions obey dV_x/dt = -a V_y (the USF in the frame moving with the
+//! flow; Brey, Ruiz-Montero & Moreno, Phys. Rev. E 55, 2846 (1997)). The streaming is
+//! solved exactly, V_x -= a V_y t, for half a step before and half after each step's
+//! collisions (Strang splitting: the step's error is of third order in dt, the error at
+//! a fixed time of second order; the thermostat's scaling follows the step).
 
 use super::{Core, HomogeneousRecord};
 use crate::driving::Driving;
@@ -13,6 +20,7 @@ use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIO
 use crate::parallel::Communicator;
 use crate::prefetch::prefetch;
 use crate::rng::{Purpose, Stream};
+use crate::shear::Virial;
 use crate::system::{dot, Vector};
 use crate::theory;
 use rayon::prelude::*;
@@ -129,6 +137,9 @@ pub(super) fn run_blocks<const D: usize, R: HomogeneousRecord<D>>(
         let sums = block_step(core, now, spare, &layout, dt);
         std::mem::swap(now, spare);
         core.tally.add(&sums.tally);
+        if let (Some(total), Some(step)) = (core.virial.as_mut(), &sums.virial) {
+            total.merge(step);
+        }
         add_counts(&mut core.species_collisions, &sums.species_collisions);
         // The spread about the mean u from the spread about the reference r:
         // sum m |v - r|^2 - M |u - r|^2.
@@ -202,6 +213,7 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
         _ => None,
     };
     let reference = core.reference;
+    let (shear, with_virial) = (core.shear, core.virial.is_some());
     let base = layout.start(share.first);
     let base_rate =
         theory::cross_section_factor::<D>() * core.species.max_weight * (core.total as f64 - 1.0)
@@ -223,6 +235,11 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             };
             let mut rng = Stream::new(seed, Purpose::Block, steps, b as u64);
             let mut tally = SpeciesTally::new(species.len());
+            tally.virial = with_virial.then(Virial::default);
+            if let Some(shear) = &shear {
+                stream_sheared(block, shear.rate, 0.5 * dt);
+                bound = kernel::speed_bound(block, &reference);
+            }
             // Driving: half the step's kicks before the collisions, half after (symmetric
             // splitting: the state at the end of a step is that of continuous noise to
             // second order in the step).
@@ -244,12 +261,26 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             if let Some(noise) = noise {
                 noise.kick(block, 0.5 * dt, species, &mut rng);
             }
+            if let Some(shear) = &shear {
+                stream_sheared(block, shear.rate, 0.5 * dt);
+            }
             kernel::shuffle(block, &mut rng);
             (tally, kernel::sums_about(block, species, &reference))
         })
         .collect();
     let kinds = core.species.len();
-    reduce::step_sums(&results, kinds, true, core.comm.as_ref(), &mut core.traffic)
+    let comm = core.comm.as_ref();
+    reduce::step_sums(&results, kinds, true, with_virial, comm, &mut core.traffic)
+}
+
+/// The peculiar velocities of a uniform shear flow of rate `rate` streamed for a time `t`:
+/// V_x -= rate V_y t, the exact solution of dV_x/dt = -rate V_y (V_y, V_z constant).
+fn stream_sheared<const D: usize, R: Record<D>>(block: &mut [R], rate: f64, t: f64) {
+    let skew = rate * t;
+    for r in block {
+        let v = r.velocity_mut();
+        v[0] -= skew * v[1];
+    }
 }
 
 /// Moves the lanes of this rank's blocks (`now`, the blocks `share`) to the destination

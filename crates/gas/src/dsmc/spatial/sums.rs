@@ -22,7 +22,7 @@ impl<const D: usize> SpatialDsmc<D> {
     ) -> (Counters, f64, Vec<u64>) {
         let comm = self.comm.as_ref();
         let kinds = self.species.len();
-        let totals = reduce::step_sums(results, kinds, false, comm, &mut self.traffic);
+        let totals = reduce::step_sums(results, kinds, false, false, comm, &mut self.traffic);
         let mean = totals.mean();
         let spread = sums_of(results, 1, |(_, m), s| {
             let u = m.mean();

@@ -1,0 +1,318 @@
+//! Uniform shear flow (USF) and the stress it is measured by.
+//!
+//! The flow u = a y e_x (flow along x, gradient along y) is imposed by Lees–Edwards
+//! boundaries (Lees & Edwards, J. Phys. C 5, 1921 (1972)): the periodic images of the box
+//! above and below it slide along x with the velocity ± a L_y, so the image of a sphere at
+//! (x, y) with velocity v seen across the upper face of the box is at
+//! (x + δ(t), y + L_y) with velocity v + a L_y e_x, where δ(t) = a L_y t (modulo L_x) is the
+//! images' offset. A sphere that leaves through that face comes back through the lower one
+//! as its image: x − δ, y − L_y, v_x − a L_y. In a spatially homogeneous description (the
+//! homogeneous DSMC) the same state is the USF in the frame moving with the flow: the
+//! peculiar velocities V = v − a y e_x obey dV_x/dt = −a V_y between collisions
+//! (Brey, Ruiz-Montero & Moreno, Phys. Rev. E 55, 2846 (1997); Garzó & Santos, *Kinetic
+//! Theory of Gases in Shear Flows*, Kluwer 2003, Ch. 2).
+//!
+//! The pressure tensor P = P^k + P^c is the kinetic part Σ m V V / V_box of the peculiar
+//! velocities plus the collisional transfer: each collision moves the momentum J n (J the
+//! impulse, n the unit vector from one centre to the other, σ their distance) across σ n,
+//! and P^c = Σ J σ n n / (V_box Δt) over the collisions of a time Δt (Allen & Tildesley,
+//! *Computer Simulation of Liquids*, Sec. 2.4; its trace / D is the virial pressure of
+//! [`crate::observe::pressure`]). [`Virial`] sums J σ n n.
+
+use crate::error::{Error, Result};
+use crate::system::Vector;
+use serde::de::{SeqAccess, Visitor};
+use serde::ser::SerializeTuple;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+/// The uniform shear flow u = rate · y e_x.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shear {
+    pub rate: f64,
+}
+
+impl Shear {
+    /// Fails, naming `rate`, unless the rate is finite and not 0.
+    pub fn new(rate: f64) -> Result<Self> {
+        if !(rate.is_finite() && rate != 0.0) {
+            return Err(Error::out_of_range("rate", rate, "finite and not 0"));
+        }
+        Ok(Shear { rate })
+    }
+
+    /// The flow velocity along x at height y.
+    #[inline]
+    pub fn flow(&self, y: f64) -> f64 {
+        self.rate * y
+    }
+
+    /// The offset δ(t) = a L_y t of the images above the box, in [0, L_x).
+    pub fn offset(&self, time: f64, sides: &[f64]) -> f64 {
+        (self.rate * sides[1] * time).rem_euclid(sides[0])
+    }
+
+    /// The velocity difference a L_y between the images above the box and the box.
+    #[inline]
+    pub fn jump(&self, sides: &[f64]) -> f64 {
+        self.rate * sides[1]
+    }
+
+    /// The peculiar velocity of a sphere at height y with (lab) velocity v.
+    #[inline]
+    pub fn peculiar<const D: usize>(&self, y: f64, v: &Vector<D>) -> Vector<D> {
+        let mut u = *v;
+        u[0] -= self.flow(y);
+        u
+    }
+}
+
+/// The index of the component (a, b), a <= b, of a symmetric tensor stored as
+/// xx, yy, zz, xy, xz, yz (2D: zz, xz, yz stay 0).
+#[inline]
+pub const fn component(a: usize, b: usize) -> usize {
+    let (a, b) = if a <= b { (a, b) } else { (b, a) };
+    if a == b {
+        a
+    } else {
+        a + b + 2
+    }
+}
+
+/// The collisional momentum transfer summed over collisions: Σ J σ n_a n_b (J the impulse,
+/// σ the distance of the centres, n their unit vector), as xx, yy, zz, xy, xz, yz. Its
+/// trace is [`crate::Counters::virial`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct Virial(pub [f64; 6]);
+
+impl Virial {
+    /// Adds a collision of impulse `impulse` across `distance` along the unit vector `n`.
+    #[inline(always)]
+    pub fn add<const D: usize>(&mut self, impulse: f64, distance: f64, n: &Vector<D>) {
+        let w = impulse * distance;
+        for a in 0..D {
+            for b in a..D {
+                self.0[component(a, b)] += w * n[a] * n[b];
+            }
+        }
+    }
+
+    /// Adds another sum (a block's, a cell's).
+    pub fn merge(&mut self, other: &Virial) {
+        for (s, o) in self.0.iter_mut().zip(other.0) {
+            *s += o;
+        }
+    }
+
+    /// The sum since `earlier`.
+    pub fn since(&self, earlier: &Virial) -> Virial {
+        Virial(std::array::from_fn(|c| self.0[c] - earlier.0[c]))
+    }
+
+    /// The component (a, b).
+    pub fn get(&self, a: usize, b: usize) -> f64 {
+        self.0[component(a, b)]
+    }
+
+    /// Checks a restored sum: finite.
+    pub fn check(&self) -> Result<()> {
+        if self.0.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::out_of_range(
+                "virial",
+                format!("{:?}", self.0),
+                "finite sums",
+            ))
+        }
+    }
+}
+
+/// The optional parts that end an engine's saved state: the walls of a container, the
+/// shear, the tensor virial. Written up to the last one present (nothing for a periodic
+/// unsheared gas, whose states stay byte for byte as before they existed; only the walls
+/// for a container, as the walls alone were written before), each as an option; a reader
+/// takes the end of the data as absence (`sim::checkpoint::Sections::engine` pads the data
+/// with zero bytes, which read as None).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tail<W> {
+    pub walls: Option<W>,
+    pub shear: Option<Shear>,
+    pub virial: Option<Virial>,
+}
+
+impl<W> Default for Tail<W> {
+    fn default() -> Self {
+        Tail {
+            walls: None,
+            shear: None,
+            virial: None,
+        }
+    }
+}
+
+impl<W> Tail<W> {
+    pub fn is_empty(&self) -> bool {
+        self.walls.is_none() && self.shear.is_none() && self.virial.is_none()
+    }
+
+    /// How many parts are written: up to the last one present.
+    fn written(&self) -> usize {
+        if self.virial.is_some() {
+            3
+        } else if self.shear.is_some() {
+            2
+        } else {
+            self.walls.is_some() as usize
+        }
+    }
+
+    /// Checks the restored shear and virial (the walls are checked by their engine).
+    pub fn check(&self) -> Result<()> {
+        if let Some(shear) = &self.shear {
+            Shear::new(shear.rate)?;
+        }
+        if let Some(virial) = &self.virial {
+            virial.check()?;
+        }
+        Ok(())
+    }
+}
+
+impl<W: Serialize> Serialize for Tail<W> {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let len = self.written();
+        let mut t = s.serialize_tuple(len)?;
+        if len >= 1 {
+            t.serialize_element(&self.walls)?;
+        }
+        if len >= 2 {
+            t.serialize_element(&self.shear)?;
+        }
+        if len >= 3 {
+            t.serialize_element(&self.virial)?;
+        }
+        t.end()
+    }
+}
+
+impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
+    fn deserialize<De: Deserializer<'de>>(d: De) -> std::result::Result<Self, De::Error> {
+        struct TailVisitor<W>(std::marker::PhantomData<W>);
+        impl<'de, W: Deserialize<'de>> Visitor<'de> for TailVisitor<W> {
+            type Value = Tail<W>;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("up to three options: walls, shear, virial")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> std::result::Result<Self::Value, A::Error> {
+                let walls = seq.next_element::<Option<W>>()?.flatten();
+                let shear = seq.next_element::<Option<Shear>>()?.flatten();
+                let virial = seq.next_element::<Option<Virial>>()?.flatten();
+                Ok(Tail {
+                    walls,
+                    shear,
+                    virial,
+                })
+            }
+        }
+        d.deserialize_tuple(3, TailVisitor(std::marker::PhantomData))
+    }
+}
+
+/// Zero bytes a reader of postcard appends to an engine's state so that the options of a
+/// [`Tail`] missing at its end read as None.
+pub const TAIL_PADDING: usize = 3;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    struct Old {
+        a: u32,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        walls: Option<u64>,
+    }
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    struct New {
+        a: u32,
+        #[serde(default, skip_serializing_if = "Tail::is_empty")]
+        tail: Tail<u64>,
+    }
+
+    fn padded(mut bytes: Vec<u8>) -> Vec<u8> {
+        bytes.extend([0; TAIL_PADDING]);
+        bytes
+    }
+
+    /// A state without a tail, or with walls only, is written as the older state with its
+    /// optional walls was (byte for byte), and older states read back; every combination
+    /// of parts reads back as written (postcard with the padding, and JSON).
+    #[test]
+    fn tails_keep_older_bytes_and_read_back() {
+        for walls in [None, Some(7u64)] {
+            let old = postcard::to_stdvec(&Old { a: 3, walls }).unwrap();
+            let tail = Tail {
+                walls,
+                ..Default::default()
+            };
+            let new = postcard::to_stdvec(&New { a: 3, tail }).unwrap();
+            assert_eq!(old, new);
+            let read: New = postcard::from_bytes(&padded(old)).unwrap();
+            assert_eq!(read.tail.walls, walls);
+        }
+        let shear = Some(Shear { rate: -0.5 });
+        let virial = Some(Virial([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]));
+        for walls in [None, Some(9u64)] {
+            for shear in [None, shear] {
+                for virial in [None, virial] {
+                    let state = New {
+                        a: 1,
+                        tail: Tail {
+                            walls,
+                            shear,
+                            virial,
+                        },
+                    };
+                    let bytes = padded(postcard::to_stdvec(&state).unwrap());
+                    assert_eq!(postcard::from_bytes::<New>(&bytes).unwrap(), state);
+                    let json = serde_json::to_string(&state).unwrap();
+                    assert_eq!(serde_json::from_str::<New>(&json).unwrap(), state);
+                }
+            }
+        }
+    }
+
+    /// The tensor's trace is the scalar virial J σ; the components are those of n n.
+    #[test]
+    fn the_virial_tensor_traces_to_the_scalar_virial() {
+        let mut v = Virial::default();
+        let n = [0.6, 0.0, 0.8];
+        v.add::<3>(2.0, 1.5, &n);
+        let trace = v.get(0, 0) + v.get(1, 1) + v.get(2, 2);
+        assert!((trace - 3.0).abs() < 1e-15);
+        assert!((v.get(0, 2) - 3.0 * 0.48).abs() < 1e-15);
+        assert_eq!(v.get(2, 0), v.get(0, 2));
+        assert_eq!(v.get(0, 1), 0.0);
+        assert_eq!(component(0, 1), 3);
+        assert_eq!(component(0, 2), 4);
+        assert_eq!(component(1, 2), 5);
+    }
+
+    #[test]
+    fn the_offset_stays_in_the_box() {
+        let shear = Shear::new(-0.3).unwrap();
+        let sides = [10.0, 20.0];
+        for t in [0.0, 1.0, 7.3, 1e6] {
+            let d = shear.offset(t, &sides);
+            assert!((0.0..10.0).contains(&d), "{d}");
+        }
+        assert!((shear.offset(1.0, &sides) - 4.0).abs() < 1e-12);
+        assert!(Shear::new(f64::NAN).is_err());
+        assert!(Shear::new(0.0).is_err());
+    }
+}
