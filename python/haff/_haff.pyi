@@ -57,6 +57,11 @@ class _Simulation:
     def walls(self) -> dict[str, Any] | None:
         """The columns of walls.csv: time, collisions_per_particle, axis, side, collisions,
         momentum, energy (one row per wall and sample)."""
+    def pressure(self) -> dict[str, Float1D] | None:
+        """The columns of pressure.csv: time, collisions_per_particle, pxx, pyy, pzz, pxy,
+        pxz, pyz, kinetic_xy."""
+    def rheology(self) -> str | None:
+        """summary.json's rheology as JSON text (None without [shear])."""
     def profiles(self) -> dict[str, Float1D] | None:
         """The columns of profiles.csv (one row per slab and sample; NaN for empty cells)."""
     def velocity_histograms(self) -> list[tuple[float, float, float, Float1D, Float1D]]: ...

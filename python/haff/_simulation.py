@@ -219,6 +219,33 @@ class Simulation:
                  "energy"]
         return pandas.DataFrame({name: columns[name] for name in order})
 
+    def pressure(self):
+        """The pressure tensor at every sample (``[output] pressure = true``, always with
+        ``[shear]``): a pandas DataFrame with the columns of ``pressure.csv`` (time,
+        collisions_per_particle, pxx, pyy, pzz, pxy, pxz, pyz, kinetic_xy): the kinetic part
+        of the velocities relative to the flow plus the collisional part averaged since the
+        previous sample. None without them. Needs pandas."""
+        columns = self._sim.pressure()
+        if columns is None:
+            return None
+        try:
+            import pandas
+        except ImportError:  # pragma: no cover - depends on the environment
+            raise ImportError("pressure needs pandas: pip install pandas") from None
+        order = ["time", "collisions_per_particle", "pxx", "pyy", "pzz", "pxy", "pxz", "pyz",
+                 "kinetic_xy"]
+        return pandas.DataFrame({name: columns[name] for name in order})
+
+    def rheology(self) -> Optional[Dict[str, Any]]:
+        """The rheology of a sheared run (``[shear]``), as ``summary.json`` has it: over the
+        second half of the samples so far, the temperature, the pressure tensor over n T
+        (pxx, pyy, pzz, pxy), the shear viscosity -P_xy / a, its reduced value, the reduced
+        shear rate and the normal stress differences, each a dict of ``mean`` and ``error``
+        (batch means); Grad's steady state under ``theory`` where it applies. None without
+        ``[shear]``."""
+        text = self._sim.rheology()
+        return None if text is None else json.loads(text)
+
     def profiles(self):
         """Profiles along an axis (``[output] profiles = {axis, bins}``): a pandas DataFrame
         with the columns of ``profiles.csv`` (time, collisions_per_particle, position,

@@ -272,6 +272,47 @@ impl PySimulation {
         Ok(Some(out))
     }
 
+    /// The pressure tensor's rows (the columns of `pressure.csv`); None without
+    /// `output.pressure` or `[shear]`.
+    fn pressure<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let simulation = self.get();
+        let Some(series) = simulation.pressure() else {
+            return Ok(None);
+        };
+        let rows = &series.samples;
+        let out = PyDict::new(py);
+        let mut columns: Vec<(&str, Vec<f64>)> = vec![
+            ("time", rows.iter().map(|r| r.time).collect()),
+            (
+                "collisions_per_particle",
+                rows.iter().map(|r| r.collisions_per_particle).collect(),
+            ),
+        ];
+        for (c, name) in ["pxx", "pyy", "pzz", "pxy", "pxz", "pyz"]
+            .into_iter()
+            .enumerate()
+        {
+            columns.push((name, rows.iter().map(|r| r.pressure[c]).collect()));
+        }
+        columns.push(("kinetic_xy", rows.iter().map(|r| r.kinetic_xy).collect()));
+        for (name, values) in columns {
+            debug_assert!(sim::rheology::PRESSURE_HEADER.contains(&name));
+            out.set_item(name, PyArray1::from_vec(py, values))?;
+        }
+        Ok(Some(out))
+    }
+
+    /// `summary.json`'s `rheology` of the rows so far, as JSON text; None without `[shear]`.
+    fn rheology(&self) -> PyResult<Option<String>> {
+        let simulation = self.get();
+        if simulation.plan().shear.is_none() {
+            return Ok(None);
+        }
+        Ok(simulation
+            .pressure()
+            .map(|series| simulation.rheology(series).to_string()))
+    }
+
     /// The profiles' rows (the columns of `profiles.csv`, NaN for its empty cells); None
     /// without `output.profiles`.
     fn profiles<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {

@@ -453,3 +453,31 @@ def test_thermostat_and_species_materials_from_a_dict():
     config["collision"] = {"law": "constant", "restitution": 0.9}
     with pytest.raises(haff.ConfigError, match=r"system\.species\[0\]\.young"):
         haff.Simulation(config)
+
+
+def test_a_sheared_gas_reports_its_pressure_tensor_and_rheology(tmp_path):
+    """`[shear]` from a dict: `pressure()` is pressure.csv as a frame, `rheology()` is
+    summary.json's `rheology` (the same numbers, both from sim); P_xy opposes the shear;
+    a rate that is not finite is refused naming the key."""
+    sheared = {"system": {"dimension": 2, "particles": 400, "packing_fraction": 0.05, "seed": 4},
+               "collision": {"law": "constant", "restitution": 0.8},
+               "run": {"collisions_per_particle": 40.0, "samples": 20, "spacing": "linear"},
+               "shear": {"rate": 0.05}}
+    sim = haff.Simulation(sheared).run(progress=False)
+    frame = sim.pressure()
+    assert list(frame.columns) == ["time", "collisions_per_particle", "pxx", "pyy", "pzz",
+                                   "pxy", "pxz", "pyz", "kinetic_xy"]
+    assert len(frame) == len(sim.timeseries["time"])
+    assert (frame["pxy"].iloc[len(frame) // 2:] < 0.0).all()
+    assert (frame["pzz"] == 0.0).all()
+    rheology = sim.rheology()
+    sim.write(tmp_path / "out")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert rheology == summary["rheology"]
+    assert rheology["pxy"]["mean"] < 0.0 and rheology["viscosity"]["mean"] > 0.0
+    csv = (tmp_path / "out" / "pressure.csv").read_text().splitlines()
+    assert csv[0] == "time,collisions_per_particle,pxx,pyy,pzz,pxy,pxz,pyz,kinetic_xy"
+    assert haff.Simulation(CONFIGS["event-driven"]).pressure() is None
+    assert haff.Simulation(CONFIGS["event-driven"]).rheology() is None
+    with pytest.raises(haff.ConfigError, match=r"shear\.rate"):
+        haff.Simulation(dict(sheared, shear={"rate": float("nan")}))

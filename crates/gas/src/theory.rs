@@ -35,9 +35,9 @@ pub use hydrodynamics::{
 };
 pub use mixture::{DrivenState, MixtureHcs, MixtureTheory};
 pub use sonine::{second_sonine, SonineHierarchy};
+use std::f64::consts::PI;
 pub use transport::{NavierStokes, ReducedTransport};
 pub use usf::ShearState;
-use std::f64::consts::PI;
 
 /// The dimensions the engines support.
 pub fn check_dimension<const D: usize>() -> crate::Result<()> {

@@ -71,6 +71,25 @@ pub struct RunDescription {
     /// `[field]`: forces on every sphere (gravity).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field: Option<FieldSection>,
+    /// `[shear]`: uniform shear flow (Lees–Edwards boundaries).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear: Option<ShearSection>,
+}
+
+/// `[shear]`: the uniform shear flow u = rate · y e_x (flow along x, gradient along y):
+/// Lees–Edwards boundaries in the event-driven engine, the frame moving with the flow in
+/// the homogeneous DSMC (`gas::shear`). `pressure.csv` and `summary.json`'s `rheology`
+/// come with it; `timeseries.csv`'s temperature is that of the velocities relative to the
+/// flow.
+///
+/// ```toml
+/// [shear]
+/// rate = 0.5
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShearSection {
+    pub rate: f64,
 }
 
 /// `[field]`: a uniform acceleration of every sphere, along axes closed by walls.
@@ -276,6 +295,13 @@ pub struct OutputSection {
     pub snapshots: Option<SnapshotsOutput>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profiles: Option<ProfilesOutput>,
+    /// The pressure tensor at every sample (`pressure.csv`; always under `[shear]`).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub pressure: bool,
+}
+
+fn is_false(x: &bool) -> bool {
+    !*x
 }
 
 /// `output.profiles`: slabs along `axis`, `bins` of them, at every sample

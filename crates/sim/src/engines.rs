@@ -80,6 +80,10 @@ pub struct Abilities {
     pub species_materials: bool,
     /// The walls of a container (`[[wall]]`).
     pub walls: bool,
+    /// Uniform shear flow (`[shear]`).
+    pub shear: bool,
+    /// The tensor virial, for the pressure tensor (`output.pressure`, `[shear]`).
+    pub stress: bool,
 }
 
 /// The name of an engine kind in the run file.
@@ -217,7 +221,53 @@ pub(crate) fn start<const D: usize>(
             soft_sphere::start(plan, system, options, material)
         }
     }?;
+    let mut engine = engine;
+    flow(engine.as_mut(), plan)?;
     Ok((engine, grown))
+}
+
+/// Shears a fresh engine as `[shear]` says (its velocities become the peculiar ones) and
+/// has it sum the tensor virial for the pressure tensor (`output.pressure`, `[shear]`).
+fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
+    if let Some(shear) = plan.shear {
+        engine
+            .set_shear(Some(shear))
+            .map_err(|e| Error::input("shear", e))?;
+    }
+    if plan.pressure_tensor {
+        let key = if plan.shear.is_some() {
+            "shear"
+        } else {
+            "output.pressure"
+        };
+        engine
+            .set_virial_tensor(true)
+            .map_err(|e| Error::input(key, e))?;
+    }
+    Ok(())
+}
+
+/// Why a restored engine's flow is not the plan's, if it is not: its shear and whether it
+/// sums the tensor virial.
+fn check_flow<const D: usize>(
+    engine: &dyn Driven<D>,
+    plan: &Plan,
+) -> std::result::Result<(), String> {
+    if engine.shear() != plan.shear {
+        return Err(format!(
+            "its shear ({:?}) differs from [shear] ({:?})",
+            engine.shear().map(|s| s.rate),
+            plan.shear.map(|s| s.rate)
+        ));
+    }
+    if engine.virial_tensor().is_some() != plan.pressure_tensor {
+        return Err(
+            "it measures the pressure tensor where the run does not, or the other way \
+             (output.pressure, [shear])"
+                .into(),
+        );
+    }
+    Ok(())
 }
 
 /// The engine of the check-point `sections`, after checking that its state belongs to the
@@ -228,12 +278,14 @@ pub(crate) fn restore<const D: usize>(
     sections: &Sections,
     comm: &Arc<dyn Communicator>,
 ) -> Result<Box<dyn Driven<D>>> {
-    match plan.engine {
+    let engine = match plan.engine {
         EngineSpec::EventDriven => event_driven::restore(plan, law, sections),
         EngineSpec::HomogeneousDsmc(_) => dsmc::restore_homogeneous(plan, law, sections, comm),
         EngineSpec::SpatialDsmc(_) => dsmc::restore_spatial(plan, law, sections, comm),
         EngineSpec::SoftSphere(..) => soft_sphere::restore(plan, sections),
-    }
+    }?;
+    check_flow(engine.as_ref(), plan).map_err(state_error(sections))?;
+    Ok(engine)
 }
 
 pub use event_driven::Work;

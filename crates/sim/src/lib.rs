@@ -34,6 +34,7 @@ pub mod parallel;
 pub mod plot;
 pub mod probe;
 pub mod profiles;
+pub mod rheology;
 pub mod rod_ring;
 pub mod schedule;
 pub mod simulation;

@@ -97,6 +97,9 @@ pub fn for_plan<const D: usize>(plan: &Plan) -> Vec<Box<dyn Observer<D>>> {
     if let Some(profiles) = crate::profiles::ProfileSeries::of(plan) {
         list.push(Box::new(profiles));
     }
+    if let Some(pressure) = crate::rheology::PressureSeries::of(plan) {
+        list.push(Box::new(pressure));
+    }
     list
 }
 

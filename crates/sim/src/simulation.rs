@@ -374,6 +374,19 @@ impl Simulation {
         each!(&self.run, r => r.observer::<SpeciesSeries>().map(|s| s.samples.as_slice()))
     }
 
+    /// The rows of `pressure.csv` (`output.pressure`, `[shear]`), None without them.
+    pub fn pressure(&self) -> Option<&crate::rheology::PressureSeries> {
+        each!(&self.run, r => r.observer::<crate::rheology::PressureSeries>())
+    }
+
+    /// `summary.json`'s `rheology` of the rows so far (`[shear]`; null otherwise).
+    pub fn rheology(&self, series: &crate::rheology::PressureSeries) -> serde_json::Value {
+        match self.plan.description.system.dimension {
+            2 => crate::rheology::summary::<2>(&self.plan, series),
+            _ => crate::rheology::summary::<3>(&self.plan, series),
+        }
+    }
+
     /// The rows of `profiles.csv` (`output.profiles`), None without it.
     pub fn profile_rows(&self) -> Option<&[crate::profiles::ProfileRow]> {
         each!(&self.run, r => r.observer::<crate::profiles::ProfileSeries>().map(|s| s.rows.as_slice()))
@@ -546,6 +559,11 @@ impl Simulation {
         }
         if let Some(walls) = each!(&self.run, r => r.observer::<crate::walls::WallSeries>()) {
             summary["walls"] = crate::walls::summary(walls);
+        }
+        if let Some(series) = self.pressure() {
+            if self.plan.shear.is_some() {
+                summary["rheology"] = self.rheology(series);
+            }
         }
         for section in self.report().sections {
             summary[section.name] = serde_json::json!(section);

@@ -15,6 +15,7 @@ mod field;
 mod law;
 pub(crate) mod material;
 mod run;
+mod shear;
 mod system;
 mod walls;
 
@@ -93,6 +94,11 @@ pub struct Plan {
     pub walls: Vec<WallSpec>,
     /// Gravity (`[field]`), if on.
     pub gravity: Option<GravitySpec>,
+    /// `[shear]`: the uniform shear flow.
+    pub shear: Option<gas::shear::Shear>,
+    /// The pressure tensor is measured (`output.pressure` or `[shear]`): the engine sums
+    /// the tensor virial.
+    pub pressure_tensor: bool,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
@@ -116,6 +122,9 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let (driving, driving_interval) = driving::driving_spec(description, &abilities, &law)?;
     let walls = walls::walls_spec(description, &abilities, &species)?;
     let gravity = field::gravity_spec(description, &abilities, &walls, &species)?;
+    let shear = shear::shear_spec(description, &abilities, &walls, &species)?;
+    let pressure_tensor =
+        shear.is_some() || description.output.as_ref().is_some_and(|o| o.pressure);
     let c = &description.collision;
     let mut description = description.clone();
     description.normalize();
@@ -131,6 +140,8 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         driving_interval,
         walls,
         gravity,
+        shear,
+        pressure_tensor,
         notes: Vec::new(),
     };
     if plan.driving.is_some()

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 12] = [
+const SEEDS: [&str; 14] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -67,10 +67,20 @@ const SEEDS: [&str; 12] = [
      [field]\ngravity = [0.0, 0.0, -1.0]\n\
      [[wall]]\naxis = \"z\"\nside = \"low\"\nkind = \"restitution\"\n\
      [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"vibrating\"\namplitude = 0.1\nfrequency = 1.0\n",
+    "[system]\ndimension = 2\nparticles = 60\npacking_fraction = 0.1\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+     [run]\ncollisions_per_particle = 5\nsamples = 4\n\
+     [driving]\nkind = \"gaussian-thermostat\"\n\
+     [output]\npressure = true\n\
+     [shear]\nrate = 0.3\n",
+    "[system]\nparticles = 80\npacking_fraction = 0.05\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.8\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"blocks\"\nblock_size = 16\ncollisions_per_particle = 4\nsamples = 4\n\
+     [shear]\nrate = 0.5\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 43] = [
+const KEYS: [&str; 46] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -114,6 +124,9 @@ const KEYS: [&str; 43] = [
     "gravity",
     "rest_height",
     "box",
+    "shear",
+    "rate",
+    "pressure",
 ];
 
 /// Values of every TOML type, in and out of range.

@@ -23,6 +23,8 @@ pub(super) const ABILITIES: Abilities = Abilities {
     baths: true,
     species_materials: true,
     walls: true,
+    shear: true,
+    stress: true,
 };
 
 /// The engine's keys: none beyond the common ones.

@@ -22,6 +22,8 @@ pub(super) const ABILITIES: Abilities = Abilities {
     baths: false,
     species_materials: false,
     walls: true,
+    shear: false,
+    stress: false,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).

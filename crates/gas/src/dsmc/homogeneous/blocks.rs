@@ -16,7 +16,10 @@ use crate::driving::Driving;
 use crate::dsmc::domain::Traffic;
 use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally};
 use crate::dsmc::reduce;
-use crate::dsmc::{frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP};
+use crate::dsmc::{
+    frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
+    SHEARED_BLOCK_COLLISIONS_PER_STEP,
+};
 use crate::parallel::Communicator;
 use crate::prefetch::prefetch;
 use crate::rng::{Purpose, Stream};
@@ -120,6 +123,7 @@ pub(super) fn run_blocks<const D: usize, R: HomogeneousRecord<D>>(
             return;
         }
         let mut dt = match step {
+            StepSize::Auto if core.shear.is_some() => SHEARED_BLOCK_COLLISIONS_PER_STEP / omega,
             StepSize::Auto => DEFAULT_BLOCK_COLLISIONS_PER_STEP / omega,
             StepSize::CollisionsPerParticle(x) => x / omega,
             StepSize::Fixed(dt) => dt,

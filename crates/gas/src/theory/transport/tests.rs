@@ -281,12 +281,24 @@ fn hcs_transport_is_these_coefficients() {
     for (phi, eps) in [(0.0, 0.9), (0.1, 0.7), (0.35, 0.4)] {
         let ns = NavierStokes::enskog::<3>(0.3, 1.0, 1.0, 1.5, phi, eps);
         let hcs = HcsTransport::new::<3>(0.3, 1.0, 1.0, 1.5, phi, eps);
-        assert!(close(hcs.shear_viscosity, ns.shear_viscosity, 2e-15), "3D {phi} {eps}");
-        assert!(close(hcs.cooling_rate, ns.cooling_rate, 2e-15), "3D {phi} {eps}");
+        assert!(
+            close(hcs.shear_viscosity, ns.shear_viscosity, 2e-15),
+            "3D {phi} {eps}"
+        );
+        assert!(
+            close(hcs.cooling_rate, ns.cooling_rate, 2e-15),
+            "3D {phi} {eps}"
+        );
         let ns = NavierStokes::enskog::<2>(0.3, 1.0, 1.0, 1.5, phi, eps);
         let hcs = HcsTransport::new::<2>(0.3, 1.0, 1.0, 1.5, phi, eps);
-        assert!(close(hcs.shear_viscosity, ns.shear_viscosity, 2e-15), "2D {phi} {eps}");
-        assert!(close(hcs.cooling_rate, ns.cooling_rate, 2e-15), "2D {phi} {eps}");
+        assert!(
+            close(hcs.shear_viscosity, ns.shear_viscosity, 2e-15),
+            "2D {phi} {eps}"
+        );
+        assert!(
+            close(hcs.cooling_rate, ns.cooling_rate, 2e-15),
+            "2D {phi} {eps}"
+        );
     }
     assert_eq!(ReducedTransport::enskog::<2>(0.1, 0.8).mu, None);
 }
