@@ -49,9 +49,12 @@ fn steady(engine: &str, particles: usize, phi: f64) -> String {
 /// The steady USF at alpha = 0.8, phi = 0.002 (Enskog's corrections of order phi chi:
 /// below 0.5 %): the event-driven engine and the homogeneous DSMC give the same reduced
 /// shear rate and reduced pressure tensor within 4 combined standard errors (batch means
-/// over the second half) plus 0.5 %. Both are then set against Grad's solution in the
-/// summary (measured differences in docs/shear.md, not asserted: Grad's method is an
-/// approximation).
+/// over the second half) plus 0.5 %. The spatial DSMC (Lees–Edwards, cells of 0.1 mean free
+/// path, 90 particles per cell, 0.02 collisions per step) agrees within 4 standard errors
+/// plus 1 %: its discretization error, measured converging in docs/shear.md (P_xy 8 % low
+/// with the default cells of 0.6 mean free path, 1.7 % at 0.1 and 0.05 collisions per
+/// step, 0.6 % at 0.02). Grad's solution is set beside them in the summary (measured
+/// differences in docs/shear.md, not asserted: Grad's method is an approximation).
 #[test]
 fn event_driven_and_dsmc_agree_on_the_steady_shear_flow() {
     let (_, emd) = run(&steady("engine = \"event-driven\"\n", 2000, 0.002));
@@ -60,14 +63,22 @@ fn event_driven_and_dsmc_agree_on_the_steady_shear_flow() {
         20000,
         0.002,
     ));
+    let (_, spatial) = run(&steady(
+        "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"\nparticle_weight = 0.01\n\
+         collision_cell_width = 6.0\ncollisions_per_step = 0.02\n",
+        20000,
+        0.002,
+    ));
     for key in ["reduced_shear_rate", "pxx", "pyy", "pzz", "pxy"] {
-        let (a, ea) = measured(&emd, key);
         let (b, eb) = measured(&dsmc, key);
-        let allowed = 4.0 * (ea * ea + eb * eb).sqrt() + 0.005 * b.abs();
-        assert!(
-            (a - b).abs() < allowed,
-            "{key}: event-driven {a} +- {ea}, DSMC {b} +- {eb}"
-        );
+        for (name, other, slack) in [("event-driven", &emd, 0.005), ("spatial", &spatial, 0.01)] {
+            let (a, ea) = measured(other, key);
+            let allowed = 4.0 * (ea * ea + eb * eb).sqrt() + slack * b.abs();
+            assert!(
+                (a - b).abs() < allowed,
+                "{key}: {name} {a} +- {ea}, homogeneous DSMC {b} +- {eb}"
+            );
+        }
     }
     assert!(
         emd["rheology"]["theory"]["reduced_shear_rate"]
@@ -170,13 +181,6 @@ fn bad_shear_names_its_key() {
         (
             format!("{base}{shear}[output]\nstructure = true\n"),
             "output.structure",
-        ),
-        (
-            format!("{base}{shear}").replace(
-                "[run]\n",
-                "[run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n",
-            ),
-            "shear",
         ),
         (
             format!("{base}{shear}").replace(

@@ -17,8 +17,10 @@ use restitution::Restitution;
 use std::sync::Arc;
 
 mod container;
+mod flow;
 mod ranks;
 mod sums;
+use flow::stream_one;
 use std::time::Instant;
 use sums::{mass_and_momentum, spread_about_mean};
 
@@ -109,6 +111,10 @@ pub struct SpatialDsmc<const D: usize> {
     saved_walls: Option<crate::walls::WallsState>,
     /// Gravity ([`SpatialDsmc::set_gravity`]).
     gravity: Option<Vector<D>>,
+    /// Lees–Edwards boundaries ([`SpatialDsmc::set_shear`]); None: periodic.
+    shear: Option<crate::shear::Shear>,
+    /// The tensor virial of the collisions, if summed.
+    virial: Option<crate::shear::Virial>,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -270,6 +276,8 @@ impl<const D: usize> SpatialDsmc<D> {
             walls: None,
             saved_walls: None,
             gravity: None,
+            shear: None,
+            virial: None,
         })
     }
 
@@ -296,13 +304,15 @@ impl<const D: usize> SpatialDsmc<D> {
         engine.tally = snapshot.counters;
         engine.species_collisions = snapshot.species_collisions;
         engine.temperature = snapshot.temperature;
-        if snapshot.tail.shear.is_some() || snapshot.tail.virial.is_some() {
+        if snapshot.tail.shear.is_some() && snapshot.tail.walls.is_some() {
             return Err(Error::out_of_range(
                 "shear",
-                "a sheared state",
-                "none: the spatial DSMC has no Lees-Edwards boundaries yet",
+                "a sheared state in a container",
+                "a periodic box (Lees-Edwards boundaries on x and y)",
             ));
         }
+        engine.shear = snapshot.tail.shear;
+        engine.virial = snapshot.tail.virial;
         engine.saved_walls = snapshot.tail.walls;
         Ok(engine)
     }
@@ -319,7 +329,11 @@ impl<const D: usize> SpatialDsmc<D> {
             self.temperature,
         );
         SpatialSnapshot {
-            system: self.system().clone(),
+            system: {
+                // Lab velocities: the flow is part of the state.
+                self.fill_system(false);
+                self.system.clone()
+            },
             packing_fraction: phi,
             seed,
             options,
@@ -333,7 +347,8 @@ impl<const D: usize> SpatialDsmc<D> {
             species_collisions: self.species_collisions.clone(),
             tail: crate::shear::Tail {
                 walls: self.walls_state(),
-                ..Default::default()
+                shear: self.shear,
+                virial: self.virial,
             },
         }
     }
@@ -427,11 +442,8 @@ impl<const D: usize> SpatialDsmc<D> {
         let (sides, cells, width) = (self.sides, self.cells, self.widths());
         let cell_count = self.cell_count();
         let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
-        let stream = |p: &mut Simulator<D>| {
-            for (k, x) in p.position.iter_mut().enumerate() {
-                *x = wrap(*x + p.velocity[k] * dt, sides[k]);
-            }
-        };
+        let faces = self.sliding_faces(dt);
+        let stream = |p: &mut Simulator<D>| stream_one(p, dt, &sides, faces);
         let starts = if self.comm.size() == 1 && self.walls.is_some() {
             self.stream_in_container(dt);
             self.sorter
@@ -460,10 +472,12 @@ impl<const D: usize> SpatialDsmc<D> {
         let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
             / cell_volume;
         let (seed, step, species) = (self.seed, self.steps, &self.species);
+        let with_virial = self.virial.is_some();
         let results: Vec<(SpeciesTally, Moments<D>)> = groups
             .into_par_iter()
             .map(|cell| {
                 let mut tally = SpeciesTally::new(species.len());
+                tally.virial = with_virial.then(crate::shear::Virial::default);
                 let (mass, momentum) = mass_and_momentum(cell, species);
                 if cell.len() < 2 {
                     return (tally, spread_about_mean(cell, species, mass, momentum));
@@ -487,8 +501,11 @@ impl<const D: usize> SpatialDsmc<D> {
                 (tally, spread_about_mean(cell, species, mass, momentum))
             })
             .collect();
-        let (tally, spread, species_collisions) = self.sum_over_cells(&results);
+        let (tally, spread, species_collisions, virial) = self.sum_over_cells(&results);
         self.tally.add(&tally);
+        if let (Some(total), Some(step)) = (self.virial.as_mut(), &virial) {
+            total.merge(step);
+        }
         kernel::add_counts(&mut self.species_collisions, &species_collisions);
         self.temperature = spread / (self.total * D) as f64;
         self.steps += 1;
@@ -560,20 +577,33 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
 
     /// The current state in the engine's current order (sorted by cell every step); on
     /// several ranks, gathered from all of them in rank order (the same order; collective).
+    /// Under shear, velocities relative to the flow (peculiar: v - a y e_x).
     fn system(&mut self) -> &System<D> {
-        let gathered = (self.comm.size() > 1).then(|| self.gathered());
-        let s = &mut self.system;
-        s.positions.clear();
-        s.velocities.clear();
-        s.radii.clear();
-        s.masses.clear();
-        for p in gathered.as_ref().unwrap_or(&self.simulators) {
-            s.positions.push(p.position);
-            s.velocities.push(p.velocity);
-            s.radii.push(self.species.radii[p.species as usize]);
-            s.masses.push(self.species.masses[p.species as usize]);
-        }
+        self.fill_system(true);
         &self.system
+    }
+
+    fn shear(&self) -> Option<crate::shear::Shear> {
+        self.shear
+    }
+
+    fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
+        SpatialDsmc::set_shear(self, shear)
+    }
+
+    fn virial_tensor(&self) -> Option<crate::shear::Virial> {
+        self.virial
+    }
+
+    /// Sums the tensor virial of the collisions (the impact direction's n n), from zero
+    /// unless summed already.
+    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
+        if !on {
+            self.virial = None;
+        } else if self.virial.is_none() {
+            self.virial = Some(crate::shear::Virial::default());
+        }
+        Ok(())
     }
 
     /// The collisions of each species' particles so far (each collision counts for both).
@@ -610,7 +640,12 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
         self.reports_of_ranks()
     }
 
+    /// Exact sums over ranks; under shear None (the observers take the peculiar
+    /// velocities of [`Engine::system`]).
     fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
+        if self.shear.is_some() {
+            return None;
+        }
         self.exact_velocity_statistics()
     }
 }

@@ -36,8 +36,8 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         baths: false,
         species_materials: true,
         walls: scheme == DsmcScheme::Spatial,
-        shear: scheme == DsmcScheme::Blocks,
-        stress: scheme != DsmcScheme::Spatial,
+        shear: scheme != DsmcScheme::Exact,
+        stress: true,
     }
 }
 

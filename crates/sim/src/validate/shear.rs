@@ -44,7 +44,7 @@ pub(crate) fn shear_spec(
             "shear",
             format!(
                 "run.engine = \"{}\" has no shear yet; shear runs with run.engine = {} \
-                 (DSMC: run.dsmc_scheme = \"blocks\")",
+                 (DSMC: run.dsmc_scheme = \"blocks\" or \"spatial\")",
                 kind_name(description.run.engine),
                 kinds_that(|a| a.shear)
             ),

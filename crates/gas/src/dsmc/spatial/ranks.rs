@@ -7,7 +7,6 @@ use super::super::domain::{self, REBALANCE_STEPS};
 use super::super::kernel::Simulator;
 use super::{cell_index, cell_key, SpatialDsmc};
 use crate::parallel::RankReport;
-use crate::system::wrap;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -51,11 +50,10 @@ impl<const D: usize> SpatialDsmc<D> {
         let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
         // The most significant digit of the key.
         let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width[D - 1], cells[D - 1]);
+        let faces = self.sliding_faces(dt);
         let stream = |p: &mut Simulator<D>| {
             if dt != 0.0 {
-                for (k, x) in p.position.iter_mut().enumerate() {
-                    *x = wrap(*x + p.velocity[k] * dt, sides[k]);
-                }
+                super::stream_one(p, dt, &sides, faces);
             }
         };
         if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {

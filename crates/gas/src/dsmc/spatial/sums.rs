@@ -19,18 +19,28 @@ impl<const D: usize> SpatialDsmc<D> {
     pub(super) fn sum_over_cells(
         &mut self,
         results: &[(SpeciesTally, Moments<D>)],
-    ) -> (Counters, f64, Vec<u64>) {
+    ) -> (Counters, f64, Vec<u64>, Option<crate::shear::Virial>) {
         let comm = self.comm.as_ref();
         let kinds = self.species.len();
-        let totals = reduce::step_sums(results, kinds, false, false, comm, &mut self.traffic);
+        let with_tensor = self.virial.is_some();
+        let totals = reduce::step_sums(results, kinds, false, with_tensor, comm, &mut self.traffic);
         let mean = totals.mean();
+        // Under shear the cells' means follow the flow: the spread (which sets the step)
+        // is then the cells' own, about their means.
+        let pooled = self.shear.is_none();
         let spread = sums_of(results, 1, |(_, m), s| {
             let u = m.mean();
             let d: Vector<D> = std::array::from_fn(|k| u[k] - mean[k]);
-            s[0].add(m.spread + m.mass * dot(&d, &d));
+            let between = if pooled { m.mass * dot(&d, &d) } else { 0.0 };
+            s[0].add(m.spread + between);
         });
         let spread = reduce::global_values(&spread, comm, &mut self.traffic)[0];
-        (totals.tally, spread, totals.species_collisions)
+        (
+            totals.tally,
+            spread,
+            totals.species_collisions,
+            totals.virial,
+        )
     }
 
     /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
