@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 26] = [
+const CSVS: [(&str, &str); 28] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -84,6 +84,15 @@ const CSVS: [(&str, &str); 26] = [
     (
         "kinetic-shear-modes",
         "case,k_over_kc,collisions_per_particle,transverse_energy,transverse_energy_error",
+    ),
+    (
+        "kinetic-usf",
+        "alpha,dsmc,a_star,a_star_error,pxx,pxx_error,pyy,pyy_error,pzz,pzz_error,pxy,\
+         pxy_error,grad_a_star,grad_pxx,grad_pyy,grad_pxy,bgk_a_star",
+    ),
+    (
+        "kinetic-viscosity",
+        "alpha,eta,eta_error,grad,chapman_enskog",
     ),
     (
         "giese-fig1",

@@ -169,9 +169,9 @@ pub struct Snapshot<const D: usize, O> {
     pub species_collisions: Vec<u64>,
     /// The walls' tallies of a spatial engine in a container, the shear, the tensor
     /// virial (absent otherwise: the other states stay byte for byte as before; the last
-    /// field, read as None where missing: [`crate::shear::Tail`]).
-    #[serde(default, skip_serializing_if = "crate::shear::Tail::is_empty")]
-    pub tail: crate::shear::Tail<crate::walls::WallsState>,
+    /// field, read as None where missing: [`crate::tail::Tail`]).
+    #[serde(default, skip_serializing_if = "crate::tail::Tail::is_empty")]
+    pub tail: crate::tail::Tail<crate::walls::WallsState>,
 }
 
 impl<const D: usize, O> Snapshot<D, O> {

@@ -23,6 +23,7 @@ mod lees_edwards;
 mod models;
 mod predict;
 mod state;
+mod tracking;
 
 use gravity::Field;
 pub use models::BathState;
@@ -168,6 +169,8 @@ pub struct EventDriven<const D: usize> {
     shear: Option<lees_edwards::LeesEdwards>,
     /// The tensor virial, if asked for ([`EventDriven::set_virial_tensor`]).
     virial: Option<Virial>,
+    /// The particles' tracks, if asked for ([`EventDriven::set_tracking`]).
+    tracks: Option<crate::tail::Tracks>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -319,6 +322,7 @@ impl<const D: usize> EventDriven<D> {
             field: None,
             shear: None,
             virial: None,
+            tracks: None,
         };
         engine.time = time;
         for p in &mut engine.particles {
@@ -400,17 +404,16 @@ impl<const D: usize> EventDriven<D> {
         self.image.separation(a, b)
     }
 
+    #[inline]
     fn bring_to_now(&mut self, i: usize) {
+        if self.shear.is_some() || self.tracks.is_some() {
+            self.bring_to_now_sheared_or_tracked(i);
+            return;
+        }
         let sides = self.system.sides;
-        let sheared = self.shear.is_some();
         let p = &mut self.particles[i];
         let x = p.position_at(self.time);
         p.position = match &self.field {
-            // Under shear y is not wrapped: only a crossing of a face moves a sphere to
-            // its image (module `lees_edwards`).
-            None if sheared => {
-                std::array::from_fn(|k| if k == 1 { x[k] } else { wrap(x[k], sides[k]) })
-            }
             None => std::array::from_fn(|k| wrap(x[k], sides[k])),
             // Axes with gravity are closed: the falling frame's y is not wrapped.
             Some(f) => std::array::from_fn(|k| {
@@ -422,6 +425,42 @@ impl<const D: usize> EventDriven<D> {
             }),
         };
         p.valid_at = self.time;
+    }
+
+    /// [`Self::bring_to_now`] under shear (y is not wrapped: only a crossing of a face
+    /// moves a sphere to its image, module `lees_edwards`) or with tracks (the wraps are
+    /// counted). Out of line: the periodic box's path stays short enough to inline.
+    #[inline(never)]
+    fn bring_to_now_sheared_or_tracked(&mut self, i: usize) {
+        let sides = self.system.sides;
+        let sheared = self.shear.is_some();
+        let p = &mut self.particles[i];
+        let x = p.position_at(self.time);
+        p.position = match &self.field {
+            None => std::array::from_fn(|k| {
+                if sheared && k == 1 {
+                    x[k]
+                } else {
+                    wrap(x[k], sides[k])
+                }
+            }),
+            Some(f) => std::array::from_fn(|k| {
+                if f.g[k] == 0.0 {
+                    wrap(x[k], sides[k])
+                } else {
+                    x[k]
+                }
+            }),
+        };
+        p.valid_at = self.time;
+        if let Some(tracks) = self.tracks.as_mut() {
+            let wrapped = self.particles[i].position;
+            for k in 0..D {
+                if x[k] != wrapped[k] {
+                    tracks.note_wrap::<D>(i, k, x[k], wrapped[k], sides[k]);
+                }
+            }
+        }
     }
 
     /// A pair whose next collision is earlier than both particles' scheduled events

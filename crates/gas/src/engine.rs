@@ -186,6 +186,23 @@ pub trait Engine<const D: usize> {
         }
     }
 
+    /// Tracks the particles' displacements from now on (part of the engine's state), or
+    /// stops. The default refuses to track.
+    fn set_tracking(&mut self, on: bool) -> Result<()> {
+        if on {
+            return Err(Error::Unsupported {
+                what: "tracking displacements".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Each particle's displacement since tracking began (unwrapped across the periodic
+    /// box), in the order of [`Engine::system`]; None if not tracked.
+    fn displacements(&mut self) -> Option<Vec<crate::system::Vector<D>>> {
+        None
+    }
+
     /// The tensor virial of the collisions summed since it was asked for
     /// ([`Engine::set_virial_tensor`]), for the pressure tensor
     /// ([`crate::observe::pressure_tensor`]); None if not summed.

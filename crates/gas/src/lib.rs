@@ -27,6 +27,7 @@ pub mod soft;
 pub mod sorter;
 pub mod structure;
 pub mod system;
+pub mod tail;
 pub mod theory;
 pub mod walls;
 

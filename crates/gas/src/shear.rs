@@ -21,9 +21,7 @@
 
 use crate::error::{Error, Result};
 use crate::system::Vector;
-use serde::de::{SeqAccess, Visitor};
-use serde::ser::SerializeTuple;
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::{Deserialize, Serialize};
 
 /// The uniform shear flow u = rate · y e_x.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -128,164 +126,9 @@ impl Virial {
     }
 }
 
-/// The optional parts that end an engine's saved state: the walls of a container, the
-/// shear, the tensor virial. Written up to the last one present (nothing for a periodic
-/// unsheared gas, whose states stay byte for byte as before they existed; only the walls
-/// for a container, as the walls alone were written before), each as an option; a reader
-/// takes the end of the data as absence (`sim::checkpoint::Sections::engine` pads the data
-/// with zero bytes, which read as None).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Tail<W> {
-    pub walls: Option<W>,
-    pub shear: Option<Shear>,
-    pub virial: Option<Virial>,
-}
-
-impl<W> Default for Tail<W> {
-    fn default() -> Self {
-        Tail {
-            walls: None,
-            shear: None,
-            virial: None,
-        }
-    }
-}
-
-impl<W> Tail<W> {
-    pub fn is_empty(&self) -> bool {
-        self.walls.is_none() && self.shear.is_none() && self.virial.is_none()
-    }
-
-    /// How many parts are written: up to the last one present.
-    fn written(&self) -> usize {
-        if self.virial.is_some() {
-            3
-        } else if self.shear.is_some() {
-            2
-        } else {
-            self.walls.is_some() as usize
-        }
-    }
-
-    /// Checks the restored shear and virial (the walls are checked by their engine).
-    pub fn check(&self) -> Result<()> {
-        if let Some(shear) = &self.shear {
-            Shear::new(shear.rate)?;
-        }
-        if let Some(virial) = &self.virial {
-            virial.check()?;
-        }
-        Ok(())
-    }
-}
-
-impl<W: Serialize> Serialize for Tail<W> {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        let len = self.written();
-        let mut t = s.serialize_tuple(len)?;
-        if len >= 1 {
-            t.serialize_element(&self.walls)?;
-        }
-        if len >= 2 {
-            t.serialize_element(&self.shear)?;
-        }
-        if len >= 3 {
-            t.serialize_element(&self.virial)?;
-        }
-        t.end()
-    }
-}
-
-impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
-    fn deserialize<De: Deserializer<'de>>(d: De) -> std::result::Result<Self, De::Error> {
-        struct TailVisitor<W>(std::marker::PhantomData<W>);
-        impl<'de, W: Deserialize<'de>> Visitor<'de> for TailVisitor<W> {
-            type Value = Tail<W>;
-            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("up to three options: walls, shear, virial")
-            }
-            fn visit_seq<A: SeqAccess<'de>>(
-                self,
-                mut seq: A,
-            ) -> std::result::Result<Self::Value, A::Error> {
-                let walls = seq.next_element::<Option<W>>()?.flatten();
-                let shear = seq.next_element::<Option<Shear>>()?.flatten();
-                let virial = seq.next_element::<Option<Virial>>()?.flatten();
-                Ok(Tail {
-                    walls,
-                    shear,
-                    virial,
-                })
-            }
-        }
-        d.deserialize_tuple(3, TailVisitor(std::marker::PhantomData))
-    }
-}
-
-/// Zero bytes a reader of postcard appends to an engine's state so that the options of a
-/// [`Tail`] missing at its end read as None.
-pub const TAIL_PADDING: usize = 3;
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-    struct Old {
-        a: u32,
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        walls: Option<u64>,
-    }
-
-    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-    struct New {
-        a: u32,
-        #[serde(default, skip_serializing_if = "Tail::is_empty")]
-        tail: Tail<u64>,
-    }
-
-    fn padded(mut bytes: Vec<u8>) -> Vec<u8> {
-        bytes.extend([0; TAIL_PADDING]);
-        bytes
-    }
-
-    /// A state without a tail, or with walls only, is written as the older state with its
-    /// optional walls was (byte for byte), and older states read back; every combination
-    /// of parts reads back as written (postcard with the padding, and JSON).
-    #[test]
-    fn tails_keep_older_bytes_and_read_back() {
-        for walls in [None, Some(7u64)] {
-            let old = postcard::to_stdvec(&Old { a: 3, walls }).unwrap();
-            let tail = Tail {
-                walls,
-                ..Default::default()
-            };
-            let new = postcard::to_stdvec(&New { a: 3, tail }).unwrap();
-            assert_eq!(old, new);
-            let read: New = postcard::from_bytes(&padded(old)).unwrap();
-            assert_eq!(read.tail.walls, walls);
-        }
-        let shear = Some(Shear { rate: -0.5 });
-        let virial = Some(Virial([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]));
-        for walls in [None, Some(9u64)] {
-            for shear in [None, shear] {
-                for virial in [None, virial] {
-                    let state = New {
-                        a: 1,
-                        tail: Tail {
-                            walls,
-                            shear,
-                            virial,
-                        },
-                    };
-                    let bytes = padded(postcard::to_stdvec(&state).unwrap());
-                    assert_eq!(postcard::from_bytes::<New>(&bytes).unwrap(), state);
-                    let json = serde_json::to_string(&state).unwrap();
-                    assert_eq!(serde_json::from_str::<New>(&json).unwrap(), state);
-                }
-            }
-        }
-    }
 
     /// The tensor's trace is the scalar virial J σ; the components are those of n n.
     #[test]

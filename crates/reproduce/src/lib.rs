@@ -24,6 +24,7 @@ pub mod mp2011;
 pub mod shear;
 pub mod soft;
 pub mod sp2008;
+pub mod usf;
 
 use restitution::exact::{self, Criterion};
 use sim::error::{Error, Result};
@@ -60,6 +61,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(sp2008::entries());
     all.extend(kinetic::entries());
     all.extend(shear::entries());
+    all.extend(usf::entries());
     all.extend(soft::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());

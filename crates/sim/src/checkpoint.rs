@@ -76,13 +76,13 @@ impl Sections {
     }
 
     /// The engine state, as `S`. A state may end with optional parts written only when
-    /// present (`gas::shear::Tail`: walls, shear, tensor virial; postcard cannot tell their
+    /// present (`gas::tail::Tail`: walls, shear, tensor virial; postcard cannot tell their
     /// absence from the end of the data); zero bytes after the end read as their absence. Bytes after a state are never read otherwise,
     /// and the file's lengths and checksum are verified before.
     pub fn engine<S: DeserializeOwned>(&self) -> Result<S> {
-        let mut bytes = Vec::with_capacity(self.engine.len() + gas::shear::TAIL_PADDING);
+        let mut bytes = Vec::with_capacity(self.engine.len() + gas::tail::TAIL_PADDING);
         bytes.extend_from_slice(&self.engine);
-        bytes.extend([0; gas::shear::TAIL_PADDING]);
+        bytes.extend([0; gas::tail::TAIL_PADDING]);
         postcard::from_bytes(&bytes).map_err(|e| self.error(format!("engine state: {e}")))
     }
 

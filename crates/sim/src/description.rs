@@ -298,6 +298,9 @@ pub struct OutputSection {
     /// The pressure tensor at every sample (`pressure.csv`; always under `[shear]`).
     #[serde(default, skip_serializing_if = "is_false")]
     pub pressure: bool,
+    /// The mean-square displacement at every sample (`msd.csv`; the event-driven engine).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub msd: bool,
 }
 
 fn is_false(x: &bool) -> bool {

@@ -84,6 +84,8 @@ pub struct Abilities {
     pub shear: bool,
     /// The tensor virial, for the pressure tensor (`output.pressure`, `[shear]`).
     pub stress: bool,
+    /// The particles' displacements, for the mean-square displacement (`output.msd`).
+    pub displacements: bool,
 }
 
 /// The name of an engine kind in the run file.
@@ -234,6 +236,11 @@ fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
             .set_shear(Some(shear))
             .map_err(|e| Error::input("shear", e))?;
     }
+    if plan.msd {
+        engine
+            .set_tracking(true)
+            .map_err(|e| Error::input("output.msd", e))?;
+    }
     if plan.pressure_tensor {
         let key = if plan.shear.is_some() {
             "shear"
@@ -250,7 +257,7 @@ fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
 /// Why a restored engine's flow is not the plan's, if it is not: its shear and whether it
 /// sums the tensor virial.
 fn check_flow<const D: usize>(
-    engine: &dyn Driven<D>,
+    engine: &mut dyn Driven<D>,
     plan: &Plan,
 ) -> std::result::Result<(), String> {
     if engine.shear() != plan.shear {
@@ -259,6 +266,13 @@ fn check_flow<const D: usize>(
             engine.shear().map(|s| s.rate),
             plan.shear.map(|s| s.rate)
         ));
+    }
+    if engine.displacements().is_some() != plan.msd {
+        return Err(
+            "it tracks displacements where the run does not, or the other way \
+                    (output.msd)"
+                .into(),
+        );
     }
     if engine.virial_tensor().is_some() != plan.pressure_tensor {
         return Err(
@@ -284,7 +298,8 @@ pub(crate) fn restore<const D: usize>(
         EngineSpec::SpatialDsmc(_) => dsmc::restore_spatial(plan, law, sections, comm),
         EngineSpec::SoftSphere(..) => soft_sphere::restore(plan, sections),
     }?;
-    check_flow(engine.as_ref(), plan).map_err(state_error(sections))?;
+    let mut engine = engine;
+    check_flow(engine.as_mut(), plan).map_err(state_error(sections))?;
     Ok(engine)
 }
 

@@ -21,6 +21,7 @@
 
 pub mod checkpoint;
 pub mod description;
+pub mod diffusion;
 pub mod driver;
 pub mod engines;
 pub mod error;

@@ -100,6 +100,9 @@ pub fn for_plan<const D: usize>(plan: &Plan) -> Vec<Box<dyn Observer<D>>> {
     if let Some(pressure) = crate::rheology::PressureSeries::of(plan) {
         list.push(Box::new(pressure));
     }
+    if let Some(msd) = crate::diffusion::MsdSeries::of(plan) {
+        list.push(Box::new(msd));
+    }
     list
 }
 

@@ -379,6 +379,11 @@ impl Simulation {
         each!(&self.run, r => r.observer::<crate::rheology::PressureSeries>())
     }
 
+    /// The rows of `msd.csv` (`output.msd`), None without it.
+    pub fn msd(&self) -> Option<&crate::diffusion::MsdSeries> {
+        each!(&self.run, r => r.observer::<crate::diffusion::MsdSeries>())
+    }
+
     /// `summary.json`'s `rheology` of the rows so far (`[shear]`; null otherwise).
     pub fn rheology(&self, series: &crate::rheology::PressureSeries) -> serde_json::Value {
         match self.plan.description.system.dimension {
@@ -559,6 +564,13 @@ impl Simulation {
         }
         if let Some(walls) = each!(&self.run, r => r.observer::<crate::walls::WallSeries>()) {
             summary["walls"] = crate::walls::summary(walls);
+        }
+        if let Some(series) = self.msd() {
+            summary["self_diffusion"] = match self.plan.description.system.dimension {
+                1 => crate::diffusion::summary::<1>(&self.plan, series),
+                2 => crate::diffusion::summary::<2>(&self.plan, series),
+                _ => crate::diffusion::summary::<3>(&self.plan, series),
+            };
         }
         if let Some(series) = self.pressure() {
             if self.plan.shear.is_some() {

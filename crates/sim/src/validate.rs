@@ -99,6 +99,8 @@ pub struct Plan {
     /// The pressure tensor is measured (`output.pressure` or `[shear]`): the engine sums
     /// the tensor virial.
     pub pressure_tensor: bool,
+    /// `output.msd`: the engine tracks the particles' displacements.
+    pub msd: bool,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
@@ -125,6 +127,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let shear = shear::shear_spec(description, &abilities, &walls, &species)?;
     let pressure_tensor =
         shear.is_some() || description.output.as_ref().is_some_and(|o| o.pressure);
+    let msd = shear::msd_spec(description, &abilities)?;
     let c = &description.collision;
     let mut description = description.clone();
     description.normalize();
@@ -142,6 +145,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         gravity,
         shear,
         pressure_tensor,
+        msd,
         notes: Vec::new(),
     };
     if plan.driving.is_some()

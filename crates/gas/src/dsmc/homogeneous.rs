@@ -17,8 +17,9 @@ use crate::engine::{Checkpoint, Counters, Engine, SpeciesCollisions, VelocitySta
 use crate::error::{Error, Result};
 use crate::parallel::{Communicator, Local, RankReport};
 use crate::rng::{Purpose, Stream};
-use crate::shear::{Shear, Tail, Virial};
+use crate::shear::{Shear, Virial};
 use crate::system::{System, Vector};
+use crate::tail::Tail;
 use crate::theory;
 use blocks::{run_blocks, Blocks};
 use classes::{class_width, Classes};

@@ -345,10 +345,11 @@ impl<const D: usize> SpatialDsmc<D> {
             draws: 0,
             temperature,
             species_collisions: self.species_collisions.clone(),
-            tail: crate::shear::Tail {
+            tail: crate::tail::Tail {
                 walls: self.walls_state(),
                 shear: self.shear,
                 virial: self.virial,
+                tracks: None,
             },
         }
     }

@@ -129,6 +129,7 @@ impl<const D: usize> EventDriven<D> {
     /// The shift at its time (not later than the next event): the spheres of the top and
     /// bottom rows predicted anew.
     #[cold]
+    #[inline(never)]
     pub(super) fn shift(&mut self) {
         let Some(le) = self.shear.as_mut() else {
             return;
@@ -163,6 +164,7 @@ impl<const D: usize> EventDriven<D> {
     /// The collisions of i (in a boundary row, now at `pi` with velocity `vi`) with the
     /// spheres of its own image and of the row across the face, into `best`.
     #[cold]
+    #[inline(never)]
     pub(super) fn scan_sheared(&self, i: usize, pi: &Vector<D>, vi: &Vector<D>, best: &mut Best) {
         let image = self.image;
         self.for_each_sheared_neighbor(i, pi, vi, |p, v, j| {
@@ -257,6 +259,7 @@ impl<const D: usize> EventDriven<D> {
     /// The crossing of i through the top (`up`) or bottom face: it re-enters on the other
     /// side as its image, in the cell of its new place.
     #[cold]
+    #[inline(never)]
     pub(super) fn cross_face(&mut self, i: usize, up: bool) {
         let le = self.shear.expect("sheared");
         self.bring_to_now(i);

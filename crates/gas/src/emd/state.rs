@@ -6,9 +6,10 @@ use crate::driving::Drive;
 use crate::engine::{Checkpoint, Counters, Engine};
 use crate::error::{Error, Result};
 use crate::serde_util;
-use crate::shear::{Tail, Virial};
+use crate::shear::Virial;
 use crate::sorter::SorterKind;
 use crate::system::{wrap, System, Vector};
+use crate::tail::Tail;
 use crate::walls::{WallRecord, WallsState};
 use restitution::Restitution;
 use serde::{Deserialize, Serialize};
@@ -122,7 +123,7 @@ pub struct EventDrivenState<const D: usize> {
     /// The walls' tallies in a container, the shear, the tensor virial (absent from
     /// periodic runs' states, which stay as they were byte for byte; the last field, so
     /// that a reader of postcard can take the end of the data for None:
-    /// [`crate::shear::Tail`]).
+    /// [`crate::tail::Tail`]).
     #[serde(default, skip_serializing_if = "Tail::is_empty")]
     pub tail: Tail<WallsState>,
 }
@@ -250,6 +251,14 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
         EventDriven::shear(self)
     }
 
+    fn set_tracking(&mut self, on: bool) -> Result<()> {
+        EventDriven::set_tracking(self, on)
+    }
+
+    fn displacements(&mut self) -> Option<Vec<Vector<D>>> {
+        EventDriven::displacements(self)
+    }
+
     fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
         EventDriven::set_shear(self, shear)
     }
@@ -318,6 +327,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
                 walls: self.walls.as_ref().map(|w| w.state()),
                 shear: self.shear(),
                 virial: self.virial,
+                tracks: self.tracks.clone(),
             },
         }
     }
@@ -358,6 +368,10 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
         // Taken up when the walls are set again (they are not part of the state).
         engine.saved_walls = tail.walls;
         engine.virial = tail.virial;
+        if let Some(tracks) = &tail.tracks {
+            tracks.check(D * engine.particles.len())?;
+        }
+        engine.tracks = tail.tracks;
         if sorter != SorterKind::default() {
             engine.set_sorter(sorter);
         }

@@ -38,6 +38,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         walls: scheme == DsmcScheme::Spatial,
         shear: scheme != DsmcScheme::Exact,
         stress: true,
+        displacements: false,
     }
 }
 

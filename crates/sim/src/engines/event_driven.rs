@@ -25,6 +25,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     walls: true,
     shear: true,
     stress: true,
+    displacements: true,
 };
 
 /// The engine's keys: none beyond the common ones.

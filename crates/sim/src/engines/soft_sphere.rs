@@ -24,6 +24,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     walls: true,
     shear: false,
     stress: false,
+    displacements: false,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).

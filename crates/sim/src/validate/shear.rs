@@ -86,6 +86,31 @@ pub(crate) fn shear_spec(
     Ok(Some(shear))
 }
 
+/// `output.msd`: an engine that tracks displacements, no shear (the flow carries spheres).
+pub(crate) fn msd_spec(description: &RunDescription, engine: &Abilities) -> Result<bool> {
+    if !description.output.as_ref().is_some_and(|o| o.msd) {
+        return Ok(false);
+    }
+    if !engine.displacements {
+        return Err(Error::input(
+            "output.msd",
+            format!(
+                "run.engine = \"{}\" keeps no particle's identity through its steps; the \
+                 mean-square displacement is measured with run.engine = {}",
+                kind_name(description.run.engine),
+                kinds_that(|a| a.displacements)
+            ),
+        ));
+    }
+    if description.shear.is_some() {
+        return Err(Error::input(
+            "output.msd",
+            "with [shear]: the flow carries the spheres along x (not built)",
+        ));
+    }
+    Ok(true)
+}
+
 /// `output.pressure` needs an engine that sums the tensor virial.
 fn check_pressure(description: &RunDescription, engine: &Abilities) -> Result<()> {
     let asked = description.output.as_ref().is_some_and(|o| o.pressure);

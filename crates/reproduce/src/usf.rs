@@ -1,0 +1,268 @@
+//! Uniform shear flow measured (docs/shear.md): the steady USF of a dilute granular gas vs
+//! the restitution, by the event-driven engine (Lees–Edwards boundaries) and the
+//! homogeneous DSMC (the frame of the flow), against Grad's method and the BGK model
+//! (`gas::theory::usf`); and the shear viscosity at a small shear rate under the Gaussian
+//! thermostat (DSMC) against Chapman–Enskog (elastic) and the thermostatted Navier–Stokes
+//! viscosity 1 / (nu_eta* - zeta*) of the first Sonine approximation (inelastic;
+//! docs/errata.md: not the cooling state's 1 / (nu_eta* - zeta*/2)).
+//!
+//! Every run goes through the driver (`sim::Simulation`, its `rheology`: second-half
+//! averages with batch-mean errors). Units: sigma = m = 1; 3D.
+
+use super::{sig, Context, Entry, Outcome};
+use sim::error::Result;
+use sim::plot::Figure;
+use sim::Simulation;
+use std::fmt::Write as _;
+
+const PAPER: &str = "Uniform shear flow (Montanero, Garzó, Santos & Brey 1999; Garzó & Dufty 1999)";
+
+pub fn entries() -> Vec<Entry> {
+    vec![
+        Entry {
+            id: "kinetic-usf",
+            paper: PAPER,
+            item: "steady USF vs alpha",
+            shows: "reduced shear rate and pressure tensor of the steady USF vs alpha: \
+                    event-driven (Lees-Edwards) and DSMC against Grad and BGK",
+            typical_seconds: 60.0,
+            run: steady_usf,
+        },
+        Entry {
+            id: "kinetic-viscosity",
+            paper: PAPER,
+            item: "shear viscosity vs alpha",
+            shows: "eta / eta0 at a* = 0.1 under the thermostat (DSMC) against \
+                    Chapman-Enskog and the thermostatted Navier-Stokes viscosity",
+            typical_seconds: 30.0,
+            run: viscosity,
+        },
+    ]
+}
+
+/// (mean, error) of `rheology[key]`.
+type Measured = (f64, f64);
+
+/// A named curve of (x, y, error) points.
+type MeasuredCurve = (String, Vec<(f64, f64, f64)>);
+
+fn measured(rheology: &serde_json::Value, key: &str) -> Measured {
+    let r = &rheology[key];
+    (
+        r["mean"].as_f64().unwrap_or(f64::NAN),
+        r["error"].as_f64().unwrap_or(f64::NAN),
+    )
+}
+
+/// The rheology of the run of `text`.
+fn rheology(text: &str) -> Result<serde_json::Value> {
+    let mut run = Simulation::from_toml(text, "usf.toml".as_ref())?;
+    run.run(&mut (), None)?;
+    let series = run.pressure().expect("a sheared run measures the pressure");
+    Ok(run.rheology(series))
+}
+
+fn run_text(
+    engine: &str,
+    particles: usize,
+    phi: f64,
+    alpha: f64,
+    rate: f64,
+    extra: &str,
+) -> String {
+    format!(
+        "[system]\ndimension = 3\nparticles = {particles}\npacking_fraction = {phi}\nseed = 7\n\
+         [collision]\nlaw = \"constant\"\nrestitution = {alpha}\n\
+         [run]\n{engine}collisions_per_particle = 200\nsamples = 100\nspacing = \"linear\"\n\
+         {extra}[shear]\nrate = {rate}\n"
+    )
+}
+
+const EMD: &str = "engine = \"event-driven\"\n";
+const DSMC: &str = "engine = \"dsmc\"\ndsmc_scheme = \"blocks\"\n";
+
+/// The steady USF at each alpha by both engines.
+fn steady_usf(ctx: &Context) -> Result<Outcome> {
+    let id = "kinetic-usf";
+    let alphas: &[f64] = if ctx.quick {
+        &[0.7, 0.9]
+    } else {
+        &[0.5, 0.6, 0.7, 0.8, 0.9]
+    };
+    let (n_emd, n_dsmc) = if ctx.quick {
+        (500, 4000)
+    } else {
+        (2000, 20000)
+    };
+    let keys = ["reduced_shear_rate", "pxx", "pyy", "pzz", "pxy"];
+    let mut rows = Vec::new();
+    let mut md = String::from(
+        "# Steady uniform shear flow vs alpha (3D, phi = 0.002)\n\n\
+         a* = a / nu0 (nu0 = n T / eta0(T)), P* = P / (n T); second-half averages, batch-mean \
+         errors.\n\n| alpha | method | a* | P*_xx | P*_yy | P*_zz | P*_xy |\n|---|---|---|---|---|---|---|\n",
+    );
+    let mut curves: Vec<MeasuredCurve> = Vec::new();
+    let mut worst: f64 = 0.0;
+    for (name, engine, n) in [("event-driven", EMD, n_emd), ("DSMC", DSMC, n_dsmc)] {
+        let mut points = Vec::new();
+        for &alpha in alphas {
+            let r = rheology(&run_text(engine, n, 0.002, alpha, 0.02, ""))?;
+            let values: Vec<Measured> = keys.iter().map(|k| measured(&r, k)).collect();
+            let grad = gas::theory::usf::steady_grad::<3>(alpha);
+            let cells: Vec<String> = values
+                .iter()
+                .map(|v| format!("{} ± {}", sig(v.0), sig(v.1)))
+                .collect();
+            let _ = writeln!(md, "| {alpha} | {name} | {} |", cells.join(" | "));
+            worst = worst.max((values[0].0 / grad.reduced_shear_rate - 1.0).abs());
+            points.push((alpha, values[0].0, values[0].1));
+            let mut row = vec![alpha, if name == "DSMC" { 1.0 } else { 0.0 }];
+            for v in &values {
+                row.extend([v.0, v.1]);
+            }
+            row.extend([
+                grad.reduced_shear_rate,
+                grad.pxx,
+                grad.pyy,
+                grad.pxy,
+                gas::theory::usf::steady_bgk::<3>(alpha).reduced_shear_rate,
+            ]);
+            rows.push(row);
+        }
+        curves.push((format!("a*, {name}"), points));
+    }
+    let theory: Vec<(f64, f64)> = (0..=50)
+        .map(|i| 0.5 + 0.5 * i as f64 / 50.0)
+        .map(|a| (a, gas::theory::usf::steady_grad::<3>(a).reduced_shear_rate))
+        .collect();
+    let _ = writeln!(
+        md,
+        "\nGrad's a* (BGK's pressure tensor is Grad's): {}.\n\nLargest |a*_measured / a*_Grad - 1|: {}.\n",
+        alphas
+            .iter()
+            .map(|&a| format!("alpha {a}: {}", sig(gas::theory::usf::steady_grad::<3>(a).reduced_shear_rate)))
+            .collect::<Vec<_>>()
+            .join(", "),
+        sig(worst)
+    );
+    let mut figure = Figure::new("Steady uniform shear flow (3D)", "alpha", "a* = a / nu0");
+    for (name, points) in curves {
+        figure = figure.measured(name, points);
+    }
+    figure = figure.theory("Grad", theory);
+    let header = [
+        "alpha",
+        "dsmc",
+        "a_star",
+        "a_star_error",
+        "pxx",
+        "pxx_error",
+        "pyy",
+        "pyy_error",
+        "pzz",
+        "pzz_error",
+        "pxy",
+        "pxy_error",
+        "grad_a_star",
+        "grad_pxx",
+        "grad_pyy",
+        "grad_pxy",
+        "bgk_a_star",
+    ];
+    let files = vec![
+        ctx.csv(id, &header, &rows)?,
+        ctx.figure(id, &figure)?,
+        ctx.markdown(id, &md)?,
+    ];
+    Ok(Outcome {
+        summary: format!(
+            "steady USF at {} values of alpha: a* within {:.1} % of Grad's",
+            alphas.len(),
+            100.0 * worst
+        ),
+        values: vec![("largest_relative_difference_from_grad", worst)],
+        files,
+    })
+}
+
+/// The viscosity at a* = 0.1 under the thermostat (DSMC) vs alpha.
+fn viscosity(ctx: &Context) -> Result<Outcome> {
+    let id = "kinetic-viscosity";
+    let alphas: &[f64] = if ctx.quick {
+        &[1.0, 0.8]
+    } else {
+        &[1.0, 0.9, 0.8, 0.7, 0.6]
+    };
+    let n = if ctx.quick { 5000 } else { 40000 };
+    let phi = 1e-3;
+    let density = 6.0 * phi / std::f64::consts::PI;
+    let eta0 = gas::theory::dilute_elastic_viscosity::<3>(1.0, 1.0, 1.0);
+    let reduced_rate = 0.1;
+    let rate = reduced_rate * density / eta0;
+    let mut rows = Vec::new();
+    let mut points = Vec::new();
+    let mut md = String::from(
+        "# Shear viscosity at a* = 0.1 under the Gaussian thermostat (DSMC, 3D)\n\n\
+         | alpha | eta / eta0 measured | thermostatted Grad (first Sonine) | elastic: Chapman-Enskog x thinning |\n|---|---|---|---|\n",
+    );
+    let mut elastic_ratio = f64::NAN;
+    for &alpha in alphas {
+        let extra = "[driving]\nkind = \"gaussian-thermostat\"\n";
+        let r = rheology(&run_text(DSMC, n, phi, alpha, rate, extra))?;
+        let (eta, error) = measured(&r, "reduced_viscosity");
+        let grad = gas::theory::usf::thermostatted_grad::<3>(alpha, reduced_rate).viscosity;
+        let chapman = if alpha == 1.0 { 1.016 * grad } else { f64::NAN };
+        if alpha == 1.0 {
+            elastic_ratio = eta / chapman;
+        }
+        let _ = writeln!(
+            md,
+            "| {alpha} | {} ± {} | {} | {} |",
+            sig(eta),
+            sig(error),
+            sig(grad),
+            sig(chapman)
+        );
+        points.push((alpha, eta, error));
+        rows.push(vec![alpha, eta, error, grad, chapman]);
+    }
+    let theory: Vec<(f64, f64)> = (0..=50)
+        .map(|i| 0.5 + 0.5 * i as f64 / 50.0)
+        .map(|a| {
+            (
+                a,
+                gas::theory::usf::thermostatted_grad::<3>(a, reduced_rate).viscosity,
+            )
+        })
+        .collect();
+    let figure = Figure::new(
+        "Shear viscosity under the thermostat, a* = 0.1",
+        "alpha",
+        "eta / eta0",
+    )
+    .measured("DSMC", points)
+    .theory("thermostatted Grad (first Sonine)", theory);
+    let _ = writeln!(
+        md,
+        "\nElastic: measured / Chapman-Enskog (1.016 x Grad's thinning) = {}.\n",
+        sig(elastic_ratio)
+    );
+    let files = vec![
+        ctx.csv(
+            id,
+            &["alpha", "eta", "eta_error", "grad", "chapman_enskog"],
+            &rows,
+        )?,
+        ctx.figure(id, &figure)?,
+        ctx.markdown(id, &md)?,
+    ];
+    Ok(Outcome {
+        summary: format!(
+            "viscosity at {} values of alpha; elastic / Chapman-Enskog = {:.4}",
+            alphas.len(),
+            elastic_ratio
+        ),
+        values: vec![("elastic_over_chapman_enskog", elastic_ratio)],
+        files,
+    })
+}
