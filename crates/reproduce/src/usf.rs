@@ -68,12 +68,14 @@ fn run_text(
     phi: f64,
     alpha: f64,
     rate: f64,
+    collisions: f64,
     extra: &str,
 ) -> String {
     format!(
         "[system]\ndimension = 3\nparticles = {particles}\npacking_fraction = {phi}\nseed = 7\n\
          [collision]\nlaw = \"constant\"\nrestitution = {alpha}\n\
-         [run]\n{engine}collisions_per_particle = 200\nsamples = 100\nspacing = \"linear\"\n\
+         [run]\n{engine}collisions_per_particle = {collisions}\nsamples = 100\n\
+         spacing = \"linear\"\n\
          {extra}[shear]\nrate = {rate}\n"
     )
 }
@@ -84,22 +86,24 @@ const DSMC: &str = "engine = \"dsmc\"\ndsmc_scheme = \"blocks\"\n";
 /// The steady USF at each alpha by both engines.
 fn steady_usf(ctx: &Context) -> Result<Outcome> {
     let id = "kinetic-usf";
-    let alphas: &[f64] = if ctx.quick {
-        &[0.7, 0.9]
+    // Quick: fewer spheres and collisions, the same alphas (ten rows).
+    let alphas: &[f64] = &[0.5, 0.6, 0.7, 0.8, 0.9];
+    let (n_emd, n_dsmc, collisions) = if ctx.quick {
+        (500, 4000, 150.0)
     } else {
-        &[0.5, 0.6, 0.7, 0.8, 0.9]
-    };
-    let (n_emd, n_dsmc) = if ctx.quick {
-        (500, 4000)
-    } else {
-        (2000, 20000)
+        (2000, 20000, 200.0)
     };
     let keys = ["reduced_shear_rate", "pxx", "pyy", "pzz", "pxy"];
     let mut rows = Vec::new();
     let mut md = String::from(
-        "# Steady uniform shear flow vs alpha (3D, phi = 0.002)\n\n\
-         a* = a / nu0 (nu0 = n T / eta0(T)), P* = P / (n T); second-half averages, batch-mean \
-         errors.\n\n| alpha | method | a* | P*_xx | P*_yy | P*_zz | P*_xy |\n|---|---|---|---|---|---|---|\n",
+        "# kinetic-usf: the steady uniform shear flow vs alpha (3D, phi = 0.002)\n\n\
+         **Paper.** Grad's 13-moment solution of the steady USF of dilute inelastic hard \
+         spheres (Montanero, Garzó, Santos & Brey, J. Fluid Mech. 389, 391 (1999); \
+         `gas::theory::usf::steady_grad`), and the BGK model (Brey, Dufty & Santos 1999), \
+         which gives the same pressure tensor.\n\n\
+         **We get** a* = a / nu0 (nu0 = n T / eta0(T)), P* = P / (n T); second-half averages, \
+         batch-mean errors:\n\n\
+         | alpha | method | a* | P*_xx | P*_yy | P*_zz | P*_xy |\n|---|---|---|---|---|---|---|\n",
     );
     let mut curves: Vec<MeasuredCurve> = Vec::new();
     let mut worst: f64 = 0.0;
@@ -108,7 +112,7 @@ fn steady_usf(ctx: &Context) -> Result<Outcome> {
     for (name, engine, n) in [("event-driven", EMD, n_emd), ("DSMC", DSMC, n_dsmc)] {
         let mut points = Vec::new();
         for &alpha in alphas {
-            let r = rheology(&run_text(engine, n, 0.002, alpha, 0.02, ""))?;
+            let r = rheology(&run_text(engine, n, 0.002, alpha, 0.02, collisions, ""))?;
             let values: Vec<Measured> = keys.iter().map(|k| measured(&r, k)).collect();
             let grad = gas::theory::usf::steady_grad::<3>(alpha);
             let cells: Vec<String> = values
@@ -151,9 +155,13 @@ fn steady_usf(ctx: &Context) -> Result<Outcome> {
             .join(", "),
         sig(worst)
     );
-    let agree = by_alpha.iter().all(|(_, v, _)| {
-        v.len() < 2 || (v[0].0 - v[1].0).abs() < 4.0 * (v[0].1.powi(2) + v[1].1.powi(2)).sqrt()
-    });
+    // The engines' difference in a*, in combined standard errors, at the worst alpha.
+    let spread = by_alpha
+        .iter()
+        .filter(|(_, v, _)| v.len() == 2)
+        .map(|(_, v, _)| (v[0].0 - v[1].0).abs() / (v[0].1.powi(2) + v[1].1.powi(2)).sqrt())
+        .fold(0.0, f64::max);
+    let agree = spread < 4.0;
     let grad_gaps: Vec<String> = by_alpha
         .iter()
         .map(|(a, v, _)| {
@@ -215,7 +223,10 @@ fn steady_usf(ctx: &Context) -> Result<Outcome> {
             alphas.len(),
             100.0 * worst
         ),
-        values: vec![("largest_relative_difference_from_grad", worst)],
+        values: vec![
+            ("largest_relative_difference_from_grad", worst),
+            ("largest_engine_difference_in_errors", spread),
+        ],
         files,
     })
 }
@@ -223,12 +234,12 @@ fn steady_usf(ctx: &Context) -> Result<Outcome> {
 /// The viscosity at a* = 0.1 under the thermostat (DSMC) vs alpha.
 fn viscosity(ctx: &Context) -> Result<Outcome> {
     let id = "kinetic-viscosity";
-    let alphas: &[f64] = if ctx.quick {
-        &[1.0, 0.8]
+    let alphas: Vec<f64> = (0..10).map(|i| 1.0 - 0.05 * i as f64).collect();
+    let (n, collisions) = if ctx.quick {
+        (10000, 60.0)
     } else {
-        &[1.0, 0.9, 0.8, 0.7, 0.6]
+        (40000, 120.0)
     };
-    let n = if ctx.quick { 5000 } else { 40000 };
     let phi = 1e-3;
     let density = 6.0 * phi / std::f64::consts::PI;
     let eta0 = gas::theory::dilute_elastic_viscosity::<3>(1.0, 1.0, 1.0);
@@ -237,13 +248,20 @@ fn viscosity(ctx: &Context) -> Result<Outcome> {
     let mut rows = Vec::new();
     let mut points = Vec::new();
     let mut md = String::from(
-        "# Shear viscosity at a* = 0.1 under the Gaussian thermostat (DSMC, 3D)\n\n\
+        "# kinetic-viscosity: the shear viscosity at a* = 0.1 under the Gaussian thermostat \
+         (DSMC, 3D)\n\n\
+         **Paper.** Chapman–Enskog's viscosity of elastic hard spheres (Chapman & Cowling \
+         1970: eta0 times 1.016, the converged Sonine series) and the Navier–Stokes viscosity \
+         of inelastic hard spheres in the first Sonine approximation (Garzó & Dufty 1999), \
+         here for a gas held at T by the thermostat: 1 / (nu_eta* - zeta*) \
+         (`gas::theory::usf::thermostatted_grad`; docs/errata.md).\n\n\
+         **We get:**\n\n\
          | alpha | eta / eta0 measured | thermostatted Grad (first Sonine) | elastic: Chapman-Enskog x thinning |\n|---|---|---|---|\n",
     );
     let mut elastic_ratio = f64::NAN;
-    for &alpha in alphas {
+    for &alpha in &alphas {
         let extra = "[driving]\nkind = \"gaussian-thermostat\"\n";
-        let r = rheology(&run_text(DSMC, n, phi, alpha, rate, extra))?;
+        let r = rheology(&run_text(DSMC, n, phi, alpha, rate, collisions, extra))?;
         let (eta, error) = measured(&r, "reduced_viscosity");
         let grad = gas::theory::usf::thermostatted_grad::<3>(alpha, reduced_rate).viscosity;
         let chapman = if alpha == 1.0 { 1.016 * grad } else { f64::NAN };

@@ -297,14 +297,18 @@ fn kinetic_viscoelastic_tail() {
     printed_in(&md, x);
 }
 
-/// The quick steady USF (2000 / 500 spheres) is within 10 % of Grad's a* (measured 4 % at
-/// full size, docs/shear.md); the quick elastic viscosity (5000 spheres, error ~3 %)
-/// within 12 % of Chapman–Enskog's.
+/// The quick steady USF (500 / 4000 spheres, 150 collisions per particle): the event-driven
+/// engine and the DSMC agree on a* within 4 combined standard errors at every alpha (two
+/// methods), and both lie above Grad's a* by less than 15 % (Grad's closure underestimates
+/// it: 11 % at alpha = 0.5 in the full run, docs/shear.md); the quick elastic viscosity
+/// (10 000 spheres, 60 collisions per particle) within 12 % of Chapman–Enskog's.
 #[test]
 fn kinetic_usf_and_viscosity_against_theory() {
     let (o, md) = run("kinetic-usf");
+    let spread = value(&o, "largest_engine_difference_in_errors");
+    assert!(spread < 4.0, "{spread}");
     let worst = value(&o, "largest_relative_difference_from_grad");
-    assert!(worst < 0.1, "{worst}");
+    assert!(worst < 0.15, "{worst}");
     printed_in(&md, worst);
     let (o, md) = run("kinetic-viscosity");
     let ratio = value(&o, "elastic_over_chapman_enskog");

@@ -10,7 +10,7 @@
 //! 3D). In a cooling gas D_s falls with the temperature and the slope is an average.
 
 use crate::error::Result;
-use crate::observer::{record_of, records_from, Observer};
+use crate::observer::{one_row_per_sample, record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
 use crate::schedule::{Schedule, Target};
 use crate::validate::Plan;
@@ -98,13 +98,7 @@ impl<const D: usize> Observer<D> for MsdSeries {
         _engine: &mut dyn Engine<D>,
     ) -> std::result::Result<(), String> {
         let records: MsdSeries = records_from(record)?;
-        let due = schedule.samples_before(done);
-        if records.samples.len() != due {
-            return Err(format!(
-                "{} msd rows where the schedule has taken {due} samples",
-                records.samples.len()
-            ));
-        }
+        one_row_per_sample(records.samples.len(), schedule, done, "msd")?;
         if records
             .samples
             .iter()

@@ -69,6 +69,23 @@ pub fn record_of<T: Serialize>(records: &T) -> Result<Box<RawValue>> {
     })
 }
 
+/// Checks that a check-point's `rows` of `what` are one per sample the schedule has taken
+/// in its first `done` targets.
+pub fn one_row_per_sample(
+    rows: usize,
+    schedule: &Schedule,
+    done: usize,
+    what: &str,
+) -> std::result::Result<(), String> {
+    let due = schedule.samples_before(done);
+    if rows != due {
+        return Err(format!(
+            "{rows} {what} rows where the schedule has taken {due} samples"
+        ));
+    }
+    Ok(())
+}
+
 /// The records of a check-point as `T`.
 pub fn records_from<T: DeserializeOwned>(record: &RawValue) -> std::result::Result<T, String> {
     serde_json::from_str(record.get()).map_err(|e| e.to_string())

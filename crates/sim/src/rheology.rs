@@ -14,7 +14,7 @@
 //! restitution (`gas::theory::usf::steady_grad`) to compare.
 
 use crate::error::Result;
-use crate::observer::{record_of, records_from, Observer};
+use crate::observer::{one_row_per_sample, record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
 use crate::schedule::{Schedule, Target};
 use crate::validate::{LawSpec, Plan};
@@ -129,13 +129,7 @@ impl<const D: usize> Observer<D> for PressureSeries {
         engine: &mut dyn Engine<D>,
     ) -> std::result::Result<(), String> {
         let records: PressureSeries = records_from(record)?;
-        let due = schedule.samples_before(done);
-        if records.samples.len() != due {
-            return Err(format!(
-                "{} pressure rows where the schedule has taken {due} samples",
-                records.samples.len()
-            ));
-        }
+        one_row_per_sample(records.samples.len(), schedule, done, "pressure")?;
         let (time, virial) = records.last;
         let start = records.samples.last().map_or(0.0, |s| s.time);
         if time != start || virial.check().is_err() || time > engine.time() {
