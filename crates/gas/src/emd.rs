@@ -406,7 +406,14 @@ impl<const D: usize> EventDriven<D> {
 
     #[inline]
     fn bring_to_now(&mut self, i: usize) {
-        if self.shear.is_some() || self.tracks.is_some() {
+        self.bring_to_now_as::<true>(i);
+    }
+
+    /// [`Self::bring_to_now`]; `EXTENDED = false` only where the engine is neither
+    /// sheared nor tracked (the periodic event loop, [`Self::step_as`]).
+    #[inline]
+    fn bring_to_now_as<const EXTENDED: bool>(&mut self, i: usize) {
+        if EXTENDED && (self.shear.is_some() || self.tracks.is_some()) {
             self.bring_to_now_sheared_or_tracked(i);
             return;
         }
@@ -502,11 +509,29 @@ impl<const D: usize> EventDriven<D> {
 
     /// Processes the next event; false if there is none (all particles at rest).
     pub fn step(&mut self) -> bool {
+        if self.shear.is_some() || self.tracks.is_some() || self.virial.is_some() {
+            self.step_extended()
+        } else {
+            self.step_as::<false>()
+        }
+    }
+
+    /// [`Self::step`] with shear, tracks or the tensor virial, out of line: the periodic
+    /// loop's code stays as small as it was (the compiler inlines into it as before).
+    #[inline(never)]
+    fn step_extended(&mut self) -> bool {
+        self.step_as::<true>()
+    }
+
+    /// [`Self::step`], compiled twice: with `EXTENDED = false` (neither shear, tracks
+    /// nor the tensor virial) the periodic gas's loop has none of their checks: it
+    /// costs what it cost before they existed.
+    fn step_as<const EXTENDED: bool>(&mut self) -> bool {
         if self.collapsed.is_some() {
             return false;
         }
         let next_event = self.queue.peek();
-        if let Some(shift) = self.next_shift() {
+        if let Some(shift) = self.next_shift().filter(|_| EXTENDED) {
             let first = self.next_kick().is_none_or(|kick| shift < kick);
             if first && next_event.is_none_or(|(_, t)| shift <= t) {
                 self.shift();
@@ -537,42 +562,42 @@ impl<const D: usize> EventDriven<D> {
             let (dim, up) = (next.exit_dim as usize, next.exit_up);
             if dim >= D {
                 self.hit_wall(i, dim - D, up);
-                self.predict(i);
-            } else if self.through_a_face(&next.cell, dim, up) {
+                self.predict_as::<EXTENDED>(i);
+            } else if EXTENDED && self.through_a_face(&next.cell, dim, up) {
                 self.cross_face(i, up);
             } else {
-                self.bring_to_now(i);
+                self.bring_to_now_as::<EXTENDED>(i);
                 self.remove(i);
                 self.insert(i, self.grid.shifted(&next.cell, dim, up));
-                self.predict_after_crossing(i, dim, up);
+                self.predict_after_crossing_as::<EXTENDED>(i, dim, up);
             }
         } else {
             let j = next.partner as usize;
             if self.particles[j].count == next.partner_count {
-                self.collide(i, j);
-                self.predict(i);
-                self.predict(j);
+                self.collide_as::<EXTENDED>(i, j);
+                self.predict_as::<EXTENDED>(i);
+                self.predict_as::<EXTENDED>(j);
             } else {
-                self.predict(i);
+                self.predict_as::<EXTENDED>(i);
             }
         }
         true
     }
 
-    /// The collision of i and j at the current time.
-    fn collide(&mut self, i: usize, j: usize) {
+    /// The collision of i and j at the current time (`EXTENDED`: as in [`Self::step_as`]).
+    fn collide_as<const EXTENDED: bool>(&mut self, i: usize, j: usize) {
         // Across a sheared face the image of the second sphere is computed (with its
         // rounding): the pair in one order, whichever of the two the sorter gives first
         // among equal times, so that a restored engine collides it with the same bits.
-        let (i, j) = if self.shear.is_some() && j < i {
+        let (i, j) = if EXTENDED && self.shear.is_some() && j < i {
             (j, i)
         } else {
             (i, j)
         };
-        self.bring_to_now(i);
-        self.bring_to_now(j);
+        self.bring_to_now_as::<EXTENDED>(i);
+        self.bring_to_now_as::<EXTENDED>(j);
         let (a, b) = (self.particles[i], self.particles[j]);
-        let (r, jump) = match self.shear {
+        let (r, jump) = match self.shear.as_ref().filter(|_| EXTENDED) {
             None => (self.separation(&a.position, &b.position), 0.0),
             Some(_) => self.sheared_separation(&a, &b),
         };
@@ -581,7 +606,7 @@ impl<const D: usize> EventDriven<D> {
         let mut approach = -(0..D)
             .map(|k| (b.velocity[k] - a.velocity[k]) * n[k])
             .sum::<f64>();
-        if jump != 0.0 {
+        if EXTENDED && jump != 0.0 {
             // b's image across a sheared face moves with b's velocity + jump e_x.
             approach -= jump * n[0];
         }
@@ -615,8 +640,10 @@ impl<const D: usize> EventDriven<D> {
         self.watch_for_collapse();
         self.tally.energy_lost += lost;
         self.tally.virial += impulse * distance;
-        if let Some(virial) = &mut self.virial {
-            virial.add(impulse, distance, &n);
+        if EXTENDED {
+            if let Some(virial) = &mut self.virial {
+                virial.add(impulse, distance, &n);
+            }
         }
     }
 

@@ -36,13 +36,18 @@ impl<const D: usize> EventDriven<D> {
 
     /// Predicts and schedules the events of particle i from scratch.
     pub(super) fn predict(&mut self, i: usize) {
+        self.predict_as::<true>(i);
+    }
+
+    /// [`Self::predict`]; `EXTENDED = false` only where the engine is not sheared.
+    pub(super) fn predict_as<const EXTENDED: bool>(&mut self, i: usize) {
         self.particles[i].collision = f64::INFINITY;
         self.predict_crossing(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
         // (The periodic scan written out here, not behind a helper taking `best` by
         // reference: kept in registers, it was 12 % fewer instructions.)
-        if self.shear.is_some() && self.on_a_face(i) {
+        if EXTENDED && self.shear.is_some() && self.on_a_face(i) {
             self.scan_sheared(i, &pi, &vi, &mut best);
         } else {
             let image = self.image;
@@ -89,9 +94,15 @@ impl<const D: usize> EventDriven<D> {
         }
     }
 
-    /// After i entered a new cell: only the layer of cells beyond it is new to i.
-    pub(super) fn predict_after_crossing(&mut self, i: usize, dim: usize, up: bool) {
-        if self.shear.is_some() && self.on_a_face(i) {
+    /// After i entered a new cell: only the layer of cells beyond it is new to i
+    /// (`EXTENDED` as in [`Self::predict_as`]).
+    pub(super) fn predict_after_crossing_as<const EXTENDED: bool>(
+        &mut self,
+        i: usize,
+        dim: usize,
+        up: bool,
+    ) {
+        if EXTENDED && self.shear.is_some() && self.on_a_face(i) {
             // Its neighbours across the face are not one layer of cells.
             self.predict(i);
             return;
