@@ -246,6 +246,17 @@ class Simulation:
         text = self._sim.rheology()
         return None if text is None else json.loads(text)
 
+    def green_kubo(self) -> Optional[Dict[str, Any]]:
+        """The shear viscosity of an elastic gas at equilibrium by Green-Kubo (Einstein-Helfand)
+        from the pressure tensor's fluctuations (``output.pressure`` without ``[shear]``), as
+        ``summary.json``'s ``green_kubo`` has it: ``viscosity`` and ``reduced_viscosity``
+        (over eta0 at the measured temperature), each a dict of ``mean`` and ``error``, the
+        fit window and Enskog's value under ``theory``; or ``{"skipped": reason}`` for a run
+        that is not at equilibrium or too short. None without ``output.pressure`` or under
+        ``[shear]``."""
+        text = self._sim.green_kubo()
+        return None if text is None else json.loads(text)
+
     def profiles(self):
         """Profiles along an axis (``[output] profiles = {axis, bins}``): a pandas DataFrame
         with the columns of ``profiles.csv`` (time, collisions_per_particle, position,

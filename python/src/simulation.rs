@@ -313,6 +313,18 @@ impl PySimulation {
             .map(|series| simulation.rheology(series).to_string()))
     }
 
+    /// `summary.json`'s `green_kubo` of the rows so far, as JSON text; None without
+    /// `output.pressure` or under `[shear]`.
+    fn green_kubo(&self) -> PyResult<Option<String>> {
+        let simulation = self.get();
+        if simulation.plan().shear.is_some() {
+            return Ok(None);
+        }
+        Ok(simulation
+            .pressure()
+            .map(|series| simulation.green_kubo(series).to_string()))
+    }
+
     /// The profiles' rows (the columns of `profiles.csv`, NaN for its empty cells); None
     /// without `output.profiles`.
     fn profiles<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {

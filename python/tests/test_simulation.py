@@ -481,3 +481,24 @@ def test_a_sheared_gas_reports_its_pressure_tensor_and_rheology(tmp_path):
     assert haff.Simulation(CONFIGS["event-driven"]).rheology() is None
     with pytest.raises(haff.ConfigError, match=r"shear\.rate"):
         haff.Simulation(dict(sheared, shear={"rate": float("nan")}))
+
+
+def test_an_elastic_gas_reports_its_green_kubo_viscosity(tmp_path):
+    """`output.pressure` without `[shear]`: `green_kubo()` is summary.json's `green_kubo`
+    (the same numbers, both from sim), with a positive viscosity and its error; an
+    inelastic gas is not at equilibrium and says so."""
+    elastic = {"system": {"dimension": 3, "particles": 300, "packing_fraction": 0.1, "seed": 2},
+               "collision": {"law": "constant", "restitution": 1.0},
+               "run": {"end_time": 400.0, "samples": 8000, "spacing": "linear"},
+               "output": {"pressure": True}}
+    sim = haff.Simulation(elastic).run(progress=False)
+    gk = sim.green_kubo()
+    sim.write(tmp_path / "out")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert gk == summary["green_kubo"]
+    assert gk["viscosity"]["mean"] > 0.0 and gk["viscosity"]["error"] > 0.0
+    assert gk["batches"] >= 5
+    elastic["collision"]["restitution"] = 0.9
+    sim = haff.Simulation(elastic).run(progress=False)
+    assert "not elastic" in sim.green_kubo()["skipped"]
+    assert haff.Simulation(CONFIGS["event-driven"]).green_kubo() is None

@@ -2,6 +2,8 @@
 
 use crate::system::{dot, System};
 
+pub mod green_kubo;
+
 /// Granular temperature T = <m |c|^2> / D with c the peculiar velocity.
 pub fn temperature<const D: usize>(s: &System<D>) -> f64 {
     let (mean, _) = mean_velocity(s);

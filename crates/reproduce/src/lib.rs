@@ -19,6 +19,7 @@
 pub mod gallery;
 pub mod giese;
 pub mod giese_ring;
+pub mod green_kubo;
 pub mod kinetic;
 pub mod mp2011;
 pub mod shear;
@@ -62,6 +63,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(kinetic::entries());
     all.extend(shear::entries());
     all.extend(usf::entries());
+    all.extend(green_kubo::entries());
     all.extend(soft::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());

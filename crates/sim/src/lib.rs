@@ -26,6 +26,7 @@ pub mod driver;
 pub mod engines;
 pub mod error;
 mod figures;
+pub mod green_kubo;
 pub mod law;
 pub mod maps;
 pub mod observer;

@@ -392,6 +392,15 @@ impl Simulation {
         }
     }
 
+    /// `summary.json`'s `green_kubo` of the rows so far (`output.pressure` without
+    /// `[shear]`: the equilibrium viscosity, or why it was skipped).
+    pub fn green_kubo(&self, series: &crate::rheology::PressureSeries) -> serde_json::Value {
+        match self.plan.description.system.dimension {
+            2 => crate::green_kubo::summary::<2>(&self.plan, series),
+            _ => crate::green_kubo::summary::<3>(&self.plan, series),
+        }
+    }
+
     /// The rows of `profiles.csv` (`output.profiles`), None without it.
     pub fn profile_rows(&self) -> Option<&[crate::profiles::ProfileRow]> {
         each!(&self.run, r => r.observer::<crate::profiles::ProfileSeries>().map(|s| s.rows.as_slice()))
@@ -575,6 +584,8 @@ impl Simulation {
         if let Some(series) = self.pressure() {
             if self.plan.shear.is_some() {
                 summary["rheology"] = self.rheology(series);
+            } else {
+                summary["green_kubo"] = self.green_kubo(series);
             }
         }
         for section in self.report().sections {

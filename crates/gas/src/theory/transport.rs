@@ -267,6 +267,13 @@ impl NavierStokes {
     }
 }
 
+/// The Chapman–Enskog viscosity of elastic hard spheres (3D) over its first Sonine
+/// approximation η0 = 5/(16σ²) (mT/π)^{1/2}: the converged Sonine series, 1.016034
+/// (Pekeris & Alterman 1957; Chapman & Cowling 1970, §10.21). Its second and third orders
+/// (1 + 3/202, 1.01588) are computed from the collision integrals by test
+/// `elastic_viscosity_sonine_series_is_chapman_cowling`, which bounds the rest of the series.
+pub const ELASTIC_VISCOSITY_SONINE_FACTOR: f64 = 1.016034;
+
 /// ν0 / ω: the unit of the reduced rates, n T / η0, over the Maxwellian collision frequency
 /// ω of [`collision_frequency`] (4/5 in 3D, 1 in 2D).
 pub fn reference_over_collision_frequency<const D: usize>() -> f64 {
