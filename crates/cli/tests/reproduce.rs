@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 29] = [
+const CSVS: [(&str, &str); 30] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -95,6 +95,10 @@ const CSVS: [(&str, &str); 29] = [
         "alpha,eta,eta_error,grad,chapman_enskog",
     ),
     ("kinetic-green-kubo", "phi,dsmc,eta,eta_error,theory"),
+    (
+        "kinetic-conductivity",
+        "dsmc,z,temperature,kappa,kappa_error,theory",
+    ),
     (
         "giese-fig1",
         "collision,e_tr,eps,eta,e_tr_running_mean,equipartition_per_collision",

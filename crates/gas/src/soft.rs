@@ -24,17 +24,28 @@
 //! ([`SoftSphere::elastic_energy`]) + energy lost is conserved, and after a contact the energy
 //! lost is its kinetic-energy loss, (1 − ε²) m_eff v² / 2 as in the event-driven engine;
 //! the virial is ∫ Σ F_n d dt over the pairs in contact, so that its rate is the
-//! collisional virial of [`crate::observe::pressure`].
+//! collisional virial of [`crate::observe::pressure`]. The tensor virial
+//! ([`SoftSphere::set_virial_tensor`]) is ∫ Σ F_n d n n dt over the same contacts, its trace
+//! the virial, so that its increment over an interval Δt divided by V Δt is the time
+//! average of the collisional stress (Allen & Tildesley, Sec. 2.4;
+//! [`crate::observe::pressure_tensor`]).
+//!
+//! Uniform shear flow: Lees–Edwards boundaries (`soft/lees_edwards.rs`,
+//! [`SoftSphere::set_shear`]).
 
 pub mod accuracy;
 mod container;
 pub use container::ContainerState;
 pub mod contact;
+mod lees_edwards;
 pub mod neighbors;
+mod state;
 mod step;
+pub use state::SoftSphereState;
 
-use crate::engine::{Checkpoint, Counters, Engine, Report, ReportSection, ReportValue};
+use crate::engine::{Counters, Engine, Report, ReportSection, ReportValue};
 use crate::error::{require_positive, Error, Result};
+use crate::shear::{Shear, Virial};
 use crate::system::{minimum_image, wrap, System, Vector};
 use contact::{contact_duration, ViscoelasticMaterial};
 use neighbors::NeighborList;
@@ -168,34 +179,6 @@ fn unknown() -> f64 {
     f64::NAN
 }
 
-/// The saved state of a [`SoftSphere`] engine.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SoftSphereState<const D: usize> {
-    pub system: System<D>,
-    /// Forces at the current positions (they depend on the predicted velocities of the
-    /// step that computed them, so they are saved rather than recomputed).
-    #[serde(with = "crate::serde_util::vectors")]
-    pub forces: Vec<Vector<D>>,
-    pub material: ViscoelasticMaterial,
-    pub options: SoftSphereOptions,
-    pub time_step: f64,
-    pub time: f64,
-    pub steps: u64,
-    pub counters: Counters,
-    /// Pairs in contact after the last step (i < j, sorted).
-    pub contacts: Vec<(u32, u32)>,
-    pub collision_counts: Vec<u32>,
-    pub statistics: ContactStatistics,
-    /// See [`accuracy::eps_error`] (absent in check-points written before it existed).
-    #[serde(default = "unknown")]
-    pub eps_error: f64,
-    /// Walls and their contacts, in a container (absent otherwise: the periodic states
-    /// stay as they were byte for byte; the last field, read as None where missing).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub container: Option<ContainerState>,
-}
-
 /// Soft-sphere MD of viscoelastic spheres (see the [module](self) documentation).
 pub struct SoftSphere<const D: usize> {
     system: System<D>,
@@ -227,6 +210,14 @@ pub struct SoftSphere<const D: usize> {
     saved_container: Option<ContainerState>,
     /// Whether the container came from a check-point (its forces are then the saved ones).
     restored_container: bool,
+    /// Lees–Edwards boundaries ([`SoftSphere::set_shear`]); None: periodic.
+    shear: Option<Shear>,
+    /// The tensor virial ∫ Σ F_n d n n dt, if asked for ([`SoftSphere::set_virial_tensor`]).
+    virial: Option<Virial>,
+    /// Scratch: the rate Σ F_n d n n of the last force computation (with the tensor virial).
+    stress_rate: Virial,
+    /// Under shear, the state with the peculiar velocities ([`Engine::system`]).
+    view: System<D>,
 }
 
 impl<const D: usize> SoftSphere<D> {
@@ -315,6 +306,10 @@ impl<const D: usize> SoftSphere<D> {
             container: None,
             saved_container: None,
             restored_container: false,
+            shear: None,
+            virial: None,
+            stress_rate: Virial::default(),
+            view: empty_system(),
             system,
         };
         // Forces of the initial state (velocities known exactly at t = 0); overlaps present
@@ -381,19 +376,36 @@ impl<const D: usize> SoftSphere<D> {
     /// Elastic energy held in the overlaps now, Σ (2/5) ρ ξ^{5/2} over the pairs in contact.
     pub fn elastic_energy(&self) -> f64 {
         let s = &self.system;
+        let images = self.images_at(self.time);
         self.contacts
             .iter()
             .map(|&(i, j)| {
                 let (i, j) = (i as usize, j as usize);
-                let d2: f64 = (0..D)
-                    .map(|k| {
-                        minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k]).powi(2)
-                    })
-                    .sum();
+                let d2: f64 = match &images {
+                    Some(im) => {
+                        let (r, _) = im.separation(&s.positions[i], &s.positions[j], &s.sides);
+                        r.iter().map(|x| x * x).sum()
+                    }
+                    None => (0..D)
+                        .map(|k| {
+                            minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k]).powi(2)
+                        })
+                        .sum(),
+                };
                 let xi = (s.radii[i] + s.radii[j] - d2.sqrt()).max(0.0);
                 0.4 * self.material.elastic_constant(s.radii[i], s.radii[j]) * xi.powf(2.5)
             })
             .sum()
+    }
+
+    /// Sums the tensor virial of the contacts from now on (`true`, from zero unless it is
+    /// summed already) or stops (`false`).
+    pub fn set_virial_tensor(&mut self, on: bool) {
+        if !on {
+            self.virial = None;
+        } else if self.virial.is_none() {
+            self.virial = Some(Virial::default());
+        }
     }
 
     /// Steps while the time is below `end`, the collisions below `collisions` and below
@@ -410,6 +422,17 @@ impl<const D: usize> SoftSphere<D> {
                 self.time = end;
             }
         }
+    }
+}
+
+/// A system of no particles (the buffer of [`SoftSphere`]'s peculiar view).
+fn empty_system<const D: usize>() -> System<D> {
+    System {
+        sides: [1.0; D],
+        positions: Vec::new(),
+        velocities: Vec::new(),
+        radii: Vec::new(),
+        masses: Vec::new(),
     }
 }
 
@@ -499,8 +522,33 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
         self.system.len()
     }
 
+    /// The state; under shear, velocities relative to the flow (peculiar: v − a y e_x).
     fn system(&mut self) -> &System<D> {
-        &self.system
+        match self.shear {
+            None => &self.system,
+            Some(shear) => {
+                self.fill_view(shear);
+                &self.view
+            }
+        }
+    }
+
+    fn shear(&self) -> Option<Shear> {
+        SoftSphere::shear(self)
+    }
+
+    fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
+        SoftSphere::set_shear(self, shear)
+    }
+
+    /// The tensor virial ∫ Σ F_n d n n dt summed so far, if asked for.
+    fn virial_tensor(&self) -> Option<Virial> {
+        self.virial
+    }
+
+    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
+        SoftSphere::set_virial_tensor(self, on);
+        Ok(())
     }
 
     fn collision_counts(&self) -> Option<Vec<u32>> {
@@ -522,167 +570,7 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
             + self.active.capacity() * 4
             + self.impulses.capacity() * std::mem::size_of::<Vector<D>>()
             + self.neighbors.memory_bytes()
-    }
-}
-
-impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
-    type State = SoftSphereState<D>;
-    type Needs = ();
-
-    fn save(&mut self) -> SoftSphereState<D> {
-        SoftSphereState {
-            system: self.system.clone(),
-            forces: self.forces.clone(),
-            material: self.material,
-            options: self.options,
-            time_step: self.time_step,
-            time: self.time,
-            steps: self.steps,
-            counters: self.tally,
-            contacts: self.contacts.clone(),
-            collision_counts: self.collision_counts.clone(),
-            statistics: self.statistics,
-            eps_error: self.eps_error,
-            container: self.container_state(),
-        }
-    }
-
-    /// Continues the run of `state` bit for bit, after checking it (the force law is the
-    /// state's material: a restore needs nothing else).
-    fn restore(state: SoftSphereState<D>, _needs: ()) -> Result<Self> {
-        let n = state.system.len();
-        if state.forces.len() != n || state.collision_counts.len() != n {
-            return Err(Error::LengthMismatch {
-                what: "system, forces and collision counts".into(),
-            });
-        }
-        state.material.validate()?;
-        state.system.check(true)?;
-        require_positive("time_step", state.time_step)?;
-        if !(state.time.is_finite() && state.time >= 0.0) {
-            return Err(Error::out_of_range(
-                "time",
-                state.time,
-                "a finite time >= 0",
-            ));
-        }
-        if state
-            .contacts
-            .iter()
-            .any(|&(i, j)| i >= j || j as usize >= n)
-            || state.contacts.windows(2).any(|w| w[0] >= w[1])
-        {
-            return Err(Error::out_of_range(
-                "contacts",
-                "(list)",
-                "sorted pairs i < j of particle indices",
-            ));
-        }
-        let skin = neighbor_skin(&state.options, &state.system)?;
-        state.counters.check("")?;
-        if let Some(i) = state
-            .forces
-            .iter()
-            .position(|f| f.iter().any(|x| !x.is_finite()))
-        {
-            return Err(Error::NotFinite {
-                what: "forces",
-                index: i,
-            });
-        }
-        // Radii and masses within the scales a run file allows (a mass of 1e-300 makes
-        // any contact force overflow the velocities).
-        for (what, list) in [
-            ("radii", &state.system.radii),
-            ("masses", &state.system.masses),
-        ] {
-            if let Some(i) = list.iter().position(|x| !(1e-30..=1e30).contains(x)) {
-                return Err(Error::out_of_range(
-                    format!("{what}[{i}]"),
-                    list[i],
-                    "1e-30 ..= 1e30",
-                ));
-            }
-        }
-        // No sphere may cross its own radius in a step: the step could not resolve its
-        // contacts (and a wall's overlap would exceed its size). A run's time step resolves
-        // contacts at its fastest impacts, orders of magnitude below this.
-        let smallest = state
-            .system
-            .radii
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        if let Some(i) = state.system.velocities.iter().position(|v| {
-            (0..D).map(|k| v[k] * v[k]).sum::<f64>().sqrt() * state.time_step > smallest
-        }) {
-            return Err(Error::out_of_range(
-                format!("velocities[{i}]"),
-                format!("{:?}", state.system.velocities[i]),
-                format!(
-                    "speeds that move a sphere less than the smallest radius ({smallest}) per \
-                     time step ({})",
-                    state.time_step
-                ),
-            ));
-        }
-        // Forces that would kick the velocities of one step beyond the range of f64 (the
-        // observers' sums of m u^2 and its square) come from a forged state, not a run.
-        let (mut energy, mut fourth) = (0.0f64, 0.0f64);
-        let s = &state.system;
-        for ((v, f), &m) in s.velocities.iter().zip(&state.forces).zip(&s.masses) {
-            let u2: f64 = (0..D)
-                .map(|k| (v[k] + state.time_step * f[k] / m).powi(2))
-                .sum();
-            energy += m * u2;
-            fourth += (m * u2).powi(2);
-        }
-        if !(energy.is_finite() && fourth.is_finite()) {
-            return Err(Error::out_of_range(
-                "forces",
-                "forces that kick a step's velocities beyond the range of f64",
-                "forces of the contacts of a run",
-            ));
-        }
-        let overlap = state.statistics.max_relative_overlap;
-        if !(overlap.is_finite() && overlap >= 0.0) {
-            return Err(Error::out_of_range(
-                "max_relative_overlap",
-                overlap,
-                "a finite number >= 0",
-            ));
-        }
-        if !(state.eps_error.is_nan() || state.eps_error >= 0.0 && state.eps_error.is_finite()) {
-            return Err(Error::out_of_range(
-                "eps_error",
-                state.eps_error,
-                "a finite number >= 0 (or NaN: not recorded)",
-            ));
-        }
-        let active = (0..n as u32)
-            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
-            .collect();
-        Ok(SoftSphere {
-            active,
-            touching: vec![0; n],
-            current: Vec::new(),
-            impulses: Vec::new(),
-            neighbors: NeighborList::new(skin),
-            system: state.system,
-            forces: state.forces,
-            material: state.material,
-            options: state.options,
-            time_step: state.time_step,
-            time: state.time,
-            steps: state.steps,
-            tally: state.counters,
-            contacts: state.contacts,
-            collision_counts: state.collision_counts,
-            statistics: state.statistics,
-            eps_error: state.eps_error,
-            container: None,
-            saved_container: state.container,
-            restored_container: false,
-        })
+            + self.view.velocities.capacity() * std::mem::size_of::<Vector<D>>() * 2
+            + self.view.radii.capacity() * 16
     }
 }

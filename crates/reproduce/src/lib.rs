@@ -16,6 +16,7 @@
 //! Pöschel 2008, delayed recovery). Further papers add their module and their entries to
 //! [`entries`].
 
+pub mod conductivity;
 pub mod gallery;
 pub mod giese;
 pub mod giese_ring;
@@ -64,6 +65,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(shear::entries());
     all.extend(usf::entries());
     all.extend(green_kubo::entries());
+    all.extend(conductivity::entries());
     all.extend(soft::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());

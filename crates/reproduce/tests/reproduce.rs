@@ -338,3 +338,23 @@ fn kinetic_green_kubo_against_chapman_enskog_and_enskog() {
     );
     printed_in(&md, dilute);
 }
+
+/// The quick conductivity between thermal walls (t = 1000): the spatial DSMC with cells of
+/// half a mean free path is Chapman–Enskog's conductivity over chi within 4 standard errors
+/// (2 % here), the event-driven engine Enskog's within 4 standard errors (10 %) plus the
+/// O(phi) of the Sonine factor applied to its collisional part (1 %).
+#[test]
+fn kinetic_conductivity_against_chapman_enskog_and_enskog() {
+    let (o, md) = run("kinetic-conductivity");
+    let (dsmc, error) = (
+        value(&o, "dsmc_over_chapman_enskog"),
+        value(&o, "dsmc_error"),
+    );
+    assert!((dsmc - 1.0).abs() < 4.0 * error, "{dsmc} +- {error}");
+    let (emd, emd_error) = (value(&o, "emd_over_enskog"), value(&o, "emd_error"));
+    assert!(
+        (emd - 1.0).abs() < 4.0 * emd_error + 0.01,
+        "{emd} +- {emd_error}"
+    );
+    printed_in(&md, dsmc);
+}

@@ -77,8 +77,8 @@ pub struct RunDescription {
 }
 
 /// `[shear]`: the uniform shear flow u = rate · y e_x (flow along x, gradient along y):
-/// Lees–Edwards boundaries in the event-driven engine, the frame moving with the flow in
-/// the homogeneous DSMC (`gas::shear`). `pressure.csv` and `summary.json`'s `rheology`
+/// Lees–Edwards boundaries in the event-driven engine, soft-sphere MD and the spatial DSMC,
+/// the frame moving with the flow in the homogeneous DSMC (`gas::shear`). `pressure.csv` and `summary.json`'s `rheology`
 /// come with it; `timeseries.csv`'s temperature is that of the velocities relative to the
 /// flow.
 ///

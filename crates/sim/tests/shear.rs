@@ -151,10 +151,6 @@ fn bad_shear_names_its_key() {
     let base = "[system]\ndimension = 3\nparticles = 200\npacking_fraction = 0.05\nseed = 1\n\
                 [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
                 [run]\ncollisions_per_particle = 5\nsamples = 3\n";
-    let soft = "[system]\nparticles = 40\npacking_fraction = 0.1\n\
-                [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
-                dissipative_constant = 0.01\n\
-                [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\n";
     let walls = |axis: &str| {
         format!(
             "[[wall]]\naxis = \"{axis}\"\nside = \"low\"\nkind = \"elastic\"\n\
@@ -189,11 +185,6 @@ fn bad_shear_names_its_key() {
                 "[run]\nengine = \"dsmc\"\ndsmc_scheme = \"exact\"\n",
             ),
             "shear",
-        ),
-        (format!("{soft}{shear}"), "shear"),
-        (
-            format!("{soft}[output]\npressure = true\n"),
-            "output.pressure",
         ),
     ];
     for (text, key) in cases {

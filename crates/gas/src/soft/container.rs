@@ -59,6 +59,13 @@ impl<const D: usize> SoftSphere<D> {
             self.neighbors.invalidate();
             return Ok(());
         };
+        if self.shear.is_some() {
+            return Err(Error::out_of_range(
+                "walls",
+                "a sheared gas",
+                "a periodic box under shear (Lees-Edwards boundaries)",
+            ));
+        }
         if walls
             .walls()
             .iter()
@@ -167,7 +174,7 @@ impl<const D: usize> SoftSphere<D> {
 
     /// Forces of the current state again (walls or gravity changed at the start of a
     /// run), without counting its contacts twice.
-    fn refresh_forces(&mut self) {
+    pub(super) fn refresh_forces(&mut self) {
         let statistics = self.statistics;
         self.compute_forces(None);
         self.statistics = statistics;

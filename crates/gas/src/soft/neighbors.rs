@@ -67,6 +67,7 @@ fn neighbor_rows<const D: usize>(
     }
     (rows, n)
 }
+use super::lees_edwards::Images;
 use crate::system::{minimum_image, System, Vector};
 
 /// The pairs (i < j) within contact distance + skin, sorted, and a bound on how far the
@@ -92,6 +93,10 @@ pub struct NeighborList {
     pub builds: u64,
     /// Axes closed by walls (bit k): no pair across them.
     pub closed: u8,
+    /// Under shear, |a| L_y / 2: the images across the sliding faces move relative to the
+    /// box at |a| L_y, which the skin criterion counts as half for each of a pair's two
+    /// spheres (0 without shear).
+    slide: f64,
 }
 
 impl NeighborList {
@@ -131,8 +136,15 @@ impl NeighborList {
     /// Records a drift of all particles for a time `dt`.
     pub fn drifted(&mut self, dt: f64) {
         if let Some(moved) = &mut self.moved {
-            *moved += dt * self.speed_bound2.sqrt();
+            *moved += dt * (self.speed_bound2.sqrt() + self.slide);
         }
+    }
+
+    /// Lists pairs across sliding faces whose images move at `jump` = a L_y (None: a
+    /// periodic box); marks the list stale.
+    pub fn sheared(&mut self, jump: Option<f64>) {
+        self.slide = jump.map_or(0.0, |j| 0.5 * j.abs());
+        self.invalidate();
     }
 
     /// Rebuilds the list for `system` (positions in the box; distances are minimum
@@ -143,24 +155,7 @@ impl NeighborList {
         let largest = system.radii.iter().copied().fold(0.0, f64::max);
         self.largest_radius = largest;
         let reach = 2.0 * largest + self.skin;
-        let n = system.len();
-        let grid = Grid::<D>::new(&system.sides, reach, max_cells(n));
-        // Counting sort of the particles by cell.
-        let coords: Vec<[u32; D]> = system.positions.iter().map(|x| grid.coords_of(x)).collect();
-        let cells: Vec<usize> = coords.iter().map(|c| grid.index(c)).collect();
-        let mut start = vec![0u32; grid.cells() + 1];
-        for &c in &cells {
-            start[c + 1] += 1;
-        }
-        for c in 0..grid.cells() {
-            start[c + 1] += start[c];
-        }
-        let mut fill = start.clone();
-        let mut members = vec![0u32; n];
-        for (i, &c) in cells.iter().enumerate() {
-            members[fill[c] as usize] = i as u32;
-            fill[c] += 1;
-        }
+        let (grid, coords, start, members) = sort_by_cell(system, reach);
         self.pairs.clear();
         for (i, x) in system.positions.iter().enumerate() {
             let (rows, count) = neighbor_rows(grid.per_side, &coords[i]);
@@ -188,6 +183,12 @@ impl NeighborList {
                 }
             }
         }
+        self.finish(system);
+    }
+
+    /// The list sorted, the displacements since the build zero, the speeds' bound that of
+    /// `system`.
+    fn finish<const D: usize>(&mut self, system: &System<D>) {
         self.pairs.sort_unstable();
         self.moved = Some(0.0);
         self.speed_bound2 = 0.0;
@@ -197,9 +198,122 @@ impl NeighborList {
         self.builds += 1;
     }
 
+    /// [`Self::build`] under Lees–Edwards boundaries, the images as `images` at the time of
+    /// the positions ([`super::lees_edwards`]): a pair's distance is its nearest image's
+    /// ([`Images::separation`], as the forces take it); a sphere in a row of cells at a
+    /// face is paired with the spheres of the row across in the columns its image overlaps
+    /// (with a column's margin each side against rounding), the others with the 3^D cells
+    /// around it. Each cell scanned once per sphere (stamps), so a pair is listed once.
+    #[inline(never)]
+    pub(crate) fn build_sheared<const D: usize>(&mut self, system: &System<D>, images: &Images) {
+        let largest = system.radii.iter().copied().fold(0.0, f64::max);
+        self.largest_radius = largest;
+        let reach = 2.0 * largest + self.skin;
+        let (grid, coords, start, members) = sort_by_cell(system, reach);
+        let (per_side, width) = (grid.per_side, grid.width[0]);
+        let near = |c: u32, n: usize| -> Vec<u32> {
+            let c = c as i64;
+            (c - 1..=c + 1)
+                .map(|x| x.rem_euclid(n as i64) as u32)
+                .collect()
+        };
+        let mut stamps = vec![usize::MAX; grid.cells()];
+        self.pairs.clear();
+        for (i, x) in system.positions.iter().enumerate() {
+            let c = coords[i];
+            let depths = if D == 3 {
+                near(c[2], per_side[2])
+            } else {
+                vec![0]
+            };
+            for dy in [-1i64, 0, 1] {
+                let row = c[1] as i64 + dy;
+                let rows = per_side[1] as i64;
+                // s of the image of the row's spheres seen from i (Images::separation).
+                let s = if row < 0 {
+                    -1.0
+                } else if row >= rows {
+                    1.0
+                } else {
+                    0.0
+                };
+                let columns: Vec<u32> = if s == 0.0 {
+                    near(c[0], per_side[0])
+                } else {
+                    // The row's spheres whose image lies within reach of x: x_j near x − s δ.
+                    let target = x[0] - s * images.delta;
+                    let low = ((target - reach) / width).floor() as i64 - 1;
+                    let high = ((target + reach) / width).floor() as i64 + 1;
+                    let n = per_side[0] as i64;
+                    if high - low + 1 >= n {
+                        (0..n as u32).collect()
+                    } else {
+                        (low..=high).map(|x| x.rem_euclid(n) as u32).collect()
+                    }
+                };
+                let mut cell = c;
+                cell[1] = row.rem_euclid(rows) as u32;
+                for &z in &depths {
+                    if D == 3 {
+                        cell[D - 1] = z;
+                    }
+                    for &column in &columns {
+                        cell[0] = column;
+                        let index = grid.index(&cell);
+                        if stamps[index] == i {
+                            continue;
+                        }
+                        stamps[index] = i;
+                        let members = &members[start[index] as usize..start[index + 1] as usize];
+                        for &j in members {
+                            let j = j as usize;
+                            if j <= i {
+                                continue;
+                            }
+                            let cutoff = system.radii[i] + system.radii[j] + self.skin;
+                            let (r, _) = images.separation(x, &system.positions[j], &system.sides);
+                            if r.iter().map(|d| d * d).sum::<f64>() < cutoff * cutoff {
+                                self.pairs.push((i as u32, j as u32));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.finish(system);
+    }
+
     pub fn memory_bytes(&self) -> usize {
         self.pairs.capacity() * 8
     }
+}
+
+/// The grid of cells at least `reach` wide over the box of `system`, each particle's cell
+/// coordinates, and a counting sort of the particles by cell: cell c holds
+/// `members[start[c]..start[c + 1]]`.
+#[allow(clippy::type_complexity)]
+fn sort_by_cell<const D: usize>(
+    system: &System<D>,
+    reach: f64,
+) -> (Grid<D>, Vec<[u32; D]>, Vec<u32>, Vec<u32>) {
+    let n = system.len();
+    let grid = Grid::<D>::new(&system.sides, reach, max_cells(n));
+    let coords: Vec<[u32; D]> = system.positions.iter().map(|x| grid.coords_of(x)).collect();
+    let cells: Vec<usize> = coords.iter().map(|c| grid.index(c)).collect();
+    let mut start = vec![0u32; grid.cells() + 1];
+    for &c in &cells {
+        start[c + 1] += 1;
+    }
+    for c in 0..grid.cells() {
+        start[c + 1] += start[c];
+    }
+    let mut fill = start.clone();
+    let mut members = vec![0u32; n];
+    for (i, &c) in cells.iter().enumerate() {
+        members[fill[c] as usize] = i as u32;
+        fill[c] += 1;
+    }
+    (grid, coords, start, members)
 }
 
 #[cfg(test)]

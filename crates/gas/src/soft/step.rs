@@ -5,9 +5,13 @@
 //! (`active`), so the half kicks visit only those, and the predicted velocities are
 //! needed only for the pairs in contact and are computed there. What remains per particle
 //! is the drift and the pair search of the neighbour list.
+//!
+//! Shear and the tensor virial take their own copy of the step (`EXTENDED`, as the
+//! event-driven engine's `step_as`): the periodic gas's loops have none of their branches.
 
 use super::contact::normal_force;
 use super::SoftSphere;
+use crate::shear::Virial;
 use crate::system::{minimum_image, wrap, Vector};
 
 /// d = x_j − x_i for coordinates in [0, L) (|d| < L), as [`minimum_image`] but without
@@ -52,9 +56,28 @@ fn drift(x: &mut [f64], v: &[f64], dt: f64, length: f64) {
 impl<const D: usize> SoftSphere<D> {
     /// One velocity-Verlet step of length `dt` (see the [module](super) documentation).
     pub(super) fn step(&mut self, dt: f64) {
-        let (power_before, virial_before) = self.contact_rates();
+        if self.shear.is_some() || self.virial.is_some() {
+            self.step_extended(dt);
+        } else {
+            self.step_as::<false>(dt);
+        }
+    }
+
+    /// [`Self::step`] with shear or the tensor virial, out of line.
+    #[inline(never)]
+    fn step_extended(&mut self, dt: f64) {
+        self.step_as::<true>(dt);
+    }
+
+    /// [`Self::step`], compiled twice: with `EXTENDED = false` (neither shear nor the
+    /// tensor virial) the loops are the periodic gas's alone.
+    #[inline(always)]
+    fn step_as<const EXTENDED: bool>(&mut self, dt: f64) {
+        let (power_before, virial_before, stress_before) = self.contact_rates::<EXTENDED>();
         self.half_kick(dt);
-        if self.system.is_cubic() {
+        if EXTENDED && self.shear.is_some() {
+            self.drift_sheared(dt);
+        } else if self.system.is_cubic() {
             drift(
                 self.system.positions.as_flattened_mut(),
                 self.system.velocities.as_flattened(),
@@ -70,7 +93,7 @@ impl<const D: usize> SoftSphere<D> {
             }
         }
         self.neighbors.drifted(dt);
-        let (power, virial, begun) = self.compute_forces(Some(dt));
+        let (power, virial, begun) = self.compute_forces_as::<EXTENDED>(Some(dt));
         self.tally_walls(dt);
         self.half_kick(dt);
         self.steps += 1;
@@ -78,6 +101,14 @@ impl<const D: usize> SoftSphere<D> {
         self.tally.events += 1;
         self.tally.energy_lost += 0.5 * dt * (power_before + power);
         self.tally.virial += 0.5 * dt * (virial_before + virial);
+        if EXTENDED {
+            // The trapezoid of the tensor, as of the virial.
+            if let Some(total) = &mut self.virial {
+                for (c, t) in total.0.iter_mut().enumerate() {
+                    *t += 0.5 * dt * (stress_before.0[c] + self.stress_rate.0[c]);
+                }
+            }
+        }
     }
 
     /// v += (dt/2) F / m on the particles with a force (the others have F = 0).
@@ -96,10 +127,35 @@ impl<const D: usize> SoftSphere<D> {
     /// Forces at the current positions, with the velocities predicted half a step ahead by
     /// the forces so far, v + (dt/2) F / m, for `Some(dt)`, the current velocities for
     /// None; replaces the contact list. Returns the dissipated power Σ F_dis ξ̇, the virial
-    /// rate Σ F_n d and the number of contacts begun.
+    /// rate Σ F_n d and the number of contacts begun (with the tensor virial, its rate
+    /// Σ F_n d n n into `stress_rate`).
     pub(super) fn compute_forces(&mut self, predicting: Option<f64>) -> (f64, f64, u64) {
+        if self.shear.is_some() || self.virial.is_some() {
+            self.compute_forces_as::<true>(predicting)
+        } else {
+            self.compute_forces_as::<false>(predicting)
+        }
+    }
+
+    /// [`Self::compute_forces`]; `EXTENDED`: with shear or the tensor virial. Under shear a
+    /// pair across a sliding face is its nearest image's, the image's velocity jump a L_y
+    /// in the overlap's rate (module [`super::lees_edwards`]), at the images' offset at the
+    /// positions' time.
+    #[inline(always)]
+    fn compute_forces_as<const EXTENDED: bool>(
+        &mut self,
+        predicting: Option<f64>,
+    ) -> (f64, f64, u64) {
+        let images = if EXTENDED {
+            self.images_at(self.time + predicting.unwrap_or(0.0))
+        } else {
+            None
+        };
         if self.neighbors.stale() {
-            self.neighbors.build(&self.system);
+            match &images {
+                Some(images) => self.neighbors.build_sheared(&self.system, images),
+                None => self.neighbors.build(&self.system),
+            }
         }
         // The pairs in contact, in the order of the list (i < j, sorted).
         self.current.clear();
@@ -110,15 +166,30 @@ impl<const D: usize> SoftSphere<D> {
         let widest2 = widest * widest;
         // The sides and half sides out of the pair loop.
         let (sides, halves) = (s.sides, s.sides.map(|l| 0.5 * l));
-        for &(i, j) in &self.neighbors.pairs {
-            let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
-            let d2: f64 = (0..D)
-                .map(|k| image_of_difference(xj[k] - xi[k], sides[k], halves[k]).powi(2))
-                .sum();
-            if d2 < widest2 {
-                let contact = s.radii[i as usize] + s.radii[j as usize];
-                if d2 < contact * contact {
-                    self.current.push((i, j));
+        match &images {
+            Some(images) => {
+                for &(i, j) in &self.neighbors.pairs {
+                    let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
+                    let (r, _) = images.separation(xi, xj, &sides);
+                    let d2: f64 = r.iter().map(|x| x * x).sum();
+                    let contact = s.radii[i as usize] + s.radii[j as usize];
+                    if d2 < contact * contact {
+                        self.current.push((i, j));
+                    }
+                }
+            }
+            None => {
+                for &(i, j) in &self.neighbors.pairs {
+                    let (xi, xj) = (&s.positions[i as usize], &s.positions[j as usize]);
+                    let d2: f64 = (0..D)
+                        .map(|k| image_of_difference(xj[k] - xi[k], sides[k], halves[k]).powi(2))
+                        .sum();
+                    if d2 < widest2 {
+                        let contact = s.radii[i as usize] + s.radii[j as usize];
+                        if d2 < contact * contact {
+                            self.current.push((i, j));
+                        }
+                    }
                 }
             }
         }
@@ -126,12 +197,19 @@ impl<const D: usize> SoftSphere<D> {
         // are cleared.
         let a = self.material.dissipative_constant;
         let (mut power, mut virial) = (0.0, 0.0);
+        let mut stress = Virial::default();
         self.impulses.clear();
         for &(i, j) in &self.current {
             let (i, j) = (i as usize, j as usize);
-            let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
-            });
+            let (r, across): (Vector<D>, f64) = match &images {
+                Some(images) => images.separation(&s.positions[i], &s.positions[j], &s.sides),
+                None => (
+                    std::array::from_fn(|k| {
+                        minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
+                    }),
+                    0.0,
+                ),
+            };
             let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
             let contact = s.radii[i] + s.radii[j];
             let xi = contact - d;
@@ -140,15 +218,21 @@ impl<const D: usize> SoftSphere<D> {
                 Some(dt) => s.velocities[p][k] + 0.5 * dt / s.masses[p] * self.forces[p][k],
                 None => s.velocities[p][k],
             };
-            let xi_dot = -(0..D)
-                .map(|k| (velocity(j, k) - velocity(i, k)) * normal[k])
-                .sum::<f64>();
+            let mut dv: Vector<D> = std::array::from_fn(|k| velocity(j, k) - velocity(i, k));
+            if EXTENDED && across != 0.0 {
+                // j's image across the face moves with v_j + s a L_y e_x.
+                dv[0] += across * images.as_ref().map_or(0.0, |im| im.jump);
+            }
+            let xi_dot = -(0..D).map(|k| dv[k] * normal[k]).sum::<f64>();
             let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
             let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
             self.impulses
                 .push(std::array::from_fn(|k| force * normal[k]));
             power += dissipative * xi_dot;
             virial += force * d;
+            if EXTENDED {
+                stress.add(force, d, &normal);
+            }
             let relative = xi / contact;
             if relative > self.statistics.max_relative_overlap {
                 self.statistics.max_relative_overlap = relative;
@@ -195,29 +279,51 @@ impl<const D: usize> SoftSphere<D> {
             }
         }
         std::mem::swap(&mut self.contacts, &mut self.current);
+        if EXTENDED {
+            self.stress_rate = stress;
+        }
         (power, virial, begun)
     }
 
-    /// The dissipated power and virial rate of the current contacts with the current
-    /// velocities (the trapezoid's left end).
-    fn contact_rates(&self) -> (f64, f64) {
+    /// The dissipated power, virial rate and (`EXTENDED`) tensor virial rate of the current
+    /// contacts with the current velocities (the trapezoid's left end).
+    fn contact_rates<const EXTENDED: bool>(&self) -> (f64, f64, Virial) {
         let (s, a) = (&self.system, self.material.dissipative_constant);
+        let images = if EXTENDED {
+            self.images_at(self.time)
+        } else {
+            None
+        };
         let (mut power, mut virial) = (0.0, 0.0);
+        let mut stress = Virial::default();
         for &(i, j) in &self.contacts {
             let (i, j) = (i as usize, j as usize);
-            let r: Vector<D> = std::array::from_fn(|k| {
-                minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
-            });
+            let (r, across): (Vector<D>, f64) = match &images {
+                Some(images) => images.separation(&s.positions[i], &s.positions[j], &s.sides),
+                None => (
+                    std::array::from_fn(|k| {
+                        minimum_image(s.positions[j][k] - s.positions[i][k], s.sides[k])
+                    }),
+                    0.0,
+                ),
+            };
             let d = r.iter().map(|x| x * x).sum::<f64>().sqrt();
             let xi = s.radii[i] + s.radii[j] - d;
-            let xi_dot = -(0..D)
-                .map(|k| (s.velocities[j][k] - s.velocities[i][k]) * r[k] / d)
-                .sum::<f64>();
+            let mut dv: Vector<D> =
+                std::array::from_fn(|k| s.velocities[j][k] - s.velocities[i][k]);
+            if EXTENDED && across != 0.0 {
+                dv[0] += across * images.as_ref().map_or(0.0, |im| im.jump);
+            }
+            let xi_dot = -(0..D).map(|k| dv[k] * r[k] / d).sum::<f64>();
             let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
             let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
             power += dissipative * xi_dot;
             virial += force * d;
+            if EXTENDED {
+                let normal: Vector<D> = std::array::from_fn(|k| r[k] / d);
+                stress.add(force, d, &normal);
+            }
         }
-        (power, virial)
+        (power, virial, stress)
     }
 }

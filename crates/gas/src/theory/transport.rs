@@ -274,6 +274,13 @@ impl NavierStokes {
 /// `elastic_viscosity_sonine_series_is_chapman_cowling`, which bounds the rest of the series.
 pub const ELASTIC_VISCOSITY_SONINE_FACTOR: f64 = 1.016034;
 
+/// The Chapman–Enskog thermal conductivity of elastic hard spheres (3D) over its first
+/// Sonine approximation κ0 = 75/(64σ²) (T/(πm))^{1/2}: the converged series, 1.025218
+/// (Pekeris & Alterman 1957; Chapman & Cowling 1970, §10.21). Its second order 1 + 1/44 and
+/// third are computed from the collision integrals by test
+/// `elastic_conductivity_sonine_series_is_chapman_cowling`.
+pub const ELASTIC_CONDUCTIVITY_SONINE_FACTOR: f64 = 1.025218;
+
 /// ν0 / ω: the unit of the reduced rates, n T / η0, over the Maxwellian collision frequency
 /// ω of [`collision_frequency`] (4/5 in 3D, 1 in 2D).
 pub fn reference_over_collision_frequency<const D: usize>() -> f64 {

@@ -210,8 +210,12 @@ pub(super) fn no_energy_gained<const D: usize>(
     system: &System<D>,
     bath_temperatures: Option<&[f64]>,
 ) -> std::result::Result<(), String> {
-    if plan.driving.is_some() || plan.walls.iter().any(|w| w.kind.can_heat()) {
-        // A driven gas, or one touching a thermal wall, gains energy.
+    if plan.driving.is_some()
+        || plan.walls.iter().any(|w| w.kind.can_heat())
+        || plan.shear.is_some()
+    {
+        // A driven gas, one touching a thermal wall, or a sheared one (the flow's work, and
+        // the flow's own energy in the lab velocities a state keeps) gains energy.
         return Ok(());
     }
     let s = &plan.description.system;

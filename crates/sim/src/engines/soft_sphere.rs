@@ -22,8 +22,8 @@ pub(super) const ABILITIES: Abilities = Abilities {
     baths: false,
     species_materials: false,
     walls: true,
-    shear: false,
-    stress: false,
+    shear: true,
+    stress: true,
     displacements: false,
 };
 
@@ -207,7 +207,7 @@ pub(super) fn restore<const D: usize>(
 ) -> Result<Box<dyn Driven<D>>> {
     let state: SoftSphereState<D> = sections.engine()?;
     check_state(plan, &state).map_err(state_error(sections))?;
-    if state.container.as_ref().map(|c| c.walls.tallies.len())
+    if state.tail.walls.as_ref().map(|c| c.walls.tallies.len())
         != (!plan.walls.is_empty()).then_some(plan.walls.len())
     {
         return Err(state_error(sections)(
@@ -248,7 +248,16 @@ fn check_state<const D: usize>(
     // initial energy allows (the forces are repulsive contact forces): a bound that
     // every state of the run meets, and forged forces do not.
     let s = &plan.description.system;
-    let energy = 0.5 * (D * s.particles) as f64 * s.temperature;
+    let mut energy = 0.5 * (D * s.particles) as f64 * s.temperature;
+    if let Some(shear) = &plan.shear {
+        // The flow's work heats a sheared gas: its own peculiar energy bounds it as well.
+        let peculiar: f64 = (state.system.positions.iter())
+            .zip(&state.system.velocities)
+            .zip(&state.system.masses)
+            .map(|((x, v), m)| 0.5 * m * shear.peculiar(x[1], v).iter().map(|u| u * u).sum::<f64>())
+            .sum();
+        energy = energy.max(peculiar);
+    }
     let lightest = state
         .system
         .masses
