@@ -24,7 +24,7 @@ pub fn entries() -> Vec<Entry> {
         item: "equilibrium shear viscosity vs phi",
         shows: "eta / eta0 by Green-Kubo (Einstein-Helfand) of elastic hard spheres: \
                 event-driven across phi against Enskog, DSMC against Chapman-Enskog",
-        typical_seconds: 90.0,
+        typical_seconds: 105.0,
         run: green_kubo,
     }]
 }
@@ -66,7 +66,7 @@ fn measured(value: &serde_json::Value, key: &str) -> (f64, f64) {
 
 fn green_kubo(ctx: &Context) -> Result<Outcome> {
     let id = "kinetic-green-kubo";
-    let phis: &[f64] = &[0.05, 0.1, 0.2, 0.3, 0.4];
+    let phis: &[f64] = &[0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.45];
     let free_times = if ctx.quick { 1500.0 } else { 8000.0 };
     let mut md = format!(
         "# kinetic-green-kubo: the shear viscosity of elastic hard spheres at equilibrium (3D)\n\n\
