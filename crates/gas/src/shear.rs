@@ -39,6 +39,20 @@ impl Shear {
         Ok(Shear { rate })
     }
 
+    /// Fails unless an engine of dimension D can impose this shear: the rate as in
+    /// [`Shear::new`], and (`shear`) D of at least 2 (the gradient is along y).
+    pub fn check_for<const D: usize>(&self) -> Result<()> {
+        Shear::new(self.rate)?;
+        if D < 2 {
+            return Err(Error::out_of_range(
+                "shear",
+                "1 dimension",
+                "2 or 3 dimensions (the gradient is along y)",
+            ));
+        }
+        Ok(())
+    }
+
     /// The flow velocity along x at height y.
     #[inline]
     pub fn flow(&self, y: f64) -> f64 {

@@ -330,14 +330,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// (`shear`).
     fn set_shear_of(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
-            Shear::new(s.rate)?;
-            if D < 2 {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "1 dimension",
-                    "2 or 3 dimensions (the gradient is along y)",
-                ));
-            }
+            s.check_for::<D>()?;
             if matches!(self.core.scheme, Scheme::Exact) {
                 return Err(Error::out_of_range(
                     "shear",

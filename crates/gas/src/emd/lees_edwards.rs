@@ -70,14 +70,7 @@ impl<const D: usize> EventDriven<D> {
     /// that is not finite and nonzero.
     pub fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
-            Shear::new(s.rate)?;
-            if D < 2 {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "1 dimension",
-                    "2 or 3 dimensions (the gradient is along y)",
-                ));
-            }
+            s.check_for::<D>()?;
             if self.walls.is_some() || self.field.is_some() {
                 return Err(Error::out_of_range(
                     "shear",

@@ -75,14 +75,7 @@ impl<const D: usize> SoftSphere<D> {
     /// that is not finite and nonzero.
     pub fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
-            Shear::new(s.rate)?;
-            if D < 2 {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "1 dimension",
-                    "2 or 3 dimensions (the gradient is along y)",
-                ));
-            }
+            s.check_for::<D>()?;
             if self.container.is_some() || self.saved_container.is_some() {
                 return Err(Error::out_of_range(
                     "shear",
