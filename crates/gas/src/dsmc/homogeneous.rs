@@ -22,7 +22,7 @@ use crate::system::{System, Vector};
 use crate::tail::Tail;
 use crate::theory;
 use blocks::{run_blocks, Blocks};
-use classes::{class_width, Classes};
+use classes::{class_width, Classes, ShearFrame};
 use restitution::Restitution;
 use std::sync::Arc;
 
@@ -325,19 +325,13 @@ impl<const D: usize> HomogeneousDsmc<D> {
     }
 
     /// Shears the gas (None: no more): the USF in the frame moving with the flow, whose
-    /// peculiar velocities obey dV_x/dt = -a V_y between collisions (module
-    /// [`blocks`]: exact streaming around each step's collisions). The block scheme only
-    /// (`shear`).
+    /// peculiar velocities obey dV_x/dt = -a V_y between collisions: the block scheme
+    /// streams them exactly around each step's collisions (module [`blocks`]); the exact
+    /// scheme collides each pair at its time with the streamed velocities
+    /// ([`classes::ShearFrame`]), exact in the frame.
     fn set_shear_of(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
             s.check_for::<D>()?;
-            if matches!(self.core.scheme, Scheme::Exact) {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "the exact scheme",
-                    "the block scheme (the flow streams the velocities around each step)",
-                ));
-            }
         }
         self.core.shear = shear;
         Ok(())
@@ -495,14 +489,23 @@ fn run_exact<const D: usize, R: Record<D>>(
         if core.speed_bound == 0.0 {
             // Nothing moves relative to the rest: no collision ever.
             if end.is_finite() {
+                if let Some(shear) = core.shear {
+                    stream_sheared(records, shear.rate * (end - core.time));
+                }
                 core.time = end;
             }
             return;
         }
         let next_recompute = (core.tally.collisions / n + 1) * n;
+        // Under shear a window lasts at most SHEARED_EXACT_STRAIN / |a|: the majorant grows
+        // by that factor over it (`run_classes_sheared`).
+        let window_end = match core.shear {
+            Some(shear) => end.min(core.time + SHEARED_EXACT_STRAIN / shear.rate.abs()),
+            None => end,
+        };
         let window = Window {
             start: core.time,
-            end,
+            end: window_end,
             max_collisions: target.min(next_recompute) - core.tally.collisions,
         };
         let collider = Collider {
@@ -523,27 +526,67 @@ fn run_exact<const D: usize, R: Record<D>>(
         let mut tally = SpeciesTally::new(core.species.len());
         tally.counters = core.tally;
         tally.virial = core.virial;
-        core.time = collider.run_classes(
-            records,
-            &mut core.class,
-            classes,
-            &core.reference,
-            pair_rate,
-            window,
-            &mut core.stream,
-            &mut tally,
-        );
+        let start = core.time;
+        core.time = match core.shear {
+            None => collider.run_classes(
+                records,
+                &mut core.class,
+                classes,
+                &core.reference,
+                pair_rate,
+                window,
+                &mut core.stream,
+                &mut tally,
+            ),
+            Some(shear) => collider.run_classes_sheared(
+                records,
+                &mut core.class,
+                classes,
+                &core.reference,
+                pair_rate,
+                window,
+                &mut core.stream,
+                &mut tally,
+                ShearFrame {
+                    rate: shear.rate,
+                    anchor: start,
+                },
+            ),
+        };
         core.tally = tally.counters;
         core.virial = tally.virial;
         add_counts(&mut core.species_collisions, &tally.collisions);
         core.speed_bound = classes.bound();
-        if core.tally.collisions == next_recompute {
+        if let Some(shear) = core.shear {
+            // The records back to the velocities now (the frame anchored here), with the
+            // bound and classes anew.
+            stream_sheared(records, shear.rate * (core.time - start));
+            let moments = Moments::of(records, &core.species);
+            core.reference = moments.mean();
+            core.temperature = moments.spread / (n as usize * D) as f64;
+            core.speed_bound = kernel::speed_bound(records, &core.reference);
+            core.classes = None;
+        } else if core.tally.collisions == next_recompute {
             let moments = Moments::of(records, &core.species);
             core.reference = moments.mean();
             core.temperature = moments.spread / (n as usize * D) as f64;
             core.speed_bound = kernel::speed_bound(records, &core.reference);
             core.classes = None;
         }
+    }
+}
+
+/// The strain |a| Δt of one window of the exact scheme under shear: the majorant is
+/// 1 + this times the largest rate (10 % more candidates), and the records are streamed
+/// and re-sorted at its end (O(N) every 0.1 / |a|).
+const SHEARED_EXACT_STRAIN: f64 = 0.1;
+
+/// Streams peculiar velocities by the strain a τ of the uniform shear flow:
+/// V_x -= a τ V_y (exact between collisions).
+fn stream_sheared<const D: usize, R: Record<D>>(records: &mut [R], strain: f64) {
+    for r in records {
+        let v = r.velocity_mut();
+        v[0] -= strain * v[1];
     }
 }
 

@@ -36,7 +36,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         baths: false,
         species_materials: true,
         walls: scheme == DsmcScheme::Spatial,
-        shear: scheme != DsmcScheme::Exact,
+        shear: true,
         stress: true,
         displacements: false,
     }

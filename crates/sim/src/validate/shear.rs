@@ -43,8 +43,7 @@ pub(crate) fn shear_spec(
         return Err(Error::input(
             "shear",
             format!(
-                "run.engine = \"{}\" has no shear yet; shear runs with run.engine = {} \
-                 (DSMC: run.dsmc_scheme = \"blocks\" or \"spatial\")",
+                "run.engine = \"{}\" has no shear yet; shear runs with run.engine = {}",
                 kind_name(description.run.engine),
                 kinds_that(|a| a.shear)
             ),

@@ -330,6 +330,16 @@ fn speed2<const D: usize, R: Record<D>>(r: &R, reference: &Vector<D>) -> f64 {
     dot(&d, &d)
 }
 
+/// The frame of a uniform shear flow for the exact process (`run_classes_sheared`): the
+/// records hold the peculiar velocities W at the time `anchor`; at time t they are
+/// V = S(t - anchor) W, V_x = W_x - a (t - anchor) W_y, the rest unchanged (the solution of
+/// dV_x/dt = -a V_y between collisions).
+#[derive(Debug, Clone, Copy)]
+pub struct ShearFrame {
+    pub rate: f64,
+    pub anchor: f64,
+}
+
 impl Collider<'_> {
     /// Runs the exact process among `group` (sorted by `classes`, `class` its records'
     /// classes) through `window` with the class majorants, drawing the exponential waiting
@@ -349,8 +359,60 @@ impl Collider<'_> {
         rng: &mut Stream,
         tally: &mut impl Tally,
     ) -> f64 {
+        let frame = ShearFrame {
+            rate: 0.0,
+            anchor: window.start,
+        };
+        self.run_classes_in::<false, D, R>(
+            group, class, classes, reference, pair_rate, window, rng, tally, frame,
+        )
+    }
+
+    /// [`Self::run_classes`] in the frame of a uniform shear flow (the records hold W at
+    /// `frame.anchor`, D >= 2). |g(t)| = |S(τ) g_W| <= (1 + |a| τ) |g_W|: the class
+    /// majorants of the W's times 1 + |a| (window.end - anchor) bound every pair's rate
+    /// through the window, and a candidate is kept with probability |g(t)| over that bound
+    /// (thinning: exact). A kept pair collides with its velocities at t, mapped back to W.
+    #[allow(clippy::too_many_arguments)]
+    pub fn run_classes_sheared<const D: usize, R: Record<D>>(
+        &self,
+        group: &mut [R],
+        class: &mut [u8],
+        classes: &mut Classes,
+        reference: &Vector<D>,
+        pair_rate: f64,
+        window: Window,
+        rng: &mut Stream,
+        tally: &mut impl Tally,
+        frame: ShearFrame,
+    ) -> f64 {
+        self.run_classes_in::<true, D, R>(
+            group, class, classes, reference, pair_rate, window, rng, tally, frame,
+        )
+    }
+
+    /// The process of [`Self::run_classes`]; `SHEARED`: in `frame` (compiled apart, so the
+    /// unsheared loop is the one it always was).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn run_classes_in<const SHEARED: bool, const D: usize, R: Record<D>>(
+        &self,
+        group: &mut [R],
+        class: &mut [u8],
+        classes: &mut Classes,
+        reference: &Vector<D>,
+        pair_rate: f64,
+        window: Window,
+        rng: &mut Stream,
+        tally: &mut impl Tally,
+        frame: ShearFrame,
+    ) -> f64 {
         let n = group.len();
-        let unit = pair_rate * (n as f64 - 1.0) * classes.width;
+        let mut unit = pair_rate * (n as f64 - 1.0) * classes.width;
+        let inflation = 1.0 + frame.rate.abs() * (window.end - frame.anchor);
+        if SHEARED {
+            unit *= inflation;
+        }
         if n < 2 || !positive(unit) || window.max_collisions == 0 {
             return window.end;
         }
@@ -367,11 +429,18 @@ impl Collider<'_> {
             candidates += 1;
             let (i, j) = classes.pick(n, rng);
             let (mut a, mut b) = (group[i], group[j]);
-            let g: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - b.velocity()[k]);
+            let mut g: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - b.velocity()[k]);
+            let shift = frame.rate * (time - frame.anchor);
+            if SHEARED {
+                g[0] -= shift * g[1];
+            }
             let g2 = dot(&g, &g);
             let reach =
                 classes.multiplier(class[i] as usize) + classes.multiplier(class[j] as usize);
-            let u = rng.uniform() * classes.width * reach as f64;
+            let mut u = rng.uniform() * classes.width * reach as f64;
+            if SHEARED {
+                u *= inflation;
+            }
             let ratio = if mixed {
                 self.species.pair(a.species(), b.species()).ratio
             } else {
@@ -380,7 +449,19 @@ impl Collider<'_> {
             if ratio * ratio * g2 <= u * u {
                 continue;
             }
+            if SHEARED {
+                for r in [&mut a, &mut b] {
+                    let v = r.velocity_mut();
+                    v[0] -= shift * v[1];
+                }
+            }
             self.collide(&mut a, &mut b, &g, g2, reference, rng, tally);
+            if SHEARED {
+                for r in [&mut a, &mut b] {
+                    let v = r.velocity_mut();
+                    v[0] += shift * v[1];
+                }
+            }
             (group[i], group[j]) = (a, b);
             classes.reclassify(group, class, reference, i, j);
             collisions += 1;
