@@ -244,6 +244,7 @@ impl Classes {
     /// Re-classifies the records at `i` and `j` after their collision, raising the bound
     /// (and M) if one of them is faster than it. The records move to their classes'
     /// ranges (swaps with the records at class boundaries).
+    #[inline(always)]
     fn reclassify<const D: usize, R: Record<D>>(
         &mut self,
         group: &mut [R],
