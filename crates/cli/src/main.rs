@@ -379,6 +379,14 @@ pub struct BenchEmdArgs {
     /// Minimum cell width in diameters (>= 1).
     #[arg(long, default_value = "1", allow_hyphen_values = true)]
     pub cell_width: String,
+    /// Uniform shear flow u = a y e_x with this rate a (Lees–Edwards boundaries; in units
+    /// of the initial thermal speed over the diameter), 0 < |a| <= 1e3; with
+    /// `--restitution` below 1 the gas settles into its steady shear flow.
+    #[arg(long, allow_hyphen_values = true)]
+    pub shear_rate: Option<String>,
+    /// Constant coefficient of restitution, 0 < e <= 1.
+    #[arg(long, default_value = "1", allow_hyphen_values = true)]
+    pub restitution: String,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,

@@ -116,6 +116,41 @@ impl<const D: usize> MinimumImage<D> {
     }
 }
 
+/// How a neighbour scan reduces the separation of two positions to the nearest image.
+pub(crate) trait Images<const D: usize> {
+    /// The separation b − a of the nearest images.
+    fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D>;
+}
+
+impl<const D: usize> Images<D> for MinimumImage<D> {
+    #[inline(always)]
+    fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+        MinimumImage::separation(self, a, b)
+    }
+}
+
+/// The nearest image of positions any number of boxes apart: under shear a sphere flies
+/// with the flow, up to a L_y, and crosses cells that slide with it only at its peculiar
+/// speed, so its position (brought up to date at its events) may lie boxes away along x.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AnyImage<const D: usize>(MinimumImage<D>);
+
+impl<const D: usize> Images<D> for AnyImage<D> {
+    #[inline(always)]
+    fn separation(&self, a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+        let near = self.0.separation(a, b);
+        std::array::from_fn(|k| {
+            let (length, d) = (self.0.sides[k], near[k]);
+            if d.abs() <= self.0.halves[k] {
+                d
+            } else {
+                // (Rare: a sphere that flew boxes along x since its last event.)
+                d - length * (d / length).round()
+            }
+        })
+    }
+}
+
 /// The event-driven engine.
 pub struct EventDriven<const D: usize> {
     /// The box; positions, velocities, radii and masses live in `particles` and are copied
@@ -330,7 +365,7 @@ impl<const D: usize> EventDriven<D> {
         }
         engine.shear = shear.map(|s| engine.lees_edwards(s));
         for i in 0..n {
-            let c = grid.coords_of(&engine.particles[i].position);
+            let c = engine.cell_of(&engine.particles[i].position);
             engine.insert(i, c);
         }
         engine.check_overlaps()?;
@@ -355,7 +390,7 @@ impl<const D: usize> EventDriven<D> {
                         }
                     }
                 };
-                if self.shear.is_some() && self.on_a_face(i) {
+                if self.shear.is_some() {
                     self.for_each_sheared_neighbor(i, &pi, &vi, |p, _, j| check(p, j));
                 } else {
                     self.for_each_neighbor(i, |j| check(&pi, j));
@@ -563,8 +598,8 @@ impl<const D: usize> EventDriven<D> {
             if dim >= D {
                 self.hit_wall(i, dim - D, up);
                 self.predict_as::<EXTENDED>(i);
-            } else if EXTENDED && self.through_a_face(&next.cell, dim, up) {
-                self.cross_face(i, up);
+            } else if EXTENDED && dim == 1 && self.shear.is_some() {
+                self.cross_row(i, up);
             } else {
                 self.bring_to_now_as::<EXTENDED>(i);
                 self.remove(i);

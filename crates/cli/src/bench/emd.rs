@@ -39,6 +39,22 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
     )?;
     let events = parse_count("--events", &args.events, 1, 1_000_000_000_000)? as u64;
     let repeats = parse_count("--repeats", &args.repeats, 1, 1000)?;
+    let restitution = crate::output::parse_number(
+        "--restitution",
+        &args.restitution,
+        crate::output::Allowed::between("coefficient", f64::MIN_POSITIVE, 1.0),
+    )?;
+    let shear = match &args.shear_rate {
+        None => None,
+        Some(text) => {
+            let rate = crate::output::parse_number(
+                "--shear-rate",
+                text,
+                crate::output::Allowed::between("rate", -1e3, 1e3),
+            )?;
+            Some(gas::shear::Shear::new(rate).map_err(|e| CliError::argument("--shear-rate", e))?)
+        }
+    };
     let calendars: Vec<(&'static str, SorterKind)> = match args.calendar {
         CalendarChoice::Heap => vec![("heap", SorterKind::Heap)],
         CalendarChoice::Buckets => vec![("buckets", SorterKind::Buckets)],
@@ -51,14 +67,20 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         {
             let system = init::monodisperse::<3>(n, phi, 1.0, 1.0, 1.0, 1 + repeat as u64)
                 .map_err(|e| CliError::argument("--particles", e))?;
-            let law =
-                Box::new(restitution::Constant::new(1.0).map_err(|e| CliError::library("law", e))?);
+            let law = Box::new(
+                restitution::Constant::new(restitution).map_err(|e| CliError::library("law", e))?,
+            );
             let tuning = sim::engines::Tuning {
                 cell_width: width,
                 sorter: kind,
             };
             let mut engine = sim::engines::event_driven(system, law, tuning)
                 .map_err(|e| CliError::argument("--particles", e))?;
+            if shear.is_some() {
+                engine
+                    .set_shear(shear)
+                    .map_err(|e| CliError::argument("--shear-rate", e))?;
+            }
             for _ in 0..events {
                 engine.step();
             }
@@ -104,6 +126,8 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         "particles": n,
         "packing_fraction": phi,
         "cell_width": width,
+        "restitution": restitution,
+        "shear_rate": shear.map(|s| s.rate),
         "events_per_repeat": events,
         "repeats": repeats,
         "calendar": first.calendar,

@@ -9,13 +9,13 @@ impl<const D: usize> EventDriven<D> {
     /// Time from now until a sphere at `pi` with velocity `vi` touches j (contact
     /// distance `sigma`), if they approach. (Always inlined: the pair loop's body.)
     #[inline(always)]
-    pub(super) fn collision_delay(
+    pub(super) fn collision_delay<I: super::Images<D>>(
         &self,
         pi: &Vector<D>,
         vi: &Vector<D>,
         j: usize,
         sigma: f64,
-        image: &super::MinimumImage<D>,
+        image: &I,
     ) -> Option<f64> {
         let pj = &self.particles[j];
         let r = image.separation(pi, &pj.position_at(self.time));
@@ -42,12 +42,12 @@ impl<const D: usize> EventDriven<D> {
     /// [`Self::predict`]; `EXTENDED = false` only where the engine is not sheared.
     pub(super) fn predict_as<const EXTENDED: bool>(&mut self, i: usize) {
         self.particles[i].collision = f64::INFINITY;
-        self.predict_crossing(i);
+        self.predict_crossing_as::<EXTENDED>(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
         // (The periodic scan written out here, not behind a helper taking `best` by
         // reference: kept in registers, it was 12 % fewer instructions.)
-        if EXTENDED && self.shear.is_some() && self.on_a_face(i) {
+        if EXTENDED && self.shear.is_some() {
             self.scan_sheared(i, &pi, &vi, &mut best);
         } else {
             let image = self.image;
@@ -68,9 +68,13 @@ impl<const D: usize> EventDriven<D> {
             .into_par_iter()
             .map(|i| {
                 let (pi, vi) = this.now(i);
-                let exit = this.exit_of(i, &pi, &vi);
                 let mut best = Best::NONE;
-                if this.shear.is_some() && this.on_a_face(i) {
+                let exit = if this.shear.is_some() {
+                    this.exit_sheared(i, &pi, &vi)
+                } else {
+                    this.exit_of(i, &pi, &vi)
+                };
+                if this.shear.is_some() {
                     this.scan_sheared(i, &pi, &vi, &mut best);
                 } else {
                     let image = this.image;
@@ -102,12 +106,16 @@ impl<const D: usize> EventDriven<D> {
         dim: usize,
         up: bool,
     ) {
-        if EXTENDED && self.shear.is_some() && self.on_a_face(i) {
-            // Its neighbours across the face are not one layer of cells.
-            self.predict(i);
+        if EXTENDED && self.shear.is_some() {
+            // The rows slide: one column of each, or one layer along z, is new.
+            self.predict_crossing_as::<true>(i);
+            let mut best = Best::NONE;
+            let (pi, vi) = self.now(i);
+            self.scan_sheared_layer(i, &pi, &vi, dim, up, &mut best);
+            self.keep_if_earlier(i, best);
             return;
         }
-        self.predict_crossing(i);
+        self.predict_crossing_as::<false>(i);
         let mut best = Best::NONE;
         let (pi, vi) = self.now(i);
         let (cell, image) = (self.particles[i].cell, self.image);
@@ -406,10 +414,15 @@ impl<const D: usize> EventDriven<D> {
         first
     }
 
+    /// Predicts i's next cell crossing (`EXTENDED` as in [`Self::predict_as`]).
     #[inline(always)]
-    pub(super) fn predict_crossing(&mut self, i: usize) {
+    pub(super) fn predict_crossing_as<const EXTENDED: bool>(&mut self, i: usize) {
         let (p, v) = self.now(i);
-        let exit = self.exit_of(i, &p, &v);
+        let exit = if EXTENDED && self.shear.is_some() {
+            self.exit_sheared(i, &p, &v)
+        } else {
+            self.exit_of(i, &p, &v)
+        };
         let next = &mut self.particles[i];
         match exit {
             Some((dt, dim, up)) => {
@@ -424,14 +437,14 @@ impl<const D: usize> EventDriven<D> {
     /// Updates `best` with the collision of i (now at `pi` with velocity `vi`) and j
     /// (inlined into the scans: as a call it cost 8 % at phi = 0.45).
     #[inline(always)]
-    pub(super) fn consider(
+    pub(super) fn consider<I: super::Images<D>>(
         &self,
         i: usize,
         pi: &Vector<D>,
         vi: &Vector<D>,
         j: usize,
         best: &mut Best,
-        image: &super::MinimumImage<D>,
+        image: &I,
     ) {
         if j != i {
             if let Some(dt) = self.collision_delay(pi, vi, j, self.sigma(i, j), image) {

@@ -42,7 +42,8 @@ impl<const D: usize> EventDriven<D> {
             p.collision = f64::INFINITY;
             p.crossing = f64::INFINITY;
             p.partner = NONE;
-            let c = self.grid.coords_of(&p.position);
+            let position = p.position;
+            let c = self.cell_of(&position);
             self.insert(i, c);
         }
         self.predict_all();
