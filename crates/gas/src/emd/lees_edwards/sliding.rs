@@ -43,28 +43,24 @@ impl<const D: usize> EventDriven<D> {
         };
         self.time = self.time.max(le.next_shift());
         le.interval += 1;
-        let le = *le;
-        let columns = self.grid.per_side[0];
-        let m = le.columns_offset(columns);
-        // The window above, c − m − 2 ..= c − m + 1, gained its first column when m grew
-        // (a > 0) and its last when m fell; the window below, c + m − 1 ..= c + m + 2,
-        // the other way round.
-        let (above, below) = if le.shear.rate > 0.0 {
-            (2 * columns - m - 2, columns + m + 2)
-        } else {
-            (2 * columns - m + 1, columns + m - 1)
+        // Each window (`windows`) gained one column: above, its first when m grew (a > 0)
+        // and its last when m fell; below, the other way round.
+        let grew = le.shear.rate > 0.0;
+        let edge = |w: Columns, first: bool| Columns {
+            first: if first {
+                w.first
+            } else {
+                w.first + w.count - 1
+            },
+            count: 1,
         };
         for i in 0..self.particles.len() {
             let (pi, vi) = self.now(i);
-            let c = self.particles[i].cell[0] as usize;
+            let [above, _, below] = self.windows(i);
             let all = self.all_depths(i);
-            let one = |first: usize| Columns {
-                first: c + first,
-                count: 1,
-            };
             let blocks = [
-                Block::new(1, one(above), all),
-                Block::new(-1, one(below), all),
+                Block::new(1, edge(above, grew), all),
+                Block::new(-1, edge(below, !grew), all),
             ];
             let best = self.scan_blocks(i, &pi, &vi, &blocks);
             if best.time < self.particles[i].collision {
