@@ -96,6 +96,10 @@ const CSVS: [(&str, &str); 30] = [
     ),
     ("kinetic-green-kubo", "phi,dsmc,eta,eta_error,theory"),
     (
+        "kinetic-diffusion",
+        "dsmc,refine,phi,alpha,ratio,ratio_error,theory,box_over_critical",
+    ),
+    (
         "kinetic-conductivity",
         "dsmc,z,temperature,kappa,kappa_error,theory",
     ),

@@ -41,6 +41,7 @@ mod lees_edwards;
 pub mod neighbors;
 mod state;
 mod step;
+mod tracking;
 pub use state::SoftSphereState;
 
 use crate::engine::{Counters, Engine, Report, ReportSection, ReportValue};
@@ -218,6 +219,10 @@ pub struct SoftSphere<const D: usize> {
     stress_rate: Virial,
     /// Under shear, the state with the peculiar velocities ([`Engine::system`]).
     view: System<D>,
+    /// The displacements since tracking began ([`SoftSphere::set_tracking`]), and the
+    /// positions after the last step they were followed to.
+    tracks: Option<crate::tail::Tracks>,
+    tracked_positions: Vec<Vector<D>>,
 }
 
 impl<const D: usize> SoftSphere<D> {
@@ -310,6 +315,8 @@ impl<const D: usize> SoftSphere<D> {
             virial: None,
             stress_rate: Virial::default(),
             view: empty_system(),
+            tracks: None,
+            tracked_positions: Vec::new(),
             system,
         };
         // Forces of the initial state (velocities known exactly at t = 0); overlaps present
@@ -329,6 +336,7 @@ impl<const D: usize> SoftSphere<D> {
         for _ in 0..n {
             self.step(self.time_step);
             self.time += self.time_step;
+            self.follow_tracks();
         }
     }
 
@@ -421,6 +429,7 @@ impl<const D: usize> SoftSphere<D> {
                 self.step(end - self.time);
                 self.time = end;
             }
+            self.follow_tracks();
         }
     }
 }
@@ -539,6 +548,15 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
 
     fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
         SoftSphere::set_shear(self, shear)
+    }
+
+    fn set_tracking(&mut self, on: bool) -> Result<()> {
+        SoftSphere::set_tracking(self, on)
+    }
+
+    /// The displacements in the engine's (fixed) order.
+    fn displacements(&mut self) -> Option<Vec<Vector<D>>> {
+        SoftSphere::displacements(self)
     }
 
     /// The tensor virial ∫ Σ F_n d n n dt summed so far, if asked for.

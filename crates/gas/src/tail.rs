@@ -42,6 +42,25 @@ impl Tracks {
         self.images[D * i + k] += ((unwrapped - wrapped) / side).round() as i32;
     }
 
+    /// Counts the images particle i crossed into in one step of an engine that wraps
+    /// positions every step: `expected` its position the step would give without the wrap
+    /// (the last position, or that plus its flight), `now` the wrapped one; along the
+    /// `periodic` axes only (a wall's axis wraps nothing). Exact while a step moves a
+    /// particle less than half a box from `expected`.
+    #[inline]
+    pub fn follow<const D: usize>(
+        &mut self,
+        i: usize,
+        expected: &Vector<D>,
+        now: &Vector<D>,
+        sides: &Vector<D>,
+        periodic: &[bool; D],
+    ) {
+        for k in (0..D).filter(|&k| periodic[k]) {
+            self.note_wrap::<D>(i, k, expected[k], now[k], sides[k]);
+        }
+    }
+
     /// The displacements of particles now at `positions` (unwrapped since their last wrap)
     /// in a box of `sides`.
     pub fn displacements<const D: usize>(
@@ -89,7 +108,7 @@ pub struct Tail<W> {
     pub walls: Option<W>,
     pub shear: Option<Shear>,
     pub virial: Option<Virial>,
-    /// The particles' displacements since tracking began (the event-driven engine).
+    /// The particles' displacements since tracking began.
     pub tracks: Option<Tracks>,
 }
 

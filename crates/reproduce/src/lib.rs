@@ -17,6 +17,7 @@
 //! [`entries`].
 
 pub mod conductivity;
+pub mod diffusion;
 pub mod gallery;
 pub mod giese;
 pub mod giese_ring;
@@ -65,6 +66,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(shear::entries());
     all.extend(usf::entries());
     all.extend(green_kubo::entries());
+    all.extend(diffusion::entries());
     all.extend(conductivity::entries());
     all.extend(soft::entries());
     all.extend(giese::entries());

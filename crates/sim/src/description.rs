@@ -298,7 +298,8 @@ pub struct OutputSection {
     /// The pressure tensor at every sample (`pressure.csv`; always under `[shear]`).
     #[serde(default, skip_serializing_if = "is_false")]
     pub pressure: bool,
-    /// The mean-square displacement at every sample (`msd.csv`; the event-driven engine).
+    /// The mean-square displacement at every sample (`msd.csv`; the event-driven engine,
+    /// soft-sphere MD and spatial DSMC on one process; not under `[shear]`).
     #[serde(default, skip_serializing_if = "is_false")]
     pub msd: bool,
 }

@@ -60,13 +60,15 @@ const SEEDS: [&str; 15] = [
      [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 3\nsamples = 3\n\
      [field]\ngravity = [0.0, -0.1]\n\
      [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"restitution\"\nrestitution = 0.5\n\
-     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n",
+     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n\
+     [output]\nmsd = true\n",
     "[system]\nparticles = 40\npacking_fraction = 0.1\ntemperature = 0.1\n\
      [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\ndissipative_constant = 0.01\n\
      [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\nsteps_per_contact = 20\n\
      [field]\ngravity = [0.0, 0.0, -1.0]\n\
      [[wall]]\naxis = \"z\"\nside = \"low\"\nkind = \"restitution\"\n\
-     [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"vibrating\"\namplitude = 0.1\nfrequency = 1.0\n",
+     [[wall]]\naxis = \"z\"\nside = \"high\"\nkind = \"vibrating\"\namplitude = 0.1\nfrequency = 1.0\n\
+     [output]\nmsd = true\n",
     "[system]\ndimension = 2\nparticles = 60\npacking_fraction = 0.1\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
      [run]\ncollisions_per_particle = 5\nsamples = 4\n\
@@ -84,7 +86,7 @@ const SEEDS: [&str; 15] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 46] = [
+const KEYS: [&str; 47] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -131,6 +133,7 @@ const KEYS: [&str; 46] = [
     "shear",
     "rate",
     "pressure",
+    "msd",
 ];
 
 /// Values of every TOML type, in and out of range.

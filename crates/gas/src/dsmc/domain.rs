@@ -232,6 +232,8 @@ pub(crate) fn decode<const D: usize>(v: &[f64]) -> Simulator<D> {
         position: std::array::from_fn(|k| v[k]),
         velocity: std::array::from_fn(|k| v[D + k]),
         species: v[2 * D] as u32,
+        // Identities are not carried between ranks (no tracks over ranks).
+        id: 0,
     }
 }
 

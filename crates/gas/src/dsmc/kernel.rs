@@ -86,12 +86,16 @@ macro_rules! tagged_record {
 
 tagged_record!(Tagged);
 
-/// The record of the spatial engine: position, velocity, species.
+/// The record of the spatial engine: position, velocity, species, and the particle's
+/// place in the order it had when the engine was made or restored (its identity through
+/// the sorts into cells, for the tracks of the mean-square displacement; it fills the
+/// record's padding: 56 bytes in 3D with it or without).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Simulator<const D: usize> {
     pub position: Vector<D>,
     pub velocity: Vector<D>,
     pub species: u32,
+    pub id: u32,
 }
 
 tagged_record!(Simulator);

@@ -20,6 +20,7 @@ mod container;
 mod flow;
 mod ranks;
 mod sums;
+mod tracking;
 use flow::stream_one;
 use std::time::Instant;
 use sums::{mass_and_momentum, spread_about_mean};
@@ -115,6 +116,10 @@ pub struct SpatialDsmc<const D: usize> {
     shear: Option<crate::shear::Shear>,
     /// The tensor virial of the collisions, if summed.
     virial: Option<crate::shear::Virial>,
+    /// The displacements since tracking began, by identity ([`SpatialDsmc::set_tracking`]),
+    /// and the positions after the last step they were followed to, by identity.
+    tracks: Option<crate::tail::Tracks>,
+    tracked_positions: Vec<Vector<D>>,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -220,10 +225,12 @@ impl<const D: usize> SpatialDsmc<D> {
             .iter()
             .zip(&system.velocities)
             .zip(&index)
-            .map(|((x, v), &s)| Simulator {
+            .enumerate()
+            .map(|(i, ((x, v), &s))| Simulator {
                 position: std::array::from_fn(|k| wrap(x[k], sides[k])),
                 velocity: *v,
                 species: s,
+                id: i as u32,
             })
             .collect();
         let temperature = Moments::of(&simulators, &species).spread / (n * D) as f64;
@@ -278,6 +285,8 @@ impl<const D: usize> SpatialDsmc<D> {
             gravity: None,
             shear: None,
             virial: None,
+            tracks: None,
+            tracked_positions: Vec::new(),
         })
     }
 
@@ -314,6 +323,12 @@ impl<const D: usize> SpatialDsmc<D> {
         engine.shear = snapshot.tail.shear;
         engine.virial = snapshot.tail.virial;
         engine.saved_walls = snapshot.tail.walls;
+        if let Some(tracks) = snapshot.tail.tracks {
+            tracks.check(D * engine.total)?;
+            // Identities are the restored records' places: the order the tracks were saved in.
+            engine.tracks = Some(tracks);
+            engine.set_tracking(true)?;
+        }
         Ok(engine)
     }
 
@@ -349,7 +364,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 walls: self.walls_state(),
                 shear: self.shear,
                 virial: self.virial,
-                tracks: None,
+                tracks: self.tracks_in_order(),
             },
         }
     }
@@ -459,6 +474,7 @@ impl<const D: usize> SpatialDsmc<D> {
         } else {
             self.stream_and_sort_over_ranks(dt)
         };
+        self.follow_tracks(dt);
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
             law: self.law.as_ref(),
@@ -590,6 +606,15 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
 
     fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
         SpatialDsmc::set_shear(self, shear)
+    }
+
+    fn set_tracking(&mut self, on: bool) -> Result<()> {
+        SpatialDsmc::set_tracking(self, on)
+    }
+
+    /// The displacements in the engine's current order (that of [`Engine::system`]).
+    fn displacements(&mut self) -> Option<Vec<Vector<D>>> {
+        SpatialDsmc::displacements(self)
     }
 
     fn virial_tensor(&self) -> Option<crate::shear::Virial> {

@@ -76,6 +76,13 @@ impl<const D: usize> SoftSphere<D> {
     pub fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
             s.check_for::<D>()?;
+            if self.tracks.is_some() {
+                return Err(Error::out_of_range(
+                    "shear",
+                    "a gas whose displacements are tracked",
+                    "a gas without tracking (the flow carries spheres along x)",
+                ));
+            }
             if self.container.is_some() || self.saved_container.is_some() {
                 return Err(Error::out_of_range(
                     "shear",

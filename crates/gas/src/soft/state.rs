@@ -65,7 +65,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 walls: self.container_state(),
                 shear: self.shear,
                 virial: self.virial,
-                tracks: None,
+                tracks: self.tracks.clone(),
             },
         }
     }
@@ -104,14 +104,17 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
         let skin = neighbor_skin(&state.options, &state.system)?;
         state.counters.check("")?;
         state.tail.check()?;
-        if state.tail.tracks.is_some() {
-            return Err(Error::out_of_range(
-                "tracks",
-                "(tracks)",
-                "none: soft-sphere MD tracks no displacements",
-            ));
+        if let Some(tracks) = &state.tail.tracks {
+            tracks.check(D * n)?;
         }
         if let Some(shear) = &state.tail.shear {
+            if state.tail.tracks.is_some() {
+                return Err(Error::out_of_range(
+                    "tracks",
+                    "tracks of a sheared gas",
+                    "none under shear (the flow carries spheres along x)",
+                ));
+            }
             if D < 2 || state.tail.walls.is_some() {
                 return Err(Error::out_of_range(
                     "shear",
@@ -208,6 +211,10 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
         let active = (0..n as u32)
             .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
             .collect();
+        let tracked_positions = match state.tail.tracks {
+            Some(_) => state.system.positions.clone(),
+            None => Vec::new(),
+        };
         let mut neighbors = NeighborList::new(skin);
         neighbors.sheared(state.tail.shear.map(|s| s.jump(&state.system.sides)));
         Ok(SoftSphere {
@@ -235,6 +242,8 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             virial: state.tail.virial,
             stress_rate: Virial::default(),
             view: empty_system(),
+            tracked_positions,
+            tracks: state.tail.tracks,
         })
     }
 }

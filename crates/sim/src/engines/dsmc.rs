@@ -17,7 +17,8 @@ use restitution::Restitution;
 use std::sync::Arc;
 
 /// What each scheme can do: all have point particles and no collapse; the spatial one has
-/// positions; the blocks and the spatial scheme spread over ranks; the blocks drive.
+/// positions (and tracks them, on one rank); the blocks and the spatial scheme spread over
+/// ranks; the blocks drive.
 pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
     Abilities {
         positions: scheme == DsmcScheme::Spatial,
@@ -38,7 +39,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         walls: scheme == DsmcScheme::Spatial,
         shear: true,
         stress: true,
-        displacements: false,
+        displacements: scheme == DsmcScheme::Spatial,
     }
 }
 

@@ -24,7 +24,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     walls: true,
     shear: true,
     stress: true,
-    displacements: false,
+    displacements: true,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).

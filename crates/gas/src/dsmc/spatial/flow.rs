@@ -56,6 +56,13 @@ impl<const D: usize> SpatialDsmc<D> {
     pub fn set_shear(&mut self, shear: Option<Shear>) -> Result<()> {
         if let Some(s) = &shear {
             Shear::new(s.rate)?;
+            if self.tracks.is_some() {
+                return Err(Error::out_of_range(
+                    "shear",
+                    "a gas whose displacements are tracked",
+                    "a gas without tracking (the flow carries particles along x)",
+                ));
+            }
             if D < 2 || self.walls.is_some() || self.gravity.is_some() {
                 return Err(Error::out_of_range(
                     "shear",
