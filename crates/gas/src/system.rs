@@ -198,11 +198,30 @@ pub fn wrap(x: f64, length: f64) -> f64 {
     if (0.0..length).contains(&x) {
         return x;
     }
-    let y = x - length * (x / length).floor();
+    let y = x - length * floor_of(x / length);
     if y >= length {
         0.0
     } else {
         y
+    }
+}
+
+/// floor(q), without the library call `f64::floor` is on baseline x86-64 (no SSE4.1):
+/// truncation by conversion to an integer (one instruction), one step down for a
+/// negative q with a fraction. Exact, hence the same bits as `f64::floor`, for |q| < 2^63
+/// but q = -0.0 (+0.0 here; [`wrap`] never asks for it); beyond, and for NaN,
+/// `f64::floor` itself.
+#[inline]
+fn floor_of(q: f64) -> f64 {
+    const LIMIT: f64 = 9.223372036854775e18;
+    if !(-LIMIT..LIMIT).contains(&q) {
+        return q.floor();
+    }
+    let t = q as i64 as f64;
+    if t > q {
+        t - 1.0
+    } else {
+        t
     }
 }
 
@@ -219,4 +238,49 @@ pub fn ball_volume<const D: usize>(r: f64) -> f64 {
 #[inline]
 pub fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+#[cfg(test)]
+mod floor_tests {
+    use super::{floor_of, wrap};
+    use rand::{Rng, SeedableRng};
+
+    /// `floor_of` is `f64::floor` bit for bit (all but -0.0), across scales and at the
+    /// integers and their neighbours; `wrap` therefore gives the bits of the formula with
+    /// `f64::floor`.
+    #[test]
+    fn floor_of_is_the_library_floor() {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+        let mut cases = vec![
+            0.0, 0.5, -0.5, 1.0, -1.0, 2.5, -2.5, 1e18, -1e18, 9.3e18, -9.3e18,
+        ];
+        cases.extend([f64::INFINITY, f64::NEG_INFINITY, f64::MAX, f64::MIN]);
+        for _ in 0..100_000 {
+            let scale = 10f64.powi(rng.random_range(-3..20));
+            let q: f64 = rng.random_range(-1.0..1.0) * scale;
+            cases.extend([q, q.floor(), q.floor().next_up(), q.floor().next_down()]);
+        }
+        for q in cases {
+            assert_eq!(floor_of(q).to_bits(), q.floor().to_bits(), "{q}");
+        }
+        assert!(floor_of(f64::NAN).is_nan());
+        for _ in 0..100_000 {
+            let length: f64 = rng.random_range(0.1..100.0);
+            let x: f64 = rng.random_range(-1e6..1e6);
+            let old = {
+                let y = x - length * (x / length).floor();
+                if y >= length {
+                    0.0
+                } else {
+                    y
+                }
+            };
+            let expected = if (0.0..length).contains(&x) { x } else { old };
+            assert_eq!(
+                wrap(x, length).to_bits(),
+                expected.to_bits(),
+                "{x} {length}"
+            );
+        }
+    }
 }

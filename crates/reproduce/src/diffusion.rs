@@ -158,7 +158,7 @@ fn mean_error(values: &[f64]) -> (f64, f64) {
 fn diffusion(ctx: &Context) -> Result<Outcome> {
     let id = "kinetic-diffusion";
     let alphas: &[f64] = if ctx.quick {
-        &[1.0, 0.8, 0.6]
+        &[1.0, 0.9, 0.8, 0.7, 0.6]
     } else {
         &[1.0, 0.9, 0.8, 0.7, 0.6, 0.5]
     };

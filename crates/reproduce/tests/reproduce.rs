@@ -339,7 +339,8 @@ fn kinetic_green_kubo_against_chapman_enskog_and_enskog() {
     printed_in(&md, dilute);
 }
 
-/// The quick self-diffusion study (3 seeds of 2000 spheres, 40 collisions per particle): the
+/// The quick self-diffusion study (3 seeds of 2000 spheres, 40 collisions per particle, alpha
+/// = 1 ... 0.6): the
 /// event-driven engine and the spatial DSMC of the dilute gas agree at every alpha within 4
 /// combined standard errors (two methods), and the elastic event-driven gas has
 /// Chapman–Enskog's converged self-diffusion, 1.01896 times the first Sonine value (Alder,

@@ -85,10 +85,11 @@ impl LeesEdwards {
         self.shear.rate * (row as f64 + 0.5) * self.row_height
     }
 
-    /// How far the cells of row `row` have slid along x at time t, in [0, length).
+    /// How far the cells of row `row` have slid along x at time t, in [0, length)
+    /// (`wrap`: no library call, unlike `rem_euclid`'s fmod).
     #[inline]
     fn row_offset(&self, row: u32, time: f64, length: f64) -> f64 {
-        (self.row_velocity(row) * time).rem_euclid(length)
+        wrap(self.row_velocity(row) * time, length)
     }
 }
 
