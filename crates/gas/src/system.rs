@@ -198,6 +198,23 @@ pub fn wrap(x: f64, length: f64) -> f64 {
     if (0.0..length).contains(&x) {
         return x;
     }
+    let y = x - length * (x / length).floor();
+    if y >= length {
+        0.0
+    } else {
+        y
+    }
+}
+
+/// [`wrap`] for an x that is mostly outside [0, L) (the sliding cells' offsets u t):
+/// the same bits, without the library call of `f64::floor` ([`floor_of`]). Not used by
+/// [`wrap`] itself: its out-of-line body made the streaming loops of spatial DSMC decline
+/// to inline their closure (+6 % instructions, measured with callgrind).
+#[inline]
+pub fn wrap_far(x: f64, length: f64) -> f64 {
+    if (0.0..length).contains(&x) {
+        return x;
+    }
     let y = x - length * floor_of(x / length);
     if y >= length {
         0.0
@@ -209,7 +226,7 @@ pub fn wrap(x: f64, length: f64) -> f64 {
 /// floor(q), without the library call `f64::floor` is on baseline x86-64 (no SSE4.1):
 /// truncation by conversion to an integer (one instruction), one step down for a
 /// negative q with a fraction. Exact, hence the same bits as `f64::floor`, for |q| < 2^63
-/// but q = -0.0 (+0.0 here; [`wrap`] never asks for it); beyond, and for NaN,
+/// but q = -0.0 (+0.0 here; [`wrap_far`] never asks for it); beyond, and for NaN,
 /// `f64::floor` itself.
 #[inline]
 fn floor_of(q: f64) -> f64 {
@@ -242,12 +259,11 @@ pub fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
 
 #[cfg(test)]
 mod floor_tests {
-    use super::{floor_of, wrap};
+    use super::{floor_of, wrap, wrap_far};
     use rand::{Rng, SeedableRng};
 
     /// `floor_of` is `f64::floor` bit for bit (all but -0.0), across scales and at the
-    /// integers and their neighbours; `wrap` therefore gives the bits of the formula with
-    /// `f64::floor`.
+    /// integers and their neighbours; `wrap_far` therefore gives the bits of `wrap`.
     #[test]
     fn floor_of_is_the_library_floor() {
         let mut rng = rand::rngs::StdRng::seed_from_u64(7);

@@ -474,7 +474,9 @@ impl<const D: usize> SpatialDsmc<D> {
         } else {
             self.stream_and_sort_over_ranks(dt)
         };
-        self.follow_tracks(dt);
+        if self.tracks.is_some() {
+            self.follow_tracks(dt);
+        }
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
             law: self.law.as_ref(),

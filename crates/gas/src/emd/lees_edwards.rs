@@ -44,7 +44,7 @@ mod sliding;
 use super::{EventDriven, Particle};
 use crate::error::{Error, Result};
 use crate::shear::Shear;
-use crate::system::{wrap, Vector};
+use crate::system::{wrap, wrap_far, Vector};
 use sliding::{Block, Columns};
 
 /// The shear flow as the engine applies it.
@@ -86,10 +86,10 @@ impl LeesEdwards {
     }
 
     /// How far the cells of row `row` have slid along x at time t, in [0, length)
-    /// (`wrap`: no library call, unlike `rem_euclid`'s fmod).
+    /// (`wrap_far`: no library call, unlike `rem_euclid`'s fmod).
     #[inline]
     fn row_offset(&self, row: u32, time: f64, length: f64) -> f64 {
-        wrap(self.row_velocity(row) * time, length)
+        wrap_far(self.row_velocity(row) * time, length)
     }
 }
 

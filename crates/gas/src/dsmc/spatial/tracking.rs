@@ -68,7 +68,9 @@ impl<const D: usize> SpatialDsmc<D> {
     }
 
     /// Counts the wraps of the streaming of a step of `dt` just done (before its
-    /// collisions change the velocities).
+    /// collisions change the velocities). Out of line: a step without tracks keeps its
+    /// code as before they existed.
+    #[inline(never)]
     pub(super) fn follow_tracks(&mut self, dt: f64) {
         let Some(tracks) = self.tracks.as_mut() else {
             return;
