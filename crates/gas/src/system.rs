@@ -283,18 +283,9 @@ mod floor_tests {
         for _ in 0..100_000 {
             let length: f64 = rng.random_range(0.1..100.0);
             let x: f64 = rng.random_range(-1e6..1e6);
-            let old = {
-                let y = x - length * (x / length).floor();
-                if y >= length {
-                    0.0
-                } else {
-                    y
-                }
-            };
-            let expected = if (0.0..length).contains(&x) { x } else { old };
             assert_eq!(
+                wrap_far(x, length).to_bits(),
                 wrap(x, length).to_bits(),
-                expected.to_bits(),
                 "{x} {length}"
             );
         }
