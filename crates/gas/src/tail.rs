@@ -19,6 +19,25 @@ pub struct Tracks {
     pub images: Vec<i32>,
 }
 
+/// Why a sheared gas is not tracked (every engine that tracks): the flow carries the
+/// particles along x and the faces move them by the images' offset.
+pub(crate) fn tracking_under_shear() -> Error {
+    Error::out_of_range(
+        "tracking",
+        "a sheared gas",
+        "a gas without shear (the flow carries particles along x)",
+    )
+}
+
+/// Why a tracked gas is not sheared (the engines that check it when shear comes second).
+pub(crate) fn shear_while_tracked() -> Error {
+    Error::out_of_range(
+        "shear",
+        "a gas whose displacements are tracked",
+        "a gas without tracking (the flow carries particles along x)",
+    )
+}
+
 impl Tracks {
     /// Tracks from `positions` on.
     pub fn new<const D: usize>(positions: &[Vector<D>]) -> Self {

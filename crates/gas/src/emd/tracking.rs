@@ -4,7 +4,7 @@
 //! along x and the faces move them by the images' offset: not tracked there.
 
 use super::EventDriven;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::system::Vector;
 use crate::tail::Tracks;
 
@@ -17,11 +17,7 @@ impl<const D: usize> EventDriven<D> {
             return Ok(());
         }
         if self.shear.is_some() {
-            return Err(Error::out_of_range(
-                "tracking",
-                "a sheared gas",
-                "a gas without shear (the flow carries spheres along x)",
-            ));
+            return Err(crate::tail::tracking_under_shear());
         }
         if self.tracks.is_none() {
             let now = self.box_positions();

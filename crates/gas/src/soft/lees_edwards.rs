@@ -77,11 +77,7 @@ impl<const D: usize> SoftSphere<D> {
         if let Some(s) = &shear {
             s.check_for::<D>()?;
             if self.tracks.is_some() {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "a gas whose displacements are tracked",
-                    "a gas without tracking (the flow carries spheres along x)",
-                ));
+                return Err(crate::tail::shear_while_tracked());
             }
             if self.container.is_some() || self.saved_container.is_some() {
                 return Err(Error::out_of_range(

@@ -5,7 +5,7 @@
 //! along x and the faces move them by the images' offset: not tracked there.
 
 use super::SoftSphere;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::system::Vector;
 use crate::tail::Tracks;
 
@@ -19,11 +19,7 @@ impl<const D: usize> SoftSphere<D> {
             return Ok(());
         }
         if self.shear.is_some() {
-            return Err(Error::out_of_range(
-                "tracking",
-                "a sheared gas",
-                "a gas without shear (the flow carries spheres along x)",
-            ));
+            return Err(crate::tail::tracking_under_shear());
         }
         if self.tracks.is_none() {
             self.tracks = Some(Tracks::new(&self.system.positions));

@@ -57,11 +57,7 @@ impl<const D: usize> SpatialDsmc<D> {
         if let Some(s) = &shear {
             Shear::new(s.rate)?;
             if self.tracks.is_some() {
-                return Err(Error::out_of_range(
-                    "shear",
-                    "a gas whose displacements are tracked",
-                    "a gas without tracking (the flow carries particles along x)",
-                ));
+                return Err(crate::tail::shear_while_tracked());
             }
             if D < 2 || self.walls.is_some() || self.gravity.is_some() {
                 return Err(Error::out_of_range(

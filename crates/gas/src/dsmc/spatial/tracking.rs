@@ -20,11 +20,7 @@ impl<const D: usize> SpatialDsmc<D> {
             return Ok(());
         }
         if self.shear.is_some() {
-            return Err(Error::out_of_range(
-                "tracking",
-                "a sheared gas",
-                "a gas without shear (the flow carries particles along x)",
-            ));
+            return Err(crate::tail::tracking_under_shear());
         }
         if self.comm.size() > 1 {
             return Err(Error::out_of_range(
