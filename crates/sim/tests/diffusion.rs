@@ -16,6 +16,20 @@ fn gas(end_time: f64, particles: usize, extra: &str) -> String {
     )
 }
 
+/// The `summary.json` a run wrote into `dir`.
+fn summary_in(dir: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+/// (measured D_s, Chapman–Enskog's: 1.019 times the first Sonine value) of a summary.
+fn self_diffusion(summary: &serde_json::Value) -> (f64, f64) {
+    let d = &summary["self_diffusion"];
+    (
+        d["coefficient"].as_f64().unwrap(),
+        1.019 * d["enskog_elastic_at_initial_temperature"].as_f64().unwrap(),
+    )
+}
+
 /// Long times: the slope of msd over the second half of 60 mean free times is 6 D_s with
 /// D_s Chapman–Enskog's within 5 % (the statistical error of one run of 4000 spheres:
 /// about 1.5 %, from the spread of |dr|^2 (relative variance 2/3 per sphere) over the
@@ -34,12 +48,9 @@ fn the_self_diffusion_is_chapman_enskogs() {
         "time,collisions_per_particle,msd"
     );
     assert_eq!(csv.lines().count(), 1 + run.samples().len());
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_in(&dir);
     std::fs::remove_dir_all(&dir).unwrap();
-    let d = &summary["self_diffusion"];
-    let measured = d["coefficient"].as_f64().unwrap();
-    let enskog = 1.019 * d["enskog_elastic_at_initial_temperature"].as_f64().unwrap();
+    let (measured, enskog) = self_diffusion(&summary);
     assert!(
         (measured / enskog - 1.0).abs() < 0.05,
         "D_s = {measured}, Chapman-Enskog {enskog}"
@@ -169,12 +180,9 @@ fn spatial_dsmcs_self_diffusion_is_chapman_enskogs() {
     let dir = std::env::temp_dir().join(format!("haff-msd-dsmc-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     run.write(&dir).unwrap();
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_in(&dir);
     std::fs::remove_dir_all(&dir).unwrap();
-    let d = &summary["self_diffusion"];
-    let measured = d["coefficient"].as_f64().unwrap();
-    let enskog = 1.019 * d["enskog_elastic_at_initial_temperature"].as_f64().unwrap();
+    let (measured, enskog) = self_diffusion(&summary);
     assert!(
         (measured / enskog - 1.0).abs() < 0.04,
         "D_s = {measured}, Chapman-Enskog {enskog}"
