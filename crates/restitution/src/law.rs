@@ -37,6 +37,11 @@ pub trait Restitution: Send + Sync + fmt::Debug {
     fn pairwise(&self) -> Option<&crate::pairwise::Pairwise> {
         None
     }
+    /// The tangential rule of rough spheres ([`crate::rough::Rough`]); `None` for smooth
+    /// spheres.
+    fn tangential(&self) -> Option<&crate::rough::Tangential> {
+        None
+    }
 }
 
 impl Clone for Box<dyn Restitution> {

@@ -22,6 +22,7 @@ pub mod ode;
 pub mod pade;
 pub mod pairwise;
 pub mod ranges;
+pub mod rough;
 pub mod series;
 pub mod stochastic;
 mod taylor;
