@@ -22,6 +22,7 @@ mod gravity;
 mod lees_edwards;
 mod models;
 mod predict;
+mod rough;
 mod state;
 mod tracking;
 
@@ -206,6 +207,10 @@ pub struct EventDriven<const D: usize> {
     virial: Option<Virial>,
     /// The particles' tracks, if asked for ([`EventDriven::set_tracking`]).
     tracks: Option<crate::tail::Tracks>,
+    /// The law's tangential rule (rough spheres; module `rough`).
+    tangential: Option<restitution::rough::Tangential>,
+    /// The spheres' rotation ([`EventDriven::set_rotation`]; present with a rough law).
+    rotation: Option<crate::rotation::Rotation>,
 }
 
 impl<const D: usize> EventDriven<D> {
@@ -358,7 +363,14 @@ impl<const D: usize> EventDriven<D> {
             shear: None,
             virial: None,
             tracks: None,
+            tangential: None,
+            rotation: None,
         };
+        // Rough spheres start as solid spheres at rest until given their rotation.
+        engine.tangential = engine.law.tangential().copied();
+        if engine.tangential.is_some() {
+            engine.rotation = Some(crate::rotation::Rotation::at_rest(n, 0.4));
+        }
         engine.time = time;
         for p in &mut engine.particles {
             p.valid_at = time;
@@ -544,14 +556,18 @@ impl<const D: usize> EventDriven<D> {
 
     /// Processes the next event; false if there is none (all particles at rest).
     pub fn step(&mut self) -> bool {
-        if self.shear.is_some() || self.tracks.is_some() || self.virial.is_some() {
+        if self.shear.is_some()
+            || self.tracks.is_some()
+            || self.virial.is_some()
+            || self.rotation.is_some()
+        {
             self.step_extended()
         } else {
             self.step_as::<false>()
         }
     }
 
-    /// [`Self::step`] with shear, tracks or the tensor virial, out of line: the periodic
+    /// [`Self::step`] with shear, tracks, the tensor virial or rotation, out of line: the periodic
     /// loop's code stays as small as it was (the compiler inlines into it as before).
     #[inline(never)]
     fn step_extended(&mut self) -> bool {
@@ -678,6 +694,9 @@ impl<const D: usize> EventDriven<D> {
         if EXTENDED {
             if let Some(virial) = &mut self.virial {
                 virial.add(impulse, distance, &n);
+            }
+            if !elastic && self.tangential.is_some() {
+                self.rough_kick((i, j), &n, distance, impulse, jump);
             }
         }
     }

@@ -203,6 +203,25 @@ pub trait Engine<const D: usize> {
         None
     }
 
+    /// Gives the particles the rotation `rotation` (inertia factors and angular
+    /// velocities, in the order of [`Engine::system`]; part of the engine's state) or
+    /// takes it away (`None`, only for an engine whose law is smooth). Collisions couple
+    /// it to translation if the law is rough ([`restitution::Restitution::tangential`]).
+    /// The default refuses rotation.
+    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
+        match rotation {
+            Some(_) => Err(Error::Unsupported {
+                what: "rotation (rough particles)".into(),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// The particles' rotation in the order of [`Engine::system`]; None without it.
+    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
+        None
+    }
+
     /// The tensor virial of the collisions summed since it was asked for
     /// ([`Engine::set_virial_tensor`]), for the pressure tensor
     /// ([`crate::observe::pressure_tensor`]); None if not summed.

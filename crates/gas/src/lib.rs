@@ -21,6 +21,7 @@ pub mod parallel;
 mod prefetch;
 pub mod profile;
 pub(crate) mod rng;
+pub mod rotation;
 mod serde_util;
 pub mod shear;
 pub mod soft;

@@ -29,6 +29,8 @@ pub(crate) enum Purpose {
     Driving = 6,
     /// The velocities thermal walls give the spheres that touch them.
     Walls = 7,
+    /// The angular velocities of rough particles at the start.
+    Spins = 8,
 }
 
 /// A counted PCG-64 stream.
@@ -82,6 +84,12 @@ impl Stream {
     #[inline]
     pub fn exponential(&mut self) -> f64 {
         Exp1.sample(self)
+    }
+
+    /// A standard normal variate (ziggurat, `rand_distr`).
+    #[inline]
+    pub fn normal(&mut self) -> f64 {
+        rand_distr::StandardNormal.sample(self)
     }
 
     /// Uniform in [0, n) without bias (Lemire 2019, "Fast random integer generation in an

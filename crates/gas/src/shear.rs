@@ -109,6 +109,23 @@ impl Virial {
         }
     }
 
+    /// Adds the tangential part of a rough collision: momentum `to_j` given to the
+    /// partner at `distance` along `n`, symmetrized (r_a P_b + r_b P_a) / 2 (the
+    /// antisymmetric part is the couple the spins take; the stress is its symmetric part).
+    #[inline]
+    pub fn add_tangential<const D: usize>(
+        &mut self,
+        distance: f64,
+        n: &Vector<D>,
+        to_j: &[f64; 3],
+    ) {
+        for a in 0..D {
+            for b in a..D {
+                self.0[component(a, b)] += 0.5 * distance * (n[a] * to_j[b] + n[b] * to_j[a]);
+            }
+        }
+    }
+
     /// Adds another sum (a block's, a cell's).
     pub fn merge(&mut self, other: &Virial) {
         for (s, o) in self.0.iter_mut().zip(other.0) {

@@ -117,7 +117,7 @@ impl Tracks {
 }
 
 /// The optional parts that end an engine's saved state: the walls of a container, the
-/// shear, the tensor virial, the particles' tracks. Written up to the last one present (nothing for a periodic
+/// shear, the tensor virial, the particles' tracks, their rotation. Written up to the last one present (nothing for a periodic
 /// unsheared gas, whose states stay byte for byte as before they existed; only the walls
 /// for a container, as the walls alone were written before), each as an option; a reader
 /// takes the end of the data as absence (`sim::checkpoint::Sections::engine` pads the data
@@ -129,6 +129,8 @@ pub struct Tail<W> {
     pub virial: Option<Virial>,
     /// The particles' displacements since tracking began.
     pub tracks: Option<Tracks>,
+    /// The particles' rotation (rough spheres).
+    pub rotation: Option<crate::rotation::Rotation>,
 }
 
 impl<W> Default for Tail<W> {
@@ -138,6 +140,7 @@ impl<W> Default for Tail<W> {
             shear: None,
             virial: None,
             tracks: None,
+            rotation: None,
         }
     }
 }
@@ -148,11 +151,14 @@ impl<W> Tail<W> {
             && self.shear.is_none()
             && self.virial.is_none()
             && self.tracks.is_none()
+            && self.rotation.is_none()
     }
 
     /// How many parts are written: up to the last one present.
     fn written(&self) -> usize {
-        if self.tracks.is_some() {
+        if self.rotation.is_some() {
+            5
+        } else if self.tracks.is_some() {
             4
         } else if self.virial.is_some() {
             3
@@ -191,6 +197,9 @@ impl<W: Serialize> Serialize for Tail<W> {
         if len >= 4 {
             t.serialize_element(&self.tracks)?;
         }
+        if len >= 5 {
+            t.serialize_element(&self.rotation)?;
+        }
         t.end()
     }
 }
@@ -201,7 +210,7 @@ impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
         impl<'de, W: Deserialize<'de>> Visitor<'de> for TailVisitor<W> {
             type Value = Tail<W>;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("up to four options: walls, shear, virial, tracks")
+                f.write_str("up to five options: walls, shear, virial, tracks, rotation")
             }
             fn visit_seq<A: SeqAccess<'de>>(
                 self,
@@ -211,21 +220,25 @@ impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
                 let shear = seq.next_element::<Option<Shear>>()?.flatten();
                 let virial = seq.next_element::<Option<Virial>>()?.flatten();
                 let tracks = seq.next_element::<Option<Tracks>>()?.flatten();
+                let rotation = seq
+                    .next_element::<Option<crate::rotation::Rotation>>()?
+                    .flatten();
                 Ok(Tail {
                     walls,
                     shear,
                     virial,
                     tracks,
+                    rotation,
                 })
             }
         }
-        d.deserialize_tuple(4, TailVisitor(std::marker::PhantomData))
+        d.deserialize_tuple(5, TailVisitor(std::marker::PhantomData))
     }
 }
 
 /// Zero bytes a reader of postcard appends to an engine's state so that the options of a
 /// [`Tail`] missing at its end read as None.
-pub const TAIL_PADDING: usize = 4;
+pub const TAIL_PADDING: usize = 5;
 
 #[cfg(test)]
 mod tests {
@@ -272,23 +285,29 @@ mod tests {
         }
         let shear = Some(Shear { rate: -0.5 });
         let virial = Some(Virial([1.0, 2.0, 3.0, 4.0, 5.0, 6.0]));
+        let mut rotation = crate::rotation::Rotation::at_rest(2, 0.4);
+        rotation.angular[1] = [0.5, -1.0, 2.0];
+        rotation.sliding = 3;
         for walls in [None, Some(9u64)] {
             for shear in [None, shear] {
                 for virial in [None, virial] {
                     for tracks in [None, tracks.clone()] {
-                        let state = New {
-                            a: 1,
-                            tail: Tail {
-                                walls,
-                                shear,
-                                virial,
-                                tracks,
-                            },
-                        };
-                        let bytes = padded(postcard::to_stdvec(&state).unwrap());
-                        assert_eq!(postcard::from_bytes::<New>(&bytes).unwrap(), state);
-                        let json = serde_json::to_string(&state).unwrap();
-                        assert_eq!(serde_json::from_str::<New>(&json).unwrap(), state);
+                        for rotation in [None, Some(rotation.clone())] {
+                            let state = New {
+                                a: 1,
+                                tail: Tail {
+                                    walls,
+                                    shear,
+                                    virial,
+                                    tracks: tracks.clone(),
+                                    rotation,
+                                },
+                            };
+                            let bytes = padded(postcard::to_stdvec(&state).unwrap());
+                            assert_eq!(postcard::from_bytes::<New>(&bytes).unwrap(), state);
+                            let json = serde_json::to_string(&state).unwrap();
+                            assert_eq!(serde_json::from_str::<New>(&json).unwrap(), state);
+                        }
                     }
                 }
             }

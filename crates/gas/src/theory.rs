@@ -25,6 +25,7 @@
 pub mod gauss;
 pub mod hydrodynamics;
 pub mod mixture;
+pub mod rough;
 pub mod sonine;
 pub mod transport;
 pub mod usf;

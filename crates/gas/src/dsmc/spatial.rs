@@ -365,6 +365,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 shear: self.shear,
                 virial: self.virial,
                 tracks: self.tracks_in_order(),
+                rotation: None,
             },
         }
     }

@@ -264,6 +264,14 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
         EventDriven::set_shear(self, shear)
     }
 
+    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
+        EventDriven::set_rotation(self, rotation)
+    }
+
+    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
+        self.rotation.as_ref()
+    }
+
     /// Bath temperature of each particle, if the law is stochastic.
     fn bath_temperatures(&self) -> Option<&[f64]> {
         self.baths.as_ref().map(|b| b.temperatures.as_slice())
@@ -329,6 +337,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
                 shear: self.shear(),
                 virial: self.virial,
                 tracks: self.tracks.clone(),
+                rotation: self.rotation.clone(),
             },
         }
     }
@@ -373,6 +382,9 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
             tracks.check(D * engine.particles.len())?;
         }
         engine.tracks = tail.tracks;
+        if let Some(rotation) = tail.rotation {
+            engine.set_rotation(Some(rotation))?;
+        }
         if sorter != SorterKind::default() {
             engine.set_sorter(sorter);
         }

@@ -66,6 +66,7 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 shear: self.shear,
                 virial: self.virial,
                 tracks: self.tracks.clone(),
+                rotation: None,
             },
         }
     }

@@ -1,0 +1,82 @@
+//! Rough spheres in the event-driven engine: the particles' rotation (kept beside the
+//! particle records, which a collision alone reads it from: free flight leaves angular
+//! velocities and contact times alone) and the tangential half of a collision
+//! (`crate::rotation::tangential_kick`, after the normal impulse of the smooth rule).
+//! Walls are smooth (no torque), the thermostats heat translation only, and a collision
+//! the TC model makes elastic is smooth as well.
+
+use super::EventDriven;
+use crate::error::{Error, Result};
+use crate::rotation::{tangential_kick, Rotation, Spinning};
+use crate::system::Vector;
+
+impl<const D: usize> EventDriven<D> {
+    /// Gives the spheres `rotation` (checked: one entry per sphere, inertia factors in
+    /// range, disks about z), or takes it away — refused while the law is rough.
+    pub fn set_rotation(&mut self, rotation: Option<Rotation>) -> Result<()> {
+        match rotation {
+            Some(r) => {
+                r.check(self.particles.len(), D)?;
+                self.rotation = Some(r);
+            }
+            None if self.tangential.is_some() => {
+                return Err(Error::out_of_range(
+                    "rotation",
+                    "none",
+                    "a rotation for every sphere: the law is rough",
+                ))
+            }
+            None => self.rotation = None,
+        }
+        Ok(())
+    }
+
+    /// The tangential impulse of the collision of i and j just given its normal impulse
+    /// `normal_impulse` along `n`, `distance` apart (`jump`: the velocity of j's image
+    /// less j's along x, across a sheared face).
+    pub(super) fn rough_kick(
+        &mut self,
+        (i, j): (usize, usize),
+        n: &Vector<D>,
+        distance: f64,
+        normal_impulse: f64,
+        jump: f64,
+    ) {
+        let (Some(rule), Some(rotation)) = (&self.tangential, &mut self.rotation) else {
+            return;
+        };
+        let (mut a, mut b) = (self.particles[i], self.particles[j]);
+        let mut relative: Vector<D> = std::array::from_fn(|k| a.velocity[k] - b.velocity[k]);
+        relative[0] -= jump;
+        let (mut wa, mut wb) = (rotation.angular[i], rotation.angular[j]);
+        let kick = tangential_kick(
+            rule,
+            n,
+            &relative,
+            normal_impulse.abs(),
+            Spinning {
+                velocity: &mut a.velocity,
+                angular: &mut wa,
+                mass: a.mass,
+                radius: a.radius,
+                inertia: rotation.inertia[i],
+            },
+            Spinning {
+                velocity: &mut b.velocity,
+                angular: &mut wb,
+                mass: b.mass,
+                radius: b.radius,
+                inertia: rotation.inertia[j],
+            },
+        );
+        self.particles[i].velocity = a.velocity;
+        self.particles[j].velocity = b.velocity;
+        rotation.angular[i] = wa;
+        rotation.angular[j] = wb;
+        rotation.sliding += kick.sliding as u64;
+        self.tally.energy_lost += kick.energy_lost;
+        if let Some(virial) = &mut self.virial {
+            virial.add_tangential(distance, n, &kick.to_j);
+        }
+    }
+}

@@ -1,0 +1,136 @@
+//! Rough spheres and disks in the event-driven engine: energy kept to round-off when
+//! alpha = beta = 1, the smooth rule bit for bit when beta = -1, the rotational
+//! temperature's rise from rest against the Maxwellian theory
+//! (`gas::theory::rough`), and a check-point's continuation bit for bit.
+
+mod common;
+
+use common::{constant, mean_and_error};
+use gas::observe::{kinetic_energy, sonine_a2, temperature};
+use gas::rotation::Rotation;
+use gas::theory::rough::RoughMaxwellian;
+use gas::{Checkpoint, Engine, EventDriven};
+use restitution::rough::{Rough, Tangential};
+use restitution::Restitution;
+
+fn rough(alpha: f64, beta: f64, friction: Option<f64>) -> Box<dyn Restitution> {
+    Box::new(Rough::new(constant(alpha), Tangential::new(beta, friction).unwrap()).unwrap())
+}
+
+fn rotational_temperature<const D: usize>(engine: &mut EventDriven<D>) -> f64 {
+    let system = engine.system().clone();
+    engine.rotation().unwrap().temperature(&system, None)
+}
+
+fn total_energy<const D: usize>(engine: &mut EventDriven<D>) -> f64 {
+    let system = engine.system().clone();
+    kinetic_energy(&system) + engine.rotation().unwrap().energy(&system)
+}
+
+/// alpha = beta = 1: no energy is lost, translation and rotation exchange it (the
+/// oracle: conservation, to round-off over 20 000 collisions).
+#[test]
+fn perfectly_rough_elastic_spheres_keep_their_energy() {
+    let system = gas::init::monodisperse::<3>(500, 0.1, 1.0, 1.0, 1.0, 4).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.4; 500], 0.3, 4);
+    let mut engine = EventDriven::new(system, rough(1.0, 1.0, None)).unwrap();
+    engine.set_rotation(Some(rotation)).unwrap();
+    let start = total_energy(&mut engine);
+    let t_rot = rotational_temperature(&mut engine);
+    engine.run_collisions(20_000);
+    let end = total_energy(&mut engine);
+    assert!((end - start).abs() < 1e-11 * start, "{start} -> {end}");
+    assert!(engine.counters().energy_lost.abs() < 1e-11 * start);
+    // The rotational temperature left 0.3 for equipartition's 1 - ...: it moved.
+    let after = rotational_temperature(&mut engine);
+    assert!(after > t_rot + 0.2, "{t_rot} -> {after}");
+}
+
+/// beta = -1: the same collisions as the smooth law bit for bit, spins untouched.
+#[test]
+fn beta_minus_one_is_the_smooth_gas_bit_for_bit() {
+    let system = gas::init::monodisperse::<2>(400, 0.2, 1.0, 1.0, 1.0, 8).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.5; 400], 1.0, 8);
+    let mut smooth = EventDriven::new(system.clone(), constant(0.7)).unwrap();
+    let mut rough_engine = EventDriven::new(system, rough(0.7, -1.0, None)).unwrap();
+    rough_engine.set_rotation(Some(rotation.clone())).unwrap();
+    smooth.run_collisions(5000);
+    rough_engine.run_collisions(5000);
+    assert_eq!(smooth.system(), rough_engine.system());
+    assert_eq!(smooth.counters(), rough_engine.counters());
+    assert_eq!(rough_engine.rotation().unwrap().angular, rotation.angular);
+}
+
+/// From rest (T_rot = 0) with Gaussian velocities the rotational temperature rises as
+/// the Maxwellian theory's exact solution of its linear equations says
+/// (`RoughMaxwellian::evolve`). Tolerance: 4 standard errors over 4 seeds plus |a2|
+/// measured at the end (the first Sonine corrections to the rates are of order a2 with
+/// coefficients below one, Santos, Kremer & Garzó 2010).
+#[test]
+fn rotation_rises_from_rest_as_the_maxwellian_theory_says() {
+    fn case<const D: usize>(alpha: f64, beta: f64, q: f64) {
+        let n = 4000;
+        let (mut ratios, mut translational, mut a2) = (vec![], vec![], 0.0f64);
+        let mut tau = 0.0;
+        for seed in 0..4 {
+            let system = gas::init::monodisperse::<D>(n, 0.05, 1.0, 1.0, 1.0, seed).unwrap();
+            let t0 = temperature(&system);
+            let mut engine = EventDriven::new(system, rough(alpha, beta, None)).unwrap();
+            engine.set_rotation(Some(Rotation::at_rest(n, q))).unwrap();
+            engine.run_collisions(n as u64 / 2);
+            tau = engine.collisions_per_particle();
+            let system = engine.system().clone();
+            let t_rot = engine.rotation().unwrap().temperature(&system, None);
+            ratios.push(t_rot / t0);
+            translational.push(temperature(&system) / t0);
+            a2 = a2.max(sonine_a2(&system).abs());
+        }
+        let theory = RoughMaxwellian {
+            dimension: D,
+            alpha,
+            beta,
+            inertia: q,
+        };
+        let [t_tr, t_rot] = theory.evolve([1.0, 0.0], tau);
+        for (what, values, expected) in [("T_rot", &ratios, t_rot), ("T_tr", &translational, t_tr)]
+        {
+            let (mean, error) = mean_and_error(values);
+            let tolerance = 4.0 * error + a2 * expected;
+            assert!(
+                (mean - expected).abs() < tolerance,
+                "D = {D}, alpha {alpha}, beta {beta}: {what} {mean} ± {error} vs {expected} (a2 {a2})"
+            );
+        }
+    }
+    case::<3>(0.9, 0.4, 0.4);
+    case::<2>(0.8, 0.8, 0.5);
+}
+
+/// A rough gas with Walton's friction continues bit for bit from its check-point
+/// (spins, sliding count and all).
+#[test]
+fn a_rough_gas_continues_from_its_checkpoint() {
+    let system = gas::init::monodisperse::<3>(300, 0.15, 1.0, 1.0, 1.0, 2).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.4; 300], 1.0, 2);
+    let law = rough(0.8, 0.5, Some(0.2));
+    let mut engine = EventDriven::new(system, law.clone()).unwrap();
+    engine.set_rotation(Some(rotation)).unwrap();
+    engine.run_collisions(3000);
+    let text = serde_json::to_string(&engine.save()).unwrap();
+    let mut restored =
+        EventDriven::<3>::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
+    engine.run_collisions(3000);
+    restored.run_collisions(3000);
+    assert_eq!(engine.system(), restored.system());
+    assert_eq!(engine.counters(), restored.counters());
+    let (a, b) = (
+        engine.rotation().unwrap().clone(),
+        restored.rotation().unwrap().clone(),
+    );
+    assert_eq!(a, b);
+    assert!(
+        a.sliding > 0 && a.sliding < 6000,
+        "some contacts slide: {}",
+        a.sliding
+    );
+}
