@@ -133,6 +133,22 @@ impl Rotation {
         Ok(())
     }
 
+    /// The section `rotation` of an engine's report after `collisions` collisions:
+    /// `sliding_contacts` and `sliding_fraction` (Walton's model; 0 without friction).
+    pub fn report(&self, collisions: u64) -> crate::engine::ReportSection {
+        use crate::engine::ReportValue::{Count, Real};
+        crate::engine::ReportSection {
+            name: "rotation",
+            values: vec![
+                ("sliding_contacts", Count(self.sliding)),
+                (
+                    "sliding_fraction",
+                    Real(self.sliding as f64 / collisions.max(1) as f64),
+                ),
+            ],
+        }
+    }
+
     /// Particle i's moment of inertia in `system`.
     fn moment<const D: usize>(&self, system: &System<D>, i: usize) -> f64 {
         self.inertia[i] * system.masses[i] * system.radii[i] * system.radii[i]

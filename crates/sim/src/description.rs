@@ -371,6 +371,14 @@ pub struct SystemSection {
     pub temperature: f64,
     #[serde(default = "first_seed")]
     pub seed: u64,
+    /// Rough particles: the inertia factor q, I = q m d^2 / 4 (0.4 a solid sphere, the
+    /// default; 2/3 a hollow one; disks: 0.5 a solid disk, the default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<f64>,
+    /// Rough particles: the rotational temperature of the start, I <w^2> / d_rot
+    /// (default: `temperature`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotational_temperature: Option<f64>,
 }
 
 /// One entry of `system.species`.
@@ -392,6 +400,9 @@ pub struct SpeciesEntry {
     /// Viscoelastic material of this species: dissipative constant A (a time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dissipative_constant: Option<f64>,
+    /// Rough particles: this species' inertia factor (default `system.inertia`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<f64>,
 }
 
 impl SystemSection {
@@ -543,6 +554,15 @@ pub struct CollisionSection {
     /// the working directory).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub table: Option<String>,
+    /// Rough particles: the tangential restitution beta in [-1, 1] (-1: smooth, the
+    /// default; `restitution::rough`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_restitution: Option<f64>,
+    /// Rough particles: Coulomb's friction coefficient of Walton's model (the contact
+    /// slides where sticking would need a tangential impulse beyond mu times the normal
+    /// one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
 }
 
 /// `run.engine`.

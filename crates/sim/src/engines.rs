@@ -86,6 +86,9 @@ pub struct Abilities {
     pub stress: bool,
     /// The particles' displacements, for the mean-square displacement (`output.msd`).
     pub displacements: bool,
+    /// Rough particles: rotation and the tangential restitution
+    /// (`collision.tangential_restitution`).
+    pub rotation: bool,
 }
 
 /// The name of an engine kind in the run file.
@@ -241,6 +244,12 @@ fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
             .set_tracking(true)
             .map_err(|e| Error::input("output.msd", e))?;
     }
+    if let Some(rough) = &plan.rough {
+        let rotation = thermal_rotation(engine, plan, rough)?;
+        engine
+            .set_rotation(Some(rotation))
+            .map_err(|e| Error::input("collision.tangential_restitution", e))?;
+    }
     if plan.pressure_tensor {
         let key = if plan.shear.is_some() {
             "shear"
@@ -254,8 +263,49 @@ fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
     Ok(())
 }
 
-/// Why a restored engine's flow is not the plan's, if it is not: its shear and whether it
-/// sums the tensor virial.
+/// The rotation of a fresh rough gas: each particle's inertia factor by its species
+/// (told apart by radius and mass), angular velocities at `system.rotational_temperature`
+/// from their own random stream of `system.seed`.
+fn thermal_rotation<const D: usize>(
+    engine: &mut dyn Driven<D>,
+    plan: &Plan,
+    rough: &crate::validate::RoughSpec,
+) -> Result<gas::rotation::Rotation> {
+    let system = engine.system().clone();
+    let inertia = particle_inertia(plan, rough, &system)?;
+    Ok(gas::rotation::Rotation::thermal(
+        &system,
+        inertia,
+        rough.temperature,
+        plan.description.system.seed,
+    ))
+}
+
+/// Each particle's inertia factor in `system` by its species.
+fn particle_inertia<const D: usize>(
+    plan: &Plan,
+    rough: &crate::validate::RoughSpec,
+    system: &System<D>,
+) -> Result<Vec<f64>> {
+    let kinds = plan.kinds();
+    system
+        .radii
+        .iter()
+        .zip(&system.masses)
+        .map(|(&r, &m)| {
+            let s = kinds.iter().position(|&k| k == (r, m)).ok_or_else(|| {
+                Error::input(
+                    "system.species",
+                    format!("a particle of radius {r} and mass {m} belongs to no species"),
+                )
+            })?;
+            Ok(rough.inertia[s])
+        })
+        .collect()
+}
+
+/// Why a restored engine's flow is not the plan's, if it is not: its shear, whether it
+/// sums the tensor virial, whether its particles rotate with the plan's inertia.
 fn check_flow<const D: usize>(
     engine: &mut dyn Driven<D>,
     plan: &Plan,
@@ -280,6 +330,23 @@ fn check_flow<const D: usize>(
              (output.pressure, [shear])"
                 .into(),
         );
+    }
+    match &plan.rough {
+        None if engine.rotation().is_some() => {
+            return Err("its particles rotate where the run's are smooth".into())
+        }
+        None => {}
+        Some(rough) => {
+            let system = engine.system().clone();
+            let inertia = particle_inertia(plan, rough, &system).map_err(|e| e.to_string())?;
+            if engine.rotation().is_none_or(|r| r.inertia != inertia) {
+                return Err(
+                    "its particles' rotation is not the run's (collision.tangential_restitution, \
+                     system.inertia)"
+                        .into(),
+                );
+            }
+        }
     }
     Ok(())
 }

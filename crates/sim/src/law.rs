@@ -6,6 +6,19 @@ use restitution::pairwise::Pairwise;
 use restitution::{Constant, Dashpot, FormName, Glauber, Restitution, Viscoelastic};
 use std::path::Path;
 
+/// The law of the run of `plan`: [`build`] of its `[collision]`, rough if
+/// `collision.tangential_restitution` says so (`restitution::rough::Rough`).
+pub fn of_plan(plan: &crate::Plan) -> Result<Box<dyn Restitution>> {
+    let law = build(&plan.law, plan.max_impact_speed())?;
+    Ok(match &plan.rough {
+        None => law,
+        Some(rough) => Box::new(
+            restitution::rough::Rough::new(law, rough.tangential())
+                .map_err(|e| Error::law("collision.tangential_restitution", e))?,
+        ),
+    })
+}
+
 /// The law of `spec` for a run whose impact speeds stay below `max_speed`
 /// ([`crate::Plan::max_impact_speed`]). Errors name the key of the run file that set the
 /// failing value; an approximate viscoelastic form that such a speed would evaluate

@@ -38,6 +38,7 @@ pub mod probe;
 pub mod profiles;
 pub mod rheology;
 pub mod rod_ring;
+pub mod rough;
 pub mod schedule;
 pub mod simulation;
 pub mod space;

@@ -142,9 +142,13 @@ pub struct Sample {
     /// Stochastic law: mean bath temperature of the particles.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bath_temperature: Option<f64>,
+    /// Rough particles: T_rot = <I w^2> / d_rot ([`gas::rotation::Rotation::temperature`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotational_temperature: Option<f64>,
 }
 
-/// The header of `timeseries.csv` (`bath_temperature` is appended for a stochastic law).
+/// The header of `timeseries.csv` (`bath_temperature` is appended for a stochastic law,
+/// `rotational_temperature` for rough particles).
 pub const TIMESERIES_HEADER: [&str; 7] = [
     "time",
     "collisions_per_particle",
@@ -177,6 +181,7 @@ impl<const D: usize> Observer<D> for TimeSeries {
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
         let (weight, particles) = (engine.weight(), engine.particles());
         let bath_temperature = engine.bath_temperatures().map(mean);
+        let rotational_temperature = rotational_temperature(engine);
         let statistics = engine.velocity_statistics().unwrap_or_else(|| {
             let system = engine.system();
             gas::engine::VelocityStatistics {
@@ -203,6 +208,7 @@ impl<const D: usize> Observer<D> for TimeSeries {
             ),
             events: counters.events,
             bath_temperature,
+            rotational_temperature,
         });
         self.last_virial = (time, counters.virial);
         Ok(())
@@ -310,6 +316,13 @@ impl TimeSeries {
         if baths {
             header.push("bath_temperature");
         }
+        let rough = self
+            .samples
+            .iter()
+            .any(|s| s.rotational_temperature.is_some());
+        if rough {
+            header.push("rotational_temperature");
+        }
         let rows = self.samples.iter().map(|s| {
             let mut row: Vec<String> = [
                 s.time,
@@ -323,10 +336,18 @@ impl TimeSeries {
             .to_vec();
             row.push(s.events.to_string());
             row.extend(s.bath_temperature.map(number));
+            row.extend(s.rotational_temperature.map(number));
             row
         });
         write_csv_file(path, &header, rows)
     }
+}
+
+/// The rotational temperature of an engine's rough particles; None for smooth ones.
+pub fn rotational_temperature<const D: usize>(engine: &mut dyn Engine<D>) -> Option<f64> {
+    engine.rotation()?;
+    let system = engine.system().clone();
+    Some(engine.rotation()?.temperature(&system, None))
 }
 
 fn mean(values: &[f64]) -> f64 {

@@ -164,7 +164,7 @@ impl Simulation {
         let clock = Instant::now();
         let plan = validate(description)?;
         parallel::check_ranks(&plan, comm.size())?;
-        let law = law::build(&plan.law, plan.max_impact_speed())?;
+        let law = law::of_plan(&plan)?;
         let grown;
         let run = in_dimension!(plan.description.system.dimension, D => {
             let (engine, report) = engines::start::<D>(&plan, law, &comm)?;
@@ -242,7 +242,7 @@ impl Simulation {
         if !every.is_none_or(|k| (1..=1_000_000).contains(&k)) {
             return Err(sections.error("every: allowed 1 ..= 1e6 samples"));
         }
-        let law = law::build(&plan.law, plan.max_impact_speed()).map_err(|e| sections.error(e))?;
+        let law = law::of_plan(&plan).map_err(|e| sections.error(e))?;
         let run = in_dimension!(plan.description.system.dimension, D => Driver::<D>::resume(
             engines::restore::<D>(&plan, law, sections, &comm)?,
             observer::for_plan::<D>(&plan),
@@ -564,6 +564,9 @@ impl Simulation {
         });
         if let Some(theory) = crate::species::driven_theory(&self.plan) {
             summary["driven_theory"] = theory;
+        }
+        if let Some(theory) = crate::rough::theory(&self.plan, self.samples()) {
+            summary["rough_theory"] = theory;
         }
         if let Some(rows) = self.species_samples() {
             summary["species"] = crate::species::summary(&self.plan, rows);

@@ -14,6 +14,7 @@ mod driving;
 mod field;
 mod law;
 pub(crate) mod material;
+mod rough;
 mod run;
 mod shear;
 mod system;
@@ -23,6 +24,7 @@ pub use crate::engines::EngineSpec;
 pub use field::GravitySpec;
 pub use law::{LawSpec, StochasticTable};
 pub(crate) use material::material;
+pub use rough::RoughSpec;
 pub use walls::{wall_impact_speed, WallLaw, WallSpec, WallSpecKind};
 
 use crate::description::{RunDescription, Spacing};
@@ -101,6 +103,8 @@ pub struct Plan {
     pub pressure_tensor: bool,
     /// `output.msd`: the engine tracks the particles' displacements.
     pub msd: bool,
+    /// Rough particles (`collision.tangential_restitution` > -1).
+    pub rough: Option<RoughSpec>,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
@@ -128,6 +132,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
     let pressure_tensor =
         shear.is_some() || description.output.as_ref().is_some_and(|o| o.pressure);
     let msd = shear::msd_spec(description, &abilities)?;
+    let rough = rough::rough_spec(description, &abilities, &species)?;
     let c = &description.collision;
     let mut description = description.clone();
     description.normalize();
@@ -146,6 +151,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         shear,
         pressure_tensor,
         msd,
+        rough,
         notes: Vec::new(),
     };
     if plan.driving.is_some()
@@ -239,7 +245,8 @@ impl Plan {
     /// An upper bound of every normal impact speed of the run: a cooling gas never gains
     /// energy, so no pair can approach faster than with all the initial kinetic energy,
     /// N (D/2) T0, in its relative motion at the smallest reduced mass (half the smallest
-    /// mass): g <= (2 E / mu)^(1/2) = (2 N D T0 / m_min)^(1/2).
+    /// mass): g <= (2 E / mu)^(1/2) = (2 N D T0 / m_min)^(1/2). Rough particles add
+    /// the rotational energy N d_rot T_rot0 / 2, which collisions turn into translation.
     pub fn max_impact_speed(&self) -> f64 {
         let s = &self.description.system;
         let lightest = self
@@ -247,6 +254,10 @@ impl Plan {
             .iter()
             .map(|x| x.mass)
             .fold(f64::INFINITY, f64::min);
-        (2.0 * s.particles as f64 * f64::from(s.dimension) * s.temperature / lightest).sqrt()
+        let rotational = self.rough.as_ref().map_or(0.0, |r| {
+            gas::rotation::rotational_dimension(s.dimension as usize) as f64 * r.temperature
+        });
+        let energy_per_particle = f64::from(s.dimension) * s.temperature + rotational;
+        (2.0 * s.particles as f64 * energy_per_particle / lightest).sqrt()
     }
 }

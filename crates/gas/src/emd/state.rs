@@ -272,6 +272,18 @@ impl<const D: usize> Engine<D> for EventDriven<D> {
         self.rotation.as_ref()
     }
 
+    /// Rough particles: the section `rotation` (contacts that slid).
+    fn report(&self) -> crate::engine::Report {
+        crate::engine::Report {
+            sections: self
+                .rotation
+                .as_ref()
+                .map(|r| r.report(self.tally.collisions))
+                .into_iter()
+                .collect(),
+        }
+    }
+
     /// Bath temperature of each particle, if the law is stochastic.
     fn bath_temperatures(&self) -> Option<&[f64]> {
         self.baths.as_ref().map(|b| b.temperatures.as_slice())

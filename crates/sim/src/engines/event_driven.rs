@@ -26,6 +26,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     shear: true,
     stress: true,
     displacements: true,
+    rotation: true,
 };
 
 /// The engine's keys: none beyond the common ones.

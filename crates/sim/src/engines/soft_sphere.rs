@@ -25,6 +25,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     shear: true,
     stress: true,
     displacements: true,
+    rotation: false,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).
