@@ -380,15 +380,16 @@ impl SpaceObserver {
         // what a snapshot needs of the engine besides the state, taken before the state: one
         // synchronization of the engine for all observers (2 ms at N = 1e5, 1 % of a
         // collision per particle; `haff bench observers`)
-        let (collisions, baths) = if snapshot_due {
+        let (collisions, baths, spins) = if snapshot_due {
             (
                 engine
                     .collision_counts()
                     .map(|c| c.into_iter().map(u64::from).collect::<Vec<u64>>()),
                 engine.bath_temperatures().map(<[f64]>::to_vec),
+                engine.rotation().map(|r| r.angular.clone()),
             )
         } else {
-            (None, None)
+            (None, None, None)
         };
         let system = engine.system();
         if o.modes {
@@ -449,6 +450,7 @@ impl SpaceObserver {
                     collisions: collisions.as_deref(),
                     species: &species,
                     bath_temperatures: baths.as_deref(),
+                    angular_velocities: spins.as_deref(),
                 };
                 write_particles(&path, system, &data)?;
             }

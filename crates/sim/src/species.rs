@@ -30,9 +30,12 @@ pub struct SpeciesSample {
     /// previous sample (a collision counts for both of its particles); None at the first
     /// sample and for engines that do not count collisions by particle or species.
     pub collision_frequency: Option<f64>,
+    /// Rough particles: the species' T_rot = <I w^2> / d_rot.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotational_temperature: Option<f64>,
 }
 
-/// The header of `species.csv`.
+/// The header of `species.csv` (`rotational_temperature` is appended for rough particles).
 pub const SPECIES_HEADER: [&str; 6] = [
     "time",
     "collisions_per_particle",
@@ -92,17 +95,49 @@ impl SpeciesSeries {
 
     /// Writes `species.csv`.
     pub fn write_csv(&self, path: &Path) -> Result<()> {
+        let rough = self
+            .samples
+            .iter()
+            .any(|s| s.rotational_temperature.is_some());
+        let mut header = SPECIES_HEADER.to_vec();
+        if rough {
+            header.push("rotational_temperature");
+        }
         let rows = self.samples.iter().map(|s| {
-            vec![
+            let mut row = vec![
                 number(s.time),
                 number(s.collisions_per_particle),
                 s.species.to_string(),
                 number(s.temperature),
                 number(s.a2),
                 s.collision_frequency.map(number).unwrap_or_default(),
-            ]
+            ];
+            row.extend(s.rotational_temperature.map(number));
+            row
         });
-        write_csv_file(path, &SPECIES_HEADER, rows)
+        write_csv_file(path, &header, rows)
+    }
+
+    /// Each listed species' rotational temperature (rough particles).
+    fn rotational_temperatures<const D: usize>(
+        &self,
+        engine: &mut dyn Engine<D>,
+    ) -> Option<Vec<f64>> {
+        engine.rotation()?;
+        let system = engine.system().clone();
+        let rotation = engine.rotation()?;
+        let mut members = vec![Vec::new(); self.kinds.len()];
+        for (i, (&r, &m)) in system.radii.iter().zip(&system.masses).enumerate() {
+            if let Some(s) = self.kind_of(r, m) {
+                members[s].push(i);
+            }
+        }
+        Some(
+            members
+                .iter()
+                .map(|list| rotation.temperature(&system, Some(list)))
+                .collect(),
+        )
     }
 
     /// The collisions of each listed species' particles so far, if the engine counts them.
@@ -165,6 +200,7 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
         }
         let (time, collisions_per_particle) = (engine.time(), engine.collisions_per_particle());
         let collisions = self.collisions(engine);
+        let rotational = self.rotational_temperatures(engine);
         let system = engine.system();
         let kinds = self.kinds.len();
         let total_mass: f64 = system.masses.iter().sum();
@@ -209,6 +245,7 @@ impl<const D: usize> Observer<D> for SpeciesSeries {
                 temperature: mc2 / (n * D) as f64,
                 a2: gas::observe::sonine_a2_of_sums::<D>(c2, c4, n as f64),
                 collision_frequency: frequencies[s],
+                rotational_temperature: rotational.as_ref().map(|t| t[s]),
             });
         }
         self.last = collisions.map(|c| (time, c));

@@ -21,6 +21,8 @@ pub struct ParticleData<'a> {
     pub species: &'a [u32],
     /// Bath temperature of each particle (stochastic law).
     pub bath_temperatures: Option<&'a [f64]>,
+    /// Angular velocity of each particle (rough particles; disks about z).
+    pub angular_velocities: Option<&'a [[f64; 3]]>,
 }
 
 fn padded<const D: usize>(v: &[f64; D]) -> [f64; 3] {
@@ -36,7 +38,7 @@ fn export(vtk: Vtk, path: &Path) -> Result<()> {
 
 /// Writes the particles of `system` as `path` (`.vtu`): points at the centres, one vertex
 /// cell each, with the point data radius, velocity, mass, species and (when known)
-/// collisions and bath_temperature.
+/// collisions, bath_temperature and angular_velocity.
 pub fn write_particles<const D: usize>(
     path: &Path,
     system: &System<D>,
@@ -56,6 +58,10 @@ pub fn write_particles<const D: usize>(
     }
     if let Some(b) = data.bath_temperatures {
         point.push(Attribute::scalars("bath_temperature", 1).with_data(b.to_vec()));
+    }
+    if let Some(w) = data.angular_velocities {
+        let flat: Vec<f64> = w.iter().flatten().copied().collect();
+        point.push(Attribute::vectors("angular_velocity").with_data(flat));
     }
     let piece = UnstructuredGridPiece {
         points: points.into(),
