@@ -6,10 +6,11 @@
 mod common;
 
 use common::{constant, mean_and_error};
+use gas::dsmc::Scheme;
 use gas::observe::{kinetic_energy, sonine_a2, temperature};
 use gas::rotation::Rotation;
 use gas::theory::rough::RoughMaxwellian;
-use gas::{Checkpoint, Engine, EventDriven};
+use gas::{Checkpoint, Engine, EventDriven, HomogeneousDsmc};
 use restitution::rough::{Rough, Tangential};
 use restitution::Restitution;
 
@@ -59,23 +60,53 @@ fn beta_minus_one_is_the_smooth_gas_bit_for_bit() {
     assert_eq!(smooth.system(), rough_engine.system());
     assert_eq!(smooth.counters(), rough_engine.counters());
     assert_eq!(rough_engine.rotation().unwrap().angular, rotation.angular);
+    // DSMC: the rough records (with their spins) run the smooth gas's process.
+    for scheme in [Scheme::Exact, Scheme::default()] {
+        let system = gas::init::monodisperse::<3>(2000, 0.1, 1.0, 1.0, 1.0, 8).unwrap();
+        let rotation = Rotation::thermal(&system, vec![0.4; 2000], 1.0, 8);
+        let mut smooth =
+            HomogeneousDsmc::new(system.clone(), 0.1, constant(0.7), 3, scheme).unwrap();
+        let mut spun =
+            HomogeneousDsmc::new(system, 0.1, rough(0.7, -1.0, None), 3, scheme).unwrap();
+        spun.set_rotation(Some(rotation.clone())).unwrap();
+        smooth.run_collisions(5000);
+        spun.run_collisions(5000);
+        assert_eq!(smooth.system(), spun.system(), "{scheme:?}");
+        assert_eq!(smooth.counters(), spun.counters());
+        let mut before: Vec<[f64; 3]> = rotation.angular.clone();
+        let mut after = spun.rotation().unwrap().angular.clone();
+        // The blocks permute the records: compare the sets of spins.
+        before.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        after.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(before, after);
+    }
 }
 
 /// From rest (T_rot = 0) with Gaussian velocities the rotational temperature rises as
 /// the Maxwellian theory's exact solution of its linear equations says
-/// (`RoughMaxwellian::evolve`). Tolerance: 4 standard errors over 4 seeds plus |a2|
-/// measured at the end (the first Sonine corrections to the rates are of order a2 with
-/// coefficients below one, Santos, Kremer & Garzó 2010).
+/// (`RoughMaxwellian::evolve`), in the event-driven engine and both DSMC schemes.
+/// Tolerance: 4 standard errors over 4 seeds plus |a2| measured at the end (the first
+/// Sonine corrections to the rates are of order a2 with coefficients below one, Santos,
+/// Kremer & Garzó 2010).
 #[test]
 fn rotation_rises_from_rest_as_the_maxwellian_theory_says() {
-    fn case<const D: usize>(alpha: f64, beta: f64, q: f64) {
+    fn case<const D: usize>(engine: &str, alpha: f64, beta: f64, q: f64) {
         let n = 4000;
         let (mut ratios, mut translational, mut a2) = (vec![], vec![], 0.0f64);
         let mut tau = 0.0;
         for seed in 0..4 {
             let system = gas::init::monodisperse::<D>(n, 0.05, 1.0, 1.0, 1.0, seed).unwrap();
             let t0 = temperature(&system);
-            let mut engine = EventDriven::new(system, rough(alpha, beta, None)).unwrap();
+            let law = rough(alpha, beta, None);
+            let mut engine: Box<dyn Engine<D>> = match engine {
+                "event-driven" => Box::new(EventDriven::new(system, law).unwrap()),
+                "exact" => {
+                    Box::new(HomogeneousDsmc::new(system, 0.05, law, seed, Scheme::Exact).unwrap())
+                }
+                _ => Box::new(
+                    HomogeneousDsmc::new(system, 0.05, law, seed, Scheme::default()).unwrap(),
+                ),
+            };
             engine.set_rotation(Some(Rotation::at_rest(n, q))).unwrap();
             engine.run_collisions(n as u64 / 2);
             tau = engine.collisions_per_particle();
@@ -98,12 +129,14 @@ fn rotation_rises_from_rest_as_the_maxwellian_theory_says() {
             let tolerance = 4.0 * error + a2 * expected;
             assert!(
                 (mean - expected).abs() < tolerance,
-                "D = {D}, alpha {alpha}, beta {beta}: {what} {mean} ± {error} vs {expected} (a2 {a2})"
+                "{engine} D = {D}, alpha {alpha}, beta {beta}: {what} {mean} ± {error} vs {expected} (a2 {a2}, tau {tau})"
             );
         }
     }
-    case::<3>(0.9, 0.4, 0.4);
-    case::<2>(0.8, 0.8, 0.5);
+    for engine in ["event-driven", "exact", "blocks"] {
+        case::<3>(engine, 0.9, 0.4, 0.4);
+        case::<2>(engine, 0.8, 0.8, 0.5);
+    }
 }
 
 /// A rough gas with Walton's friction continues bit for bit from its check-point
@@ -133,4 +166,25 @@ fn a_rough_gas_continues_from_its_checkpoint() {
         "some contacts slide: {}",
         a.sliding
     );
+    for scheme in [Scheme::Exact, Scheme::default()] {
+        let system = gas::init::monodisperse::<2>(1000, 0.15, 1.0, 1.0, 1.0, 2).unwrap();
+        let rotation = Rotation::thermal(&system, vec![0.5; 1000], 1.0, 2);
+        let law = rough(0.8, 0.5, Some(0.2));
+        let mut engine = HomogeneousDsmc::new(system, 0.15, law.clone(), 4, scheme).unwrap();
+        engine.set_rotation(Some(rotation)).unwrap();
+        engine.run_collisions(3000);
+        let text = serde_json::to_string(&engine.save()).unwrap();
+        let mut restored =
+            HomogeneousDsmc::<2>::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
+        engine.run_collisions(3000);
+        restored.run_collisions(3000);
+        assert_eq!(engine.system(), restored.system(), "{scheme:?}");
+        assert_eq!(engine.counters(), restored.counters());
+        let (a, b) = (
+            engine.rotation().unwrap().clone(),
+            restored.rotation().unwrap().clone(),
+        );
+        assert_eq!(a, b);
+        assert!(a.sliding > 0, "some contacts slide");
+    }
 }

@@ -6,9 +6,12 @@
 
 mod blocks;
 mod classes;
+mod spin;
 
 use super::domain::Traffic;
-use super::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally, Tagged, Window};
+use super::kernel::{
+    self, add_counts, Collider, Moments, Record, SpeciesTally, Spun, Tagged, Window,
+};
 use super::reduce;
 use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
@@ -31,6 +34,16 @@ enum Store<const D: usize> {
     /// One species: the velocity is the record (8 D bytes).
     Uniform(Vec<Vector<D>>, Vec<Vector<D>>),
     Mixed(Vec<Tagged<D>>, Vec<Tagged<D>>),
+    /// Rough particles: velocity, species and angular velocity.
+    Rough(Vec<Spun<D>>, Vec<Spun<D>>),
+}
+
+/// Rough particles: the law's tangential rule (none: the spins rotate freely), each
+/// species' inertia factor, and the contacts that slid.
+struct Spin {
+    tangential: Option<restitution::rough::Tangential>,
+    inertia: Vec<f64>,
+    sliding: u64,
 }
 
 /// Everything but the records.
@@ -75,6 +88,29 @@ struct Core<const D: usize> {
     shear: Option<Shear>,
     /// The tensor virial of the collisions, if summed.
     virial: Option<Virial>,
+    /// Rough particles ([`Store::Rough`]).
+    spin: Option<Spin>,
+}
+
+/// The collider of a core's law, species and spins (a function of the fields, so that
+/// the core's other fields stay free to borrow).
+fn collider<'a>(
+    law: &'a dyn Restitution,
+    species: &'a Species,
+    pairs: Option<&'a [Box<dyn Restitution>]>,
+    spin: Option<&'a Spin>,
+) -> Collider<'a> {
+    Collider {
+        law,
+        species,
+        pairs,
+        rough: spin.and_then(|spin| {
+            Some(kernel::Rough {
+                rule: spin.tangential.as_ref()?,
+                inertia: &spin.inertia,
+            })
+        }),
+    }
 }
 
 /// A record of the homogeneous engine as it travels between ranks: its velocity, then its
@@ -108,6 +144,32 @@ impl<const D: usize> HomogeneousRecord<D> for Tagged<D> {
     }
 }
 
+/// Rough records travel as velocity, species, angular velocity (D + 4 values).
+impl<const D: usize> HomogeneousRecord<D> for Spun<D> {
+    const VALUES: usize = D + 4;
+    fn from_parts(velocity: Vector<D>, species: u32) -> Self {
+        Spun {
+            velocity,
+            species,
+            angular: [0.0; 3],
+        }
+    }
+
+    fn encode(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&self.velocity);
+        out.push(self.species as f64);
+        out.extend_from_slice(&self.angular);
+    }
+
+    fn decode(row: &[f64]) -> Self {
+        Spun {
+            velocity: std::array::from_fn(|k| row[k]),
+            species: row[D] as u32,
+            angular: [row[D + 1], row[D + 2], row[D + 3]],
+        }
+    }
+}
+
 /// DSMC of a spatially homogeneous granular gas (see the [module](super) documentation).
 ///
 /// The collision rate of a pair is g2(phi) sigma^(D-1) c_D |g| / V with V the volume in which
@@ -118,6 +180,8 @@ pub struct HomogeneousDsmc<const D: usize> {
     store: Store<D>,
     /// Output buffer of [`HomogeneousDsmc::system`].
     system: System<D>,
+    /// Output buffer of the rotation (rough particles).
+    rotation: Option<crate::rotation::Rotation>,
 }
 
 impl<const D: usize> HomogeneousDsmc<D> {
@@ -200,6 +264,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             traffic: Traffic::default(),
             shear: None,
             virial: None,
+            spin: None,
         };
         let mut store = make_store(&core.species, system.velocities, &index);
         let (bound, moments) = match &store {
@@ -211,6 +276,10 @@ impl<const D: usize> HomogeneousDsmc<D> {
                 kernel::speed_bound(now, &reference),
                 Moments::of(now, &core.species),
             ),
+            Store::Rough(now, _) => (
+                kernel::speed_bound(now, &reference),
+                Moments::of(now, &core.species),
+            ),
         };
         core.speed_bound = bound;
         core.temperature = moments.spread / (n * D) as f64;
@@ -219,13 +288,22 @@ impl<const D: usize> HomogeneousDsmc<D> {
             match &mut store {
                 Store::Uniform(now, _) => keep(now, first, end),
                 Store::Mixed(now, _) => keep(now, first, end),
+                Store::Rough(now, _) => keep(now, first, end),
             }
         }
-        Ok(HomogeneousDsmc {
+        let mut engine = HomogeneousDsmc {
             core,
             store,
             system: empty_system(),
-        })
+            rotation: None,
+        };
+        if engine.core.law.tangential().is_some() {
+            // Rough particles start as solid spheres (disks) at rest until given their
+            // rotation (collective: every rank takes its share of the same rotation).
+            let solid = vec![0.4; engine.core.species.len()];
+            engine.give_rotation(vec![[0.0; 3]; n], solid, 0);
+        }
+        Ok(engine)
     }
 
     /// The engine of `snapshot` over the ranks of `comm` (every rank reads the same
@@ -272,6 +350,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
             let largest = match &engine.store {
                 Store::Uniform(now, _) => kernel::speed_bound(now, &reference_velocity),
                 Store::Mixed(now, _) => kernel::speed_bound(now, &reference_velocity),
+                Store::Rough(now, _) => kernel::speed_bound(now, &reference_velocity),
             };
             if speed_bound < largest {
                 return Err(Error::out_of_range(
@@ -291,11 +370,16 @@ impl<const D: usize> HomogeneousDsmc<D> {
         core.temperature = temperature;
         core.species_collisions = species_collisions;
         core.virial = tail.virial;
+        if let Some(rotation) = tail.rotation {
+            engine.set_rotation_of(Some(rotation))?;
+        }
         Ok(engine)
     }
 
     /// The state, random stream positions and options, to continue later bit for bit.
     pub fn snapshot(&mut self) -> HomogeneousSnapshot<D> {
+        let system = self.system().clone();
+        let rotation = self.rotation_now().cloned();
         let c = &self.core;
         let (time, steps, tally, seed, scheme, phi) =
             (c.time, c.steps, c.tally, c.seed, c.scheme, c.phi);
@@ -305,10 +389,11 @@ impl<const D: usize> HomogeneousDsmc<D> {
         let tail = Tail {
             shear: c.shear,
             virial: c.virial,
+            rotation,
             ..Default::default()
         };
         HomogeneousSnapshot {
-            system: self.system().clone(),
+            system,
             packing_fraction: phi,
             seed,
             options: scheme,
@@ -373,6 +458,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         match &mut self.store {
             Store::Uniform(now, spare) => run_records(core, now, spare, end, target, pause),
             Store::Mixed(now, spare) => run_records(core, now, spare, end, target, pause),
+            Store::Rough(now, spare) => run_records(core, now, spare, end, target, pause),
         }
     }
 }
@@ -508,11 +594,12 @@ fn run_exact<const D: usize, R: Record<D>>(
             end: window_end,
             max_collisions: target.min(next_recompute) - core.tally.collisions,
         };
-        let collider = Collider {
-            law: core.law.as_ref(),
-            species: &core.species,
-            pairs: core.pairs.as_deref(),
-        };
+        let collider = collider(
+            core.law.as_ref(),
+            &core.species,
+            core.pairs.as_deref(),
+            core.spin.as_ref(),
+        );
         let classes = core.classes.get_or_insert_with(|| {
             let width = class_width(core.temperature, core.species.min_mass, core.speed_bound);
             Classes::sort(
@@ -555,6 +642,9 @@ fn run_exact<const D: usize, R: Record<D>>(
         };
         core.tally = tally.counters;
         core.virial = tally.virial;
+        if let Some(spin) = &mut core.spin {
+            spin.sliding += tally.sliding;
+        }
         add_counts(&mut core.species_collisions, &tally.collisions);
         core.speed_bound = classes.bound();
         if let Some(shear) = core.shear {
@@ -633,6 +723,7 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
         match &self.store {
             Store::Uniform(now, _) => fill(s, &gathered(now, core), &core.species),
             Store::Mixed(now, _) => fill(s, &gathered(now, core), &core.species),
+            Store::Rough(now, _) => fill(s, &gathered(now, core), &core.species),
         }
         s.positions.clear();
         s.positions.resize(s.velocities.len(), [0.0; D]);
@@ -663,6 +754,7 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
         let particles = match &self.store {
             Store::Uniform(now, _) => now.len(),
             Store::Mixed(now, _) => now.len(),
+            Store::Rough(now, _) => now.len(),
         };
         core.traffic
             .reports(core.comm.as_ref(), particles, blocks as u64)
@@ -681,6 +773,9 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
             Store::Mixed(now, _) => {
                 reduce::velocity_statistics(now, species, total, volume, comm, traffic)
             }
+            Store::Rough(now, _) => {
+                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+            }
         })
     }
 
@@ -692,6 +787,7 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
         let records = match &self.store {
             Store::Uniform(a, b) => (a.capacity() + b.capacity()) * size_of::<Vector<D>>(),
             Store::Mixed(a, b) => (a.capacity() + b.capacity()) * size_of::<Tagged<D>>(),
+            Store::Rough(a, b) => (a.capacity() + b.capacity()) * size_of::<Spun<D>>(),
         };
         let s = &self.system;
         let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
@@ -725,6 +821,37 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
             self.core.virial = Some(Virial::default());
         }
         Ok(())
+    }
+
+    /// Gives the particles `rotation` in the order of [`Engine::system`] (collective);
+    /// the inertia factor must be one per species.
+    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
+        self.set_rotation_of(rotation)
+    }
+
+    /// The particles' rotation in the order of [`Engine::system`] (collective).
+    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
+        self.rotation_now()
+    }
+
+    /// Rough particles: the section `rotation` (contacts that slid, all ranks).
+    fn report(&self) -> crate::engine::Report {
+        crate::engine::Report {
+            sections: self
+                .core
+                .spin
+                .as_ref()
+                .map(|spin| {
+                    let r = crate::rotation::Rotation {
+                        inertia: Vec::new(),
+                        angular: Vec::new(),
+                        sliding: spin.sliding,
+                    };
+                    r.report(self.core.tally.collisions)
+                })
+                .into_iter()
+                .collect(),
+        }
     }
 
     /// Drives the gas from now on (None: freely cooling) at every step of the block scheme;

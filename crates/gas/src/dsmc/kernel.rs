@@ -37,6 +37,13 @@ pub(crate) trait Record<const D: usize>: Copy + Send + Sync {
     fn velocity(&self) -> &Vector<D>;
     fn velocity_mut(&mut self) -> &mut Vector<D>;
     fn species(&self) -> usize;
+    /// Whether records carry an angular velocity (rough particles: [`Spun`]).
+    const ROUGH: bool = false;
+    /// The velocity and angular velocity, for the tangential half of a rough collision.
+    #[inline(always)]
+    fn spin_parts(&mut self) -> Option<(&mut Vector<D>, &mut [f64; 3])> {
+        None
+    }
 }
 
 /// The record of a monodisperse homogeneous gas: the velocity alone.
@@ -86,6 +93,36 @@ macro_rules! tagged_record {
 
 tagged_record!(Tagged);
 
+/// The record of a homogeneous gas of rough particles: velocity, species, angular
+/// velocity (disks about z).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Spun<const D: usize> {
+    pub velocity: Vector<D>,
+    pub species: u32,
+    pub angular: [f64; 3],
+}
+
+impl<const D: usize> Record<D> for Spun<D> {
+    const MIXED: bool = true;
+    const ROUGH: bool = true;
+    #[inline]
+    fn velocity(&self) -> &Vector<D> {
+        &self.velocity
+    }
+    #[inline]
+    fn velocity_mut(&mut self) -> &mut Vector<D> {
+        &mut self.velocity
+    }
+    #[inline]
+    fn species(&self) -> usize {
+        self.species as usize
+    }
+    #[inline(always)]
+    fn spin_parts(&mut self) -> Option<(&mut Vector<D>, &mut [f64; 3])> {
+        Some((&mut self.velocity, &mut self.angular))
+    }
+}
+
 /// The record of the spatial engine: position, velocity, species, and the particle's
 /// place in the order it had when the engine was made or restored (its identity through
 /// the sorts into cells, for the tracks of the mean-square displacement; it fills the
@@ -111,6 +148,9 @@ pub(crate) trait Tally {
     fn virial(&mut self) -> Option<&mut Virial> {
         None
     }
+    /// A rough contact that slid (Walton's friction).
+    #[inline(always)]
+    fn slid(&mut self) {}
 }
 
 impl Tally for Counters {
@@ -130,6 +170,8 @@ pub(crate) struct SpeciesTally {
     species: usize,
     /// The tensor virial of the collisions, if summed.
     pub virial: Option<Virial>,
+    /// Rough contacts that slid.
+    pub sliding: u64,
 }
 
 impl SpeciesTally {
@@ -158,6 +200,10 @@ impl Tally for SpeciesTally {
     fn virial(&mut self) -> Option<&mut Virial> {
         self.virial.as_mut()
     }
+    #[inline(always)]
+    fn slid(&mut self) {
+        self.sliding += 1;
+    }
 }
 
 /// Adds the per-species counts `more` to `total` (grown to their length).
@@ -175,6 +221,16 @@ pub(crate) struct Collider<'a> {
     /// A law per pair of species (row-major, in the order of `species`) for a mixture with
     /// a pairwise law ([`super::species::engine_laws`]); else `law` for every pair.
     pub pairs: Option<&'a [Box<dyn Restitution>]>,
+    /// Rough particles: the tangential rule and each species' inertia factor (records
+    /// of [`Spun`] only; others collide smoothly).
+    pub rough: Option<Rough<'a>>,
+}
+
+/// The tangential half of the collisions of rough particles.
+#[derive(Clone, Copy)]
+pub(crate) struct Rough<'a> {
+    pub rule: &'a restitution::rough::Tangential,
+    pub inertia: &'a [f64],
 }
 
 /// A window of the exact process: from `start` to `end` (may be infinite), at most
@@ -358,9 +414,66 @@ impl Collider<'_> {
         if R::MIXED {
             tally.pair(a.species(), b.species());
         }
+        if R::ROUGH {
+            if let Some(rough) = &self.rough {
+                self.rough_kick(rough, a, b, &e, kick * pair.reduced, pair.sigma, tally);
+            }
+        }
         let da: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - reference[k]);
         let db: Vector<D> = std::array::from_fn(|k| b.velocity()[k] - reference[k]);
         dot(&da, &da).max(dot(&db, &db))
+    }
+}
+
+impl Collider<'_> {
+    /// The tangential impulse of the collision of a and b after their normal impulse
+    /// `normal` along `e` (`crate::rotation::tangential_kick`), at contact distance
+    /// `sigma`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn rough_kick<const D: usize, R: Record<D>>(
+        &self,
+        rough: &Rough,
+        a: &mut R,
+        b: &mut R,
+        e: &Vector<D>,
+        normal: f64,
+        sigma: f64,
+        tally: &mut impl Tally,
+    ) {
+        let (sa, sb) = (a.species(), b.species());
+        let (Some((va, wa)), Some((vb, wb))) = (a.spin_parts(), b.spin_parts()) else {
+            return;
+        };
+        let relative: Vector<D> = std::array::from_fn(|k| va[k] - vb[k]);
+        let s = self.species;
+        let kick = crate::rotation::tangential_kick(
+            rough.rule,
+            e,
+            &relative,
+            normal,
+            crate::rotation::Spinning {
+                velocity: va,
+                angular: wa,
+                mass: s.masses[sa],
+                radius: s.radii[sa],
+                inertia: rough.inertia[sa],
+            },
+            crate::rotation::Spinning {
+                velocity: vb,
+                angular: wb,
+                mass: s.masses[sb],
+                radius: s.radii[sb],
+                inertia: rough.inertia[sb],
+            },
+        );
+        tally.counters().energy_lost += kick.energy_lost;
+        if kick.sliding {
+            tally.slid();
+        }
+        if let Some(virial) = tally.virial() {
+            virial.add_tangential(sigma, e, &kick.to_j);
+        }
     }
 }
 

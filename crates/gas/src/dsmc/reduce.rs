@@ -23,6 +23,8 @@ pub(crate) struct StepSums<const D: usize> {
     pub species_collisions: Vec<u64>,
     /// The tensor virial of the step's collisions, if the groups summed it.
     pub virial: Option<crate::shear::Virial>,
+    /// Rough contacts that slid (summed over the ranks when asked for).
+    pub sliding: u64,
 }
 
 impl<const D: usize> StepSums<D> {
@@ -35,13 +37,16 @@ impl<const D: usize> StepSums<D> {
 /// The counters, mass and momentum (and, if `with_spread`, the spreads) of the groups of a
 /// step, `results`, summed over all ranks exactly (and the tensor virial, if
 /// `with_tensor`: the groups summed it), with the collisions of each of the
-/// `species` (if more than one): one all-reduce of [`crate::parallel::reduction_bytes`]
-/// (with the spread; 8 B more per species of a mixture) per rank.
+/// `species` (if more than one) and, if `with_sliding`, the rough contacts that slid:
+/// one all-reduce of [`crate::parallel::reduction_bytes`] (with the spread; 8 B more per
+/// species of a mixture, 8 B for the sliding contacts) per rank.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn step_sums<const D: usize>(
     results: &[(SpeciesTally, Moments<D>)],
     species: usize,
     with_spread: bool,
     with_tensor: bool,
+    with_sliding: bool,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
 ) -> StepSums<D> {
@@ -80,7 +85,15 @@ pub(crate) fn step_sums<const D: usize>(
             *total += *c as i64;
         }
     }
+    if with_sliding {
+        packed.push(results.iter().map(|(t, _)| t.sliding as i64).sum());
+    }
     all_ranks_sum(&mut packed, comm, traffic);
+    let sliding = if with_sliding {
+        packed.pop().unwrap_or(0) as u64
+    } else {
+        0
+    };
     let values: Vec<f64> = packed
         .chunks_exact(LIMBS + 1)
         .take(count)
@@ -99,6 +112,7 @@ pub(crate) fn step_sums<const D: usize>(
         momentum: std::array::from_fn(|k| values[1 + k]),
         spread: if with_spread { values[spread_at] } else { 0.0 },
         species_collisions: packed[start..].iter().map(|&c| c as u64).collect(),
+        sliding,
         virial: with_tensor
             .then(|| crate::shear::Virial(std::array::from_fn(|c| values[tensor_at + c]))),
     }

@@ -480,6 +480,7 @@ impl<const D: usize> SpatialDsmc<D> {
         }
         let groups = split_at_starts(&mut self.simulators, &starts);
         let collider = Collider {
+            rough: None,
             law: self.law.as_ref(),
             species: &self.species,
             pairs: self.pairs.as_deref(),

@@ -40,7 +40,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         shear: true,
         stress: true,
         displacements: scheme == DsmcScheme::Spatial,
-        rotation: false,
+        rotation: scheme != DsmcScheme::Spatial,
     }
 }
 

@@ -14,7 +14,7 @@
 use super::{Core, HomogeneousRecord};
 use crate::driving::Driving;
 use crate::dsmc::domain::Traffic;
-use crate::dsmc::kernel::{self, add_counts, Collider, Moments, Record, SpeciesTally};
+use crate::dsmc::kernel::{self, add_counts, Moments, Record, SpeciesTally};
 use crate::dsmc::reduce;
 use crate::dsmc::{
     frequency_estimate, positive, StepSize, DEFAULT_BLOCK_COLLISIONS_PER_STEP,
@@ -145,6 +145,9 @@ pub(super) fn run_blocks<const D: usize, R: HomogeneousRecord<D>>(
             total.merge(step);
         }
         add_counts(&mut core.species_collisions, &sums.species_collisions);
+        if let Some(spin) = &mut core.spin {
+            spin.sliding += sums.sliding;
+        }
         // The spread about the mean u from the spread about the reference r:
         // sum m |v - r|^2 - M |u - r|^2.
         let mean = sums.mean();
@@ -206,11 +209,12 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
             &mut core.traffic,
         );
     }
-    let collider = Collider {
-        law: core.law.as_ref(),
-        species: &core.species,
-        pairs: core.pairs.as_deref(),
-    };
+    let collider = super::collider(
+        core.law.as_ref(),
+        &core.species,
+        core.pairs.as_deref(),
+        core.spin.as_ref(),
+    );
     let (seed, steps, species) = (core.seed, core.steps, &core.species);
     let noise = match core.driving {
         Some(Driving::WhiteNoise(noise)) => Some(noise),
@@ -274,7 +278,16 @@ fn block_step<const D: usize, R: HomogeneousRecord<D>>(
         .collect();
     let kinds = core.species.len();
     let comm = core.comm.as_ref();
-    reduce::step_sums(&results, kinds, true, with_virial, comm, &mut core.traffic)
+    let rough = core.spin.is_some();
+    reduce::step_sums(
+        &results,
+        kinds,
+        true,
+        with_virial,
+        rough,
+        comm,
+        &mut core.traffic,
+    )
 }
 
 /// The peculiar velocities of a uniform shear flow of rate `rate` streamed for a time `t`:

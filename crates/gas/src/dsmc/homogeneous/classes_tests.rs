@@ -49,6 +49,7 @@ fn class_bounds_hold_after_every_collision() {
         let law = Constant::new(eps).unwrap();
         let (species, _) = Species::of::<3>(&[0.5; 600], &[1.0; 600], 0.1).unwrap();
         let collider = Collider {
+            rough: None,
             law: &law,
             species: &species,
             pairs: None,
@@ -134,6 +135,7 @@ fn colliding_pairs_follow_the_master_equation() {
     let law = Constant::new(1.0).unwrap();
     let (species, _) = Species::of::<3>(&[0.5; 8], &[1.0; 8], 0.1).unwrap();
     let collider = Collider {
+        rough: None,
         law: &law,
         species: &species,
         pairs: None,
@@ -198,6 +200,7 @@ fn class_process_agrees_with_the_single_majorant_process() {
     let law = Constant::new(0.7).unwrap();
     let (species, _) = Species::of::<3>(&vec![0.5; n], &vec![1.0; n], 0.1).unwrap();
     let collider = Collider {
+        rough: None,
         law: &law,
         species: &species,
         pairs: None,

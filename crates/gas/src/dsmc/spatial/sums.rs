@@ -23,7 +23,15 @@ impl<const D: usize> SpatialDsmc<D> {
         let comm = self.comm.as_ref();
         let kinds = self.species.len();
         let with_tensor = self.virial.is_some();
-        let totals = reduce::step_sums(results, kinds, false, with_tensor, comm, &mut self.traffic);
+        let totals = reduce::step_sums(
+            results,
+            kinds,
+            false,
+            with_tensor,
+            false,
+            comm,
+            &mut self.traffic,
+        );
         let mean = totals.mean();
         // Under shear the cells' means follow the flow: the spread (which sets the step)
         // is then the cells' own, about their means.
