@@ -24,6 +24,7 @@ pub mod giese_ring;
 pub mod green_kubo;
 pub mod kinetic;
 pub mod mp2011;
+pub mod rough;
 pub mod shear;
 pub mod soft;
 pub mod sp2008;
@@ -68,6 +69,7 @@ pub fn entries() -> Vec<Entry> {
     all.extend(green_kubo::entries());
     all.extend(diffusion::entries());
     all.extend(conductivity::entries());
+    all.extend(rough::entries());
     all.extend(soft::entries());
     all.extend(giese::entries());
     all.extend(giese_ring::entries());

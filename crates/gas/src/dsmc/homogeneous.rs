@@ -385,7 +385,12 @@ impl<const D: usize> HomogeneousDsmc<D> {
             (c.time, c.steps, c.tally, c.seed, c.scheme, c.phi);
         let (reference, speed_bound, draws, temperature) =
             (c.reference, c.speed_bound, c.stream.draws(), c.temperature);
-        let species_collisions = c.species_collisions.clone();
+        let species_collisions = super::species::in_saved_order(
+            &c.species,
+            &c.species_collisions,
+            &system.radii,
+            &system.masses,
+        );
         let tail = Tail {
             shear: c.shear,
             virial: c.virial,

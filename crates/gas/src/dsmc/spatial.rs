@@ -343,12 +343,17 @@ impl<const D: usize> SpatialDsmc<D> {
             self.tally,
             self.temperature,
         );
+        // Lab velocities: the flow is part of the state.
+        self.fill_system(false);
+        let system = self.system.clone();
+        let species_collisions = super::species::in_saved_order(
+            &self.species,
+            &self.species_collisions,
+            &system.radii,
+            &system.masses,
+        );
         SpatialSnapshot {
-            system: {
-                // Lab velocities: the flow is part of the state.
-                self.fill_system(false);
-                self.system.clone()
-            },
+            system,
             packing_fraction: phi,
             seed,
             options,
@@ -359,7 +364,7 @@ impl<const D: usize> SpatialDsmc<D> {
             speed_bound: 0.0,
             draws: 0,
             temperature,
-            species_collisions: self.species_collisions.clone(),
+            species_collisions,
             tail: crate::tail::Tail {
                 walls: self.walls_state(),
                 shear: self.shear,

@@ -162,6 +162,39 @@ fn pair_weights<const D: usize>(radii: &[f64], counts: &[usize], phi: f64) -> Ve
 
 /// The collisions of each species' particles: `counted` (mixtures) or, for one species,
 /// twice the collisions of `tally`.
+/// The collisions of each species `counted` (in the order of `species`) in the order a
+/// restored engine will give its species: first appearance of (radius, mass) in the
+/// saved system (`Species::of`). A snapshot writes them so: the records are permuted
+/// (blocks, cells), and a restored engine whose first particle is of another species
+/// than the engine's first would otherwise take one species' collisions for another's.
+pub(crate) fn in_saved_order(
+    species: &Species,
+    counted: &[u64],
+    radii: &[f64],
+    masses: &[f64],
+) -> Vec<u64> {
+    if counted.is_empty() {
+        return Vec::new();
+    }
+    let mut order: Vec<usize> = Vec::with_capacity(species.len());
+    for (&r, &m) in radii.iter().zip(masses) {
+        if order.len() == species.len() {
+            break;
+        }
+        if let Some(s) = (0..species.len())
+            .find(|&s| species.radii[s] == r && species.masses[s] == m)
+            .filter(|s| !order.contains(s))
+        {
+            order.push(s);
+        }
+    }
+    // Every species has a particle (`Species::of` makes species of particles only).
+    order
+        .iter()
+        .map(|&s| counted.get(s).copied().unwrap_or(0))
+        .collect()
+}
+
 pub(crate) fn by_species(
     species: &Species,
     counted: &[u64],
