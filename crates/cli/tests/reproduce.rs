@@ -6,7 +6,7 @@ mod common;
 use common::{assert_rejected, haff, stdout_of};
 
 /// Every file stem of `haff reproduce all` and the header of its CSV.
-const CSVS: [(&str, &str); 31] = [
+const CSVS: [(&str, &str); 32] = [
     (
         "mp2011-fig1",
         "vstar,exact,pade_1_4,series_5,series_10,series_20,series_40",
@@ -102,6 +102,10 @@ const CSVS: [(&str, &str); 31] = [
     (
         "kinetic-conductivity",
         "dsmc,z,temperature,kappa,kappa_error,theory",
+    ),
+    (
+        "rough-hcs",
+        "dsmc,alpha,beta,ratio,ratio_error,theory_ratio,cooling,cooling_error,theory_cooling",
     ),
     (
         "giese-fig1",

@@ -142,6 +142,54 @@ struct Row {
     theory_cooling: f64,
 }
 
+/// The limits, in the event-driven engine (20 collisions per particle): perfectly rough
+/// elastic spheres started without rotation (the largest relative change of the energy
+/// per particle 3 (T_tr + T_rot) / 2, and the last T_rot / T_tr: equipartition), and
+/// smooth spheres (beta = -1: rotation decoupled, no rotational column; their cooling per
+/// collision, Haff's (1 - alpha^2) / 3 in the Maxwellian approximation).
+fn limits(quick: bool) -> Result<(f64, f64, f64)> {
+    let n = if quick { 1000 } else { 4000 };
+    let run = |alpha: f64, beta: f64, rotation: &str| -> Result<Simulation> {
+        let text = format!(
+            "[system]\ndimension = 3\nparticles = {n}\npacking_fraction = 0.02\nseed = 3\n\
+             {rotation}\n[collision]\nlaw = \"constant\"\nrestitution = {alpha}\n\
+             tangential_restitution = {beta}\n\
+             [run]\nengine = \"event-driven\"\ncollisions_per_particle = 20\nsamples = 20\n\
+             spacing = \"linear\"\n"
+        );
+        let mut run = Simulation::from_toml(&text, "limits.toml".as_ref())?;
+        run.run(&mut (), None)?;
+        Ok(run)
+    };
+    let elastic = run(1.0, 1.0, "rotational_temperature = 0.0")?;
+    let energy = |s: &sim::observer::Sample| {
+        1.5 * (s.temperature + s.rotational_temperature.expect("rough"))
+    };
+    let e0 = energy(&elastic.samples()[0]);
+    let drift = elastic
+        .samples()
+        .iter()
+        .map(|s| (energy(s) / e0 - 1.0).abs())
+        .fold(0.0, f64::max);
+    let last = elastic.samples().last().expect("samples");
+    let equipartition = last.rotational_temperature.expect("rough") / last.temperature;
+    let smooth = run(SMOOTH_ALPHA, -1.0, "")?;
+    assert!(smooth
+        .samples()
+        .iter()
+        .all(|s| s.rotational_temperature.is_none()));
+    let points: Vec<(f64, f64)> = smooth
+        .samples()
+        .iter()
+        .filter(|s| s.collisions_per_particle >= 10.0)
+        .map(|s| (s.collisions_per_particle, -s.temperature.ln()))
+        .collect();
+    Ok((drift, equipartition, slope(&points)))
+}
+
+/// The normal restitution of the smooth limit.
+const SMOOTH_ALPHA: f64 = 0.8;
+
 fn hcs(ctx: &Context) -> Result<Outcome> {
     let id = "rough-hcs";
     let alphas: &[f64] = if ctx.quick {
@@ -285,6 +333,24 @@ fn hcs(ctx: &Context) -> Result<Outcome> {
         largest.1,
         largest.2
     );
+    let (drift, equipartition, smooth_cooling) = limits(ctx.quick)?;
+    let _ = write!(
+        md,
+        "\n**Limits.** alpha = beta = 1 from T_rot = 0: the energy per particle \
+         3 (T_tr + T_rot) / 2 changed by at most {drift:.1e} (relative) over 20 collisions per \
+         particle while rotation took its share: T_rot / T_tr = {} at the end (equipartition: \
+         1). beta = -1 (smooth, alpha = {SMOOTH_ALPHA}): no rotation is exchanged (no \
+         rotational column; the spins of a rough engine stay bit for bit, \
+         crates/gas/tests/rough.rs), and the translational cooling per collision is {} \
+         against Haff's Maxwellian (1 - alpha^2)/3 = {} (its first Sonine correction, \
+         (1 + 3 a2 / 16) with van Noije & Ernst's a2, gives {}).\n",
+        sig(equipartition),
+        sig(smooth_cooling),
+        sig((1.0 - SMOOTH_ALPHA * SMOOTH_ALPHA) / 3.0),
+        sig((1.0 - SMOOTH_ALPHA * SMOOTH_ALPHA) / 3.0
+            * (1.0 + 3.0 * gas::theory::van_noije_ernst_a2::<3>(SMOOTH_ALPHA) / 16.0)
+            / (1.0 - gas::theory::van_noije_ernst_a2::<3>(SMOOTH_ALPHA) / 16.0))
+    );
     let files = vec![
         ctx.csv(
             id,
@@ -316,6 +382,9 @@ fn hcs(ctx: &Context) -> Result<Outcome> {
         values: vec![
             ("largest_deviation", largest.0),
             ("engines_apart_sigma", engines_apart),
+            ("elastic_energy_drift", drift),
+            ("elastic_equipartition", equipartition),
+            ("smooth_cooling_per_collision", smooth_cooling),
         ],
         files,
     })
