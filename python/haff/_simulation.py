@@ -191,7 +191,8 @@ class Simulation:
     def timeseries(self) -> Dict[str, np.ndarray]:
         """The samples so far: column name -> array, with the columns of
         ``timeseries.csv`` (time, collisions_per_particle, temperature, a2, energy_lost,
-        pressure, events; bath_temperature with a stochastic law)."""
+        pressure, events; bath_temperature with a stochastic law; rotational_temperature
+        for rough particles, ``collision.tangential_restitution`` > -1)."""
         return self._sim.timeseries()
 
     @property

@@ -207,6 +207,10 @@ impl PySimulation {
             let baths = column(|s| s.bath_temperature.unwrap_or(f64::NAN));
             out.set_item("bath_temperature", PyArray1::from_vec(py, baths))?;
         }
+        if samples.iter().any(|s| s.rotational_temperature.is_some()) {
+            let rotation = column(|s| s.rotational_temperature.unwrap_or(f64::NAN));
+            out.set_item("rotational_temperature", PyArray1::from_vec(py, rotation))?;
+        }
         Ok(out)
     }
 
@@ -240,6 +244,10 @@ impl PySimulation {
         }
         let species: Vec<i64> = rows.iter().map(|s| s.species as i64).collect();
         out.set_item("species", PyArray1::from_vec(py, species))?;
+        if rows.iter().any(|s| s.rotational_temperature.is_some()) {
+            let rotation = column(|s| s.rotational_temperature.unwrap_or(f64::NAN));
+            out.set_item("rotational_temperature", PyArray1::from_vec(py, rotation))?;
+        }
         Ok(Some(out))
     }
 

@@ -35,6 +35,18 @@ CONFIGS = {
         "collision": {"law": "constant", "restitution": 0.7},
         "run": {"engine": "dsmc", "collisions_per_particle": 30.0, "samples": 6},
     },
+    "rough-dsmc-2d": {
+        "system": {"dimension": 2, "particles": 2000, "packing_fraction": 0.05, "seed": 9,
+                   "inertia": 0.5, "rotational_temperature": 0.0},
+        "collision": {"law": "constant", "restitution": 0.8,
+                      "tangential_restitution": 0.4, "friction": 0.2},
+        "run": {"engine": "dsmc", "collisions_per_particle": 10.0, "samples": 6},
+    },
+    "rough-event-driven": {
+        "system": {"particles": 500, "packing_fraction": 0.1, "seed": 7, "inertia": 0.4},
+        "collision": {"law": "constant", "restitution": 0.8, "tangential_restitution": 0.0},
+        "run": {"collisions_per_particle": 10.0, "samples": 5},
+    },
     "soft-sphere": {
         "system": {"particles": 300, "packing_fraction": 0.05, "seed": 2},
         "collision": {"law": "viscoelastic", "young": 1e5, "poisson": 0.3,
@@ -115,6 +127,15 @@ def test_timeseries_frame():
     assert isinstance(frame, pandas.DataFrame)
     assert list(frame.columns) == list(sim.timeseries)
     assert len(frame) == 6
+
+
+def test_rough_particles_report_their_rotational_temperature():
+    """Rough particles add rotational_temperature to the time series (from rest: 0, then
+    rising); smooth ones have no such column."""
+    sim = haff.Simulation(CONFIGS["rough-dsmc-2d"]).run(progress=False)
+    rotation = sim.timeseries["rotational_temperature"]
+    assert rotation[0] == 0.0 and (rotation[1:] > 0).all()
+    assert "rotational_temperature" not in haff.Simulation(CONFIGS["dsmc-blocks"]).timeseries
 
 
 def test_species_timeseries_equals_species_csv(tmp_path, cli):
@@ -327,6 +348,10 @@ def test_write_gives_the_files_of_the_command(tmp_path, cli):
         ({"collision": {"law": "viscoelastic", "material": "cheese",
                         "dissipative_constant": 1e-9}}, "collision.material"),
         ({"run": {"engine": "soft-sphere"}}, "collision.law"),
+        ({"collision": {"tangential_restitution": 1.5}}, "collision.tangential_restitution"),
+        ({"collision": {"friction": 0.3}}, "collision.friction"),
+        ({"system": {"inertia": 0.9}, "collision": {"tangential_restitution": 0.5}},
+         "system.inertia"),
     ],
 )
 def test_bad_configs_name_the_key(change, key):

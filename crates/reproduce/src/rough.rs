@@ -202,7 +202,7 @@ fn hcs(ctx: &Context) -> Result<Outcome> {
     } else {
         &[-0.8, -0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6, 0.8, 1.0]
     };
-    let (seeds, collisions) = if ctx.quick { (3, 16.0) } else { (4, 40.0) };
+    let (seeds, collisions) = if ctx.quick { (3, 16.0) } else { (8, 40.0) };
     let mut rows = Vec::new();
     for method in [Method::EventDriven, Method::Dsmc] {
         for &alpha in alphas {
