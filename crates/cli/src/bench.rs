@@ -54,3 +54,32 @@ pub(crate) fn median_min_max(mut sample: Vec<f64>) -> [f64; 3] {
     let median = (sample[(n - 1) / 2] + sample[n / 2]) / 2.0;
     [median, sample[0], sample[n - 1]]
 }
+
+/// `--tangential-restitution`: the law made rough (None: smooth, the law as given).
+pub(crate) fn rough_law(
+    law: Box<dyn restitution::Restitution>,
+    beta: &Option<String>,
+) -> crate::CliResult<(Box<dyn restitution::Restitution>, bool)> {
+    let Some(text) = beta else {
+        return Ok((law, false));
+    };
+    let beta = crate::output::parse_number(
+        "--tangential-restitution",
+        text,
+        crate::output::Allowed::between("tangential restitution", -1.0, 1.0),
+    )?;
+    let rule = restitution::rough::Tangential::new(beta, None)
+        .map_err(|e| crate::CliError::argument("--tangential-restitution", e))?;
+    let rough = restitution::rough::Rough::new(law, rule)
+        .map_err(|e| crate::CliError::argument("--tangential-restitution", e))?;
+    Ok((Box::new(rough), true))
+}
+
+/// Solid spheres' spins at the temperature of the gas's start (T = 1), for a rough bench.
+pub(crate) fn spin<const D: usize>(engine: &mut dyn gas::Engine<D>, seed: u64) -> crate::CliResult {
+    let system = engine.system().clone();
+    let rotation = gas::rotation::Rotation::thermal(&system, vec![0.4; system.len()], 1.0, seed);
+    engine
+        .set_rotation(Some(rotation))
+        .map_err(|e| crate::CliError::argument("--tangential-restitution", e))
+}

@@ -387,6 +387,10 @@ pub struct BenchEmdArgs {
     /// Constant coefficient of restitution, 0 < e <= 1.
     #[arg(long, default_value = "1", allow_hyphen_values = true)]
     pub restitution: String,
+    /// Rough particles: the tangential restitution beta, -1 <= beta <= 1 (solid spheres,
+    /// q = 0.4, spins drawn at the temperature; absent: smooth).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tangential_restitution: Option<String>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,
@@ -425,6 +429,10 @@ pub struct BenchDsmcArgs {
     /// Worker threads (default: all cores; 1 for the serial exact scheme).
     #[arg(long, allow_hyphen_values = true)]
     pub threads: Option<String>,
+    /// Rough particles: the tangential restitution beta, -1 <= beta <= 1 (solid spheres,
+    /// q = 0.4, spins drawn at the temperature; absent: smooth).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tangential_restitution: Option<String>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Table)]
     pub format: ReportFormat,

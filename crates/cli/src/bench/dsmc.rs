@@ -59,6 +59,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         )?;
         Box::new(Constant::new(eps).map_err(|e| CliError::library("--law", e))?)
     };
+    let (law, rough) = super::rough_law(law, &args.tangential_restitution)?;
     let threads = match &args.threads {
         Some(t) => parse_count("--threads", t, 1, 4096)?,
         // The exact scheme is serial: one thread unless asked otherwise.
@@ -92,8 +93,11 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
             seed: 1,
             baths: None,
         };
-        let engine = sim::engines::build(&spec, system, setup)
+        let mut engine = sim::engines::build(&spec, system, setup)
             .map_err(|e| CliError::argument("--particles", e))?;
+        if rough {
+            super::spin(engine.as_mut(), 1 + repeat as u64)?;
+        }
         // A warm-up of one collision per particle, then the timed collisions, through the
         // run driver (as `haff run` advances an engine).
         let timed = 1.0 + 2.0 * collisions as f64 / n as f64;
@@ -121,6 +125,7 @@ pub fn dsmc(args: &crate::BenchDsmcArgs) -> CliResult {
         "packing_fraction": phi,
         "scheme": scheme_name,
         "law": law_name,
+        "tangential_restitution": args.tangential_restitution,
         "threads": threads,
         "collisions_per_repeat": collisions,
         "repeats": repeats,

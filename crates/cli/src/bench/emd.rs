@@ -70,6 +70,7 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
             let law = Box::new(
                 restitution::Constant::new(restitution).map_err(|e| CliError::library("law", e))?,
             );
+            let (law, rough) = super::rough_law(law, &args.tangential_restitution)?;
             let tuning = sim::engines::Tuning {
                 cell_width: width,
                 sorter: kind,
@@ -80,6 +81,9 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
                 engine
                     .set_shear(shear)
                     .map_err(|e| CliError::argument("--shear-rate", e))?;
+            }
+            if rough {
+                super::spin(&mut engine, 1 + repeat as u64)?;
             }
             for _ in 0..events {
                 engine.step();
@@ -128,6 +132,7 @@ pub fn emd(args: &crate::BenchEmdArgs) -> CliResult {
         "cell_width": width,
         "restitution": restitution,
         "shear_rate": shear.map(|s| s.rate),
+        "tangential_restitution": args.tangential_restitution,
         "events_per_repeat": events,
         "repeats": repeats,
         "calendar": first.calendar,
