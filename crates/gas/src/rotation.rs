@@ -108,7 +108,7 @@ impl Rotation {
             return Err(Error::out_of_range(
                 format!("inertia[{i}]"),
                 self.inertia[i],
-                &format!("0 < inertia <= {largest:.6}"),
+                format!("0 < inertia <= {largest:.6}"),
             ));
         }
         if let Some(index) = self
@@ -182,13 +182,33 @@ fn squared(w: &[f64; 3]) -> f64 {
     w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
 }
 
+/// What the tangential kick needs of a particle's mass, radius a and inertia factor q, as
+/// reciprocals (an engine computes them once per species, or per collision): 1/m,
+/// 1/(q m) and 1/(q m a).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Inverses {
+    pub mass: f64,
+    pub inertia_mass: f64,
+    pub arm: f64,
+}
+
+impl Inverses {
+    pub fn of(mass: f64, radius: f64, inertia: f64) -> Self {
+        let inertia_mass = 1.0 / (inertia * mass);
+        Inverses {
+            mass: 1.0 / mass,
+            inertia_mass,
+            arm: inertia_mass / radius,
+        }
+    }
+}
+
 /// One particle at a rough contact, as an engine holds it.
 pub(crate) struct Spinning<'a, const D: usize> {
     pub velocity: &'a mut Vector<D>,
     pub angular: &'a mut [f64; 3],
-    pub mass: f64,
     pub radius: f64,
-    pub inertia: f64,
+    pub inverses: Inverses,
 }
 
 /// The tangential half of a collision whose normal impulse `normal_impulse` (its size)
@@ -214,20 +234,20 @@ pub(crate) fn tangential_kick<const D: usize>(
     if speed == 0.0 {
         return Kick::default();
     }
-    let k_t = 1.0 / i.mass + 1.0 / j.mass + 1.0 / (i.inertia * i.mass) + 1.0 / (j.inertia * j.mass);
+    let (ii, ij) = (i.inverses, j.inverses);
+    let k_t = ii.mass + ij.mass + ii.inertia_mass + ij.inertia_mass;
     let kick = rule.impulse(speed, normal_impulse, k_t);
     let scale = kick.size / speed;
     // The impulse on i, -|P_t| g_t / |g_t|, and its torque about i's centre over a_i.
     let p: [f64; 3] = g_t.map(|x| -scale * x);
     let torque = cross(&n3, &p);
-    for k in 0..D {
-        i.velocity[k] += p[k] / i.mass;
-        j.velocity[k] -= p[k] / j.mass;
+    for (k, pk) in p.iter().enumerate().take(D) {
+        i.velocity[k] += pk * ii.mass;
+        j.velocity[k] -= pk * ij.mass;
     }
-    let (ti, tj) = (i.inertia * i.mass * i.radius, j.inertia * j.mass * j.radius);
-    for k in 0..3 {
-        i.angular[k] += torque[k] / ti;
-        j.angular[k] += torque[k] / tj;
+    for (k, tk) in torque.iter().enumerate() {
+        i.angular[k] += tk * ii.arm;
+        j.angular[k] += tk * ij.arm;
     }
     Kick {
         energy_lost: kick.energy_lost,
@@ -310,16 +330,14 @@ mod tests {
                 Spinning {
                     velocity: &mut vi,
                     angular: &mut wi,
-                    mass: 1.3,
                     radius: 0.7,
-                    inertia: 0.4,
+                    inverses: Inverses::of(1.3, 0.7, 0.4),
                 },
                 Spinning {
                     velocity: &mut vj,
                     angular: &mut wj,
-                    mass: 0.6,
                     radius: 0.45,
-                    inertia: 2.0 / 3.0,
+                    inverses: Inverses::of(0.6, 0.45, 2.0 / 3.0),
                 },
             );
             for k in 0..3 {
@@ -339,9 +357,9 @@ mod tests {
                 friction.is_some(),
                 "the small friction makes it slide"
             );
-            for k in 0..3 {
+            for (k, to_j) in kick.to_j.iter().enumerate() {
                 let gained = bodies[1].mass * (reference.velocities[1][k] - after[1][k]);
-                assert!((kick.to_j[k] - gained).abs() < 1e-14);
+                assert!((to_j - gained).abs() < 1e-14);
             }
         }
     }

@@ -43,6 +43,8 @@ enum Store<const D: usize> {
 struct Spin {
     tangential: Option<restitution::rough::Tangential>,
     inertia: Vec<f64>,
+    /// Each species' reciprocals of mass and inertia (the kick's, computed once).
+    inverses: Vec<crate::rotation::Inverses>,
     sliding: u64,
 }
 
@@ -107,7 +109,7 @@ fn collider<'a>(
         rough: spin.and_then(|spin| {
             Some(kernel::Rough {
                 rule: spin.tangential.as_ref()?,
-                inertia: &spin.inertia,
+                inverses: &spin.inverses,
             })
         }),
     }

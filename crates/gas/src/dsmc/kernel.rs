@@ -226,11 +226,12 @@ pub(crate) struct Collider<'a> {
     pub rough: Option<Rough<'a>>,
 }
 
-/// The tangential half of the collisions of rough particles.
+/// The tangential half of the collisions of rough particles: the rule and each species'
+/// reciprocals of mass and inertia.
 #[derive(Clone, Copy)]
 pub(crate) struct Rough<'a> {
     pub rule: &'a restitution::rough::Tangential,
-    pub inertia: &'a [f64],
+    pub inverses: &'a [crate::rotation::Inverses],
 }
 
 /// A window of the exact process: from `start` to `end` (may be infinite), at most
@@ -430,7 +431,7 @@ impl Collider<'_> {
     /// `normal` along `e` (`crate::rotation::tangential_kick`), at contact distance
     /// `sigma`.
     #[allow(clippy::too_many_arguments)]
-    #[inline(never)]
+    #[inline]
     fn rough_kick<const D: usize, R: Record<D>>(
         &self,
         rough: &Rough,
@@ -455,16 +456,14 @@ impl Collider<'_> {
             crate::rotation::Spinning {
                 velocity: va,
                 angular: wa,
-                mass: s.masses[sa],
                 radius: s.radii[sa],
-                inertia: rough.inertia[sa],
+                inverses: rough.inverses[sa],
             },
             crate::rotation::Spinning {
                 velocity: vb,
                 angular: wb,
-                mass: s.masses[sb],
                 radius: s.radii[sb],
-                inertia: rough.inertia[sb],
+                inverses: rough.inverses[sb],
             },
         );
         tally.counters().energy_lost += kick.energy_lost;

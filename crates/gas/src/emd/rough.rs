@@ -7,7 +7,7 @@
 
 use super::EventDriven;
 use crate::error::{Error, Result};
-use crate::rotation::{tangential_kick, Rotation, Spinning};
+use crate::rotation::{tangential_kick, Inverses, Rotation, Spinning};
 use crate::system::Vector;
 
 impl<const D: usize> EventDriven<D> {
@@ -57,16 +57,14 @@ impl<const D: usize> EventDriven<D> {
             Spinning {
                 velocity: &mut a.velocity,
                 angular: &mut wa,
-                mass: a.mass,
                 radius: a.radius,
-                inertia: rotation.inertia[i],
+                inverses: Inverses::of(a.mass, a.radius, rotation.inertia[i]),
             },
             Spinning {
                 velocity: &mut b.velocity,
                 angular: &mut wb,
-                mass: b.mass,
                 radius: b.radius,
-                inertia: rotation.inertia[j],
+                inverses: Inverses::of(b.mass, b.radius, rotation.inertia[j]),
             },
         );
         self.particles[i].velocity = a.velocity;

@@ -11,8 +11,8 @@
 //! u = (sigma / 2) (w_i + w_j) x n the rolling part of the contact velocity:
 //!
 //! Delta E_tr = (m/4) [-(1 - alpha^2) g_n^2 - 4 eta (1 - eta) |g_perp|^2 + 4 eta^2 |u|^2]
-//! + a cross term g_perp . u,
-//! Delta E_rot = m [-eta g_t . u + (eta^2 / q) |g_t|^2],  g_t = g_perp + u.
+//! plus a cross term in g_perp . u, and
+//! Delta E_rot = m [-eta g_t . u + (eta^2 / q) |g_t|^2] with g_t = g_perp + u.
 //!
 //! Averaged over collisions (weight g_n): <g_n^2> = 4 T_tr / m, <|g_perp|^2> =
 //! 2 (d - 1) T_tr / m, <|u|^2> = 2 (d - 1) T_rot / (q m), cross terms 0. With

@@ -7,7 +7,7 @@ use super::{HomogeneousDsmc, Spin, Store};
 use crate::dsmc::kernel::{Spun, Tagged};
 use crate::engine::Engine;
 use crate::error::{Error, Result};
-use crate::rotation::Rotation;
+use crate::rotation::{Inverses, Rotation};
 use crate::system::Vector;
 
 impl<const D: usize> HomogeneousDsmc<D> {
@@ -40,9 +40,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
                     return Err(Error::out_of_range(
                         format!("inertia[{i}]"),
                         rotation.inertia[i],
-                        &format!(
-                            "{q}, the inertia factor of its species (one per species in DSMC)"
-                        ),
+                        format!("{q}, the inertia factor of its species (one per species in DSMC)"),
                     ))
                 }
             }
@@ -86,9 +84,14 @@ impl<const D: usize> HomogeneousDsmc<D> {
                     .collect(),
             };
         self.store = Store::Rough(records, Vec::new());
+        let species = &self.core.species;
+        let inverses = (0..species.len())
+            .map(|s| Inverses::of(species.masses[s], species.radii[s], inertia[s]))
+            .collect();
         self.core.spin = Some(Spin {
             tangential: self.core.law.tangential().copied(),
             inertia,
+            inverses,
             sliding,
         });
         // The classes of the exact scheme hold the records' order: sort anew.
