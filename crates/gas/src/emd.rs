@@ -209,6 +209,9 @@ pub struct EventDriven<const D: usize> {
     tracks: Option<crate::tail::Tracks>,
     /// The law's tangential rule (rough spheres; module `rough`).
     tangential: Option<restitution::rough::Tangential>,
+    /// A rule per pair of kinds and each particle's kind in it (mixtures whose pairs
+    /// differ in roughness).
+    tangential_pairs: Option<(restitution::rough::TangentialPairs, Vec<u16>)>,
     /// The spheres' rotation ([`EventDriven::set_rotation`]; present with a rough law).
     rotation: Option<crate::rotation::Rotation>,
 }
@@ -364,10 +367,12 @@ impl<const D: usize> EventDriven<D> {
             virial: None,
             tracks: None,
             tangential: None,
+            tangential_pairs: None,
             rotation: None,
         };
         // Rough spheres start as solid spheres at rest until given their rotation.
         engine.tangential = engine.law.tangential().copied();
+        engine.tangential_pairs = rough::kinds_of(engine.law.as_ref(), &engine.particles)?;
         if engine.tangential.is_some() {
             engine.rotation = Some(crate::rotation::Rotation::at_rest(n, 0.4));
         }

@@ -42,6 +42,11 @@ pub trait Restitution: Send + Sync + fmt::Debug {
     fn tangential(&self) -> Option<&crate::rough::Tangential> {
         None
     }
+    /// A tangential rule per pair of particle kinds ([`crate::rough::TangentialPairs`]);
+    /// `None`: [`Restitution::tangential`] for every pair.
+    fn tangential_pairs(&self) -> Option<&crate::rough::TangentialPairs> {
+        None
+    }
 }
 
 impl Clone for Box<dyn Restitution> {

@@ -121,12 +121,76 @@ impl Tangential {
     }
 }
 
+/// A tangential rule per pair of particle kinds (a mixture whose pairs differ in
+/// roughness): kinds named by (radius, mass) as in [`Pairwise`], rules symmetric.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentialPairs {
+    kinds: Vec<(f64, f64)>,
+    /// Row-major, kinds x kinds.
+    rules: Vec<Tangential>,
+}
+
+impl TangentialPairs {
+    /// Kinds (radius, mass), distinct, and `rules[a][b]` (square, symmetric).
+    pub fn new(kinds: Vec<(f64, f64)>, rules: Vec<Vec<Tangential>>) -> Result<Self> {
+        let s = kinds.len();
+        if s == 0 || rules.len() != s || rules.iter().any(|row| row.len() != s) {
+            return Err(Error::out_of_range(
+                "tangential_restitution",
+                rules.len(),
+                &format!("a square matrix with one row per kind ({s})"),
+            ));
+        }
+        for a in 0..s {
+            if kinds[..a].contains(&kinds[a]) {
+                return Err(Error::out_of_range(
+                    "kinds",
+                    format!("{:?}", kinds[a]),
+                    "kinds that differ in radius or mass",
+                ));
+            }
+            for b in 0..s {
+                if rules[a][b] != rules[b][a] {
+                    return Err(Error::out_of_range(
+                        &format!("tangential_restitution[{a}][{b}]"),
+                        rules[a][b].beta,
+                        "a symmetric matrix",
+                    ));
+                }
+            }
+        }
+        Ok(TangentialPairs {
+            kinds,
+            rules: rules.into_iter().flatten().collect(),
+        })
+    }
+
+    /// The kinds, (radius, mass) each.
+    pub fn kinds(&self) -> &[(f64, f64)] {
+        &self.kinds
+    }
+
+    /// The index of the kind of a particle of `radius` and `mass`.
+    pub fn kind_of(&self, radius: f64, mass: f64) -> Option<usize> {
+        self.kinds.iter().position(|&k| k == (radius, mass))
+    }
+
+    /// The rule of kinds `a` and `b`.
+    #[inline]
+    pub fn rule(&self, a: usize, b: usize) -> &Tangential {
+        &self.rules[a * self.kinds.len() + b]
+    }
+}
+
 /// A law of rough spheres: any normal law (constant, dash-pot, viscoelastic, pairwise)
-/// and the tangential rule, which engines take through [`Restitution::tangential`].
+/// and the tangential rule — one for all pairs, or one per pair of kinds — which
+/// engines take through [`Restitution::tangential`] and
+/// [`Restitution::tangential_pairs`].
 #[derive(Debug, Clone)]
 pub struct Rough {
     normal: Box<dyn Restitution>,
     tangential: Tangential,
+    pairs: Option<TangentialPairs>,
 }
 
 impl Rough {
@@ -139,7 +203,19 @@ impl Rough {
                 "-1 (smooth) with a stochastic law",
             ));
         }
-        Ok(Rough { normal, tangential })
+        Ok(Rough {
+            normal,
+            tangential,
+            pairs: None,
+        })
+    }
+
+    /// A rule per pair of kinds (`tangential()` is then the first kind's with itself).
+    pub fn with_pairs(normal: Box<dyn Restitution>, pairs: TangentialPairs) -> Result<Self> {
+        let first = *pairs.rule(0, 0);
+        let mut law = Rough::new(normal, first)?;
+        law.pairs = Some(pairs);
+        Ok(law)
     }
 }
 
@@ -152,6 +228,18 @@ impl Restitution for Rough {
         self.normal.duration(speed)
     }
     fn describe(&self) -> String {
+        if let Some(pairs) = &self.pairs {
+            let s = pairs.kinds.len();
+            let betas: Vec<String> = (0..s)
+                .flat_map(|a| (a..s).map(move |b| (a, b)))
+                .map(|(a, b)| format!("{a}-{b}: {}", pairs.rule(a, b).beta))
+                .collect();
+            return format!(
+                "{}, rough (beta {})",
+                self.normal.describe(),
+                betas.join(", ")
+            );
+        }
         let friction = self
             .tangential
             .friction
@@ -173,6 +261,9 @@ impl Restitution for Rough {
     }
     fn tangential(&self) -> Option<&Tangential> {
         Some(&self.tangential)
+    }
+    fn tangential_pairs(&self) -> Option<&TangentialPairs> {
+        self.pairs.as_ref()
     }
 }
 

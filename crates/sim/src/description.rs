@@ -555,9 +555,10 @@ pub struct CollisionSection {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub table: Option<String>,
     /// Rough particles: the tangential restitution beta in [-1, 1] (-1: smooth, the
-    /// default; `restitution::rough`).
+    /// default; `restitution::rough`), one for all pairs or a symmetric matrix with a row
+    /// per species of `system.species`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub tangential_restitution: Option<f64>,
+    pub tangential_restitution: Option<RestitutionValue>,
     /// Rough particles: Coulomb's friction coefficient of Walton's model (the contact
     /// slides where sticking would need a tangential impulse beyond mu times the normal
     /// one).

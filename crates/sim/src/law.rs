@@ -10,12 +10,21 @@ use std::path::Path;
 /// `collision.tangential_restitution` says so (`restitution::rough::Rough`).
 pub fn of_plan(plan: &crate::Plan) -> Result<Box<dyn Restitution>> {
     let law = build(&plan.law, plan.max_impact_speed())?;
+    let fail = |e| Error::law("collision.tangential_restitution", e);
     Ok(match &plan.rough {
         None => law,
-        Some(rough) => Box::new(
-            restitution::rough::Rough::new(law, rough.tangential())
-                .map_err(|e| Error::law("collision.tangential_restitution", e))?,
-        ),
+        Some(rough) if !rough.per_pair => {
+            Box::new(restitution::rough::Rough::new(law, rough.tangential(0, 0)).map_err(fail)?)
+        }
+        Some(rough) => {
+            let s = plan.species.len();
+            let rules = (0..s)
+                .map(|a| (0..s).map(|b| rough.tangential(a, b)).collect())
+                .collect();
+            let pairs =
+                restitution::rough::TangentialPairs::new(plan.kinds(), rules).map_err(fail)?;
+            Box::new(restitution::rough::Rough::with_pairs(law, pairs).map_err(fail)?)
+        }
     })
 }
 

@@ -22,7 +22,7 @@ pub fn theory(plan: &Plan, samples: &[Sample]) -> Option<Value> {
     let theory = RoughMaxwellian {
         dimension: s.dimension as usize,
         alpha,
-        beta: rough.beta,
+        beta: rough.beta(),
         inertia: rough.inertia[0],
     };
     let hcs = theory.hcs()?;
@@ -31,7 +31,7 @@ pub fn theory(plan: &Plan, samples: &[Sample]) -> Option<Value> {
             uncorrelated (Huthmann & Zippelius 1997; Luding, Huthmann, McNamara & Zippelius \
             1998); the first Sonine corrections are not included",
         "alpha": alpha,
-        "beta": rough.beta,
+        "beta": rough.beta(),
         "inertia": rough.inertia[0],
         "hcs_ratio": hcs.ratio,
         "hcs_cooling_per_collision": hcs.cooling_per_collision,

@@ -73,7 +73,7 @@ fn a_blocks_run_on_1_2_4_ranks_records_the_same() {
 #[test]
 fn a_rough_blocks_run_spreads_and_resumes() {
     let mut d = blocks("");
-    d.collision.tangential_restitution = Some(0.4);
+    d.collision.tangential_restitution = Some(sim::description::RestitutionValue::One(0.4));
     d.collision.friction = Some(0.3);
     d.system.species.as_mut().unwrap()[1].inertia = Some(0.25);
     assert_same_on_ranks(&d);
@@ -225,7 +225,7 @@ fn runs_that_cannot_spread_are_refused() {
 #[test]
 fn a_mixture_resumes_its_species_collisions_from_any_sample() {
     let mut rough = blocks("");
-    rough.collision.tangential_restitution = Some(0.4);
+    rough.collision.tangential_restitution = Some(sim::description::RestitutionValue::One(0.4));
     rough.system.species.as_mut().unwrap()[1].inertia = Some(0.25);
     for d in [blocks(""), rough] {
         let rows = |s: &Simulation| format!("{:?}", s.species_samples());

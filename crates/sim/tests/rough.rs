@@ -174,6 +174,42 @@ fn species_rotate_with_their_own_inertia() {
     }
 }
 
+/// A tangential restitution per pair of species: with only the pairs of species 0 rough
+/// (beta_01 = beta_11 = -1) the spins of species 1 are never touched, so its rotational
+/// temperature stays its start's bit for bit, while species 0's changes (the oracle: the
+/// rule's beta = -1 is no tangential impulse).
+#[test]
+fn a_matrix_of_tangential_restitutions_acts_per_pair() {
+    for engine in ENGINES {
+        let text = format!(
+            "[system]\ndimension = 3\nparticles = 600\npacking_fraction = 0.1\nseed = 2\n\
+             species = [{{ diameter = 1.0, mass = 1.0, fraction = 0.5 }}, \
+             {{ diameter = 1.5, mass = 2.0, fraction = 0.5 }}]\n\
+             [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+             tangential_restitution = [[0.5, -1.0], [-1.0, -1.0]]\n\
+             [run]\n{engine}\ncollisions_per_particle = 4\nsamples = 4\n"
+        );
+        let mut run = Simulation::from_toml(&text, "pairs.toml".as_ref()).unwrap();
+        run.run(&mut (), None).unwrap();
+        let rows = run.species_samples().unwrap();
+        let (first, last) = (&rows[..2], &rows[rows.len() - 2..]);
+        // The same spins: equal to round-off (DSMC blocks permute the particles every
+        // step, so the sum over species 1 runs in another order).
+        let (before, after) = (
+            first[1].rotational_temperature.unwrap(),
+            last[1].rotational_temperature.unwrap(),
+        );
+        assert!(
+            (after - before).abs() < 1e-13 * before,
+            "{engine}: species 1 keeps its spins: {before} -> {after}"
+        );
+        assert_ne!(
+            first[0].rotational_temperature,
+            last[0].rotational_temperature
+        );
+    }
+}
+
 /// Bad input names the key and the range; nothing runs.
 #[test]
 fn bad_rough_keys_are_refused_by_name() {
@@ -241,6 +277,45 @@ fn bad_rough_keys_are_refused_by_name() {
             "system.rotational_temperature",
         ),
     ];
+    let mixture = "species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                   { diameter = 1.5, mass = 2.0, fraction = 0.5 }]";
+    let matrices: [(&str, &str, &str); 4] = [
+        (
+            "",
+            "tangential_restitution = [[0.5]]",
+            "collision.tangential_restitution",
+        ),
+        (
+            mixture,
+            "tangential_restitution = [[0.5, 0.1]]",
+            "collision.tangential_restitution",
+        ),
+        (
+            mixture,
+            "tangential_restitution = [[0.5, 0.1], [0.2, 0.3]]",
+            "collision.tangential_restitution[0][1]",
+        ),
+        (
+            mixture,
+            "tangential_restitution = [[0.5, 0.1], [0.1, 1.3]]",
+            "collision.tangential_restitution[1][1]",
+        ),
+    ];
+    for (system, collision, key) in matrices {
+        let text = gas(
+            3,
+            "engine = \"event-driven\"",
+            system,
+            &format!("{collision}\n"),
+        );
+        let error = Simulation::from_toml(&text, "bad.toml".as_ref())
+            .err()
+            .expect("refused");
+        assert!(
+            error.is_input() && error.to_string().contains(key),
+            "{collision}: {error}"
+        );
+    }
     for (system, collision, dimension, key) in cases {
         let text = gas(
             dimension,

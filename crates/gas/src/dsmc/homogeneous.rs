@@ -41,7 +41,9 @@ enum Store<const D: usize> {
 /// Rough particles: the law's tangential rule (none: the spins rotate freely), each
 /// species' inertia factor, and the contacts that slid.
 struct Spin {
-    tangential: Option<restitution::rough::Tangential>,
+    /// The rule of each pair of species (row-major; one entry: one rule for all; empty:
+    /// a smooth law, the spins rotate freely).
+    tangential: Vec<restitution::rough::Tangential>,
     inertia: Vec<f64>,
     /// Each species' reciprocals of mass and inertia (the kick's, computed once).
     inverses: Vec<crate::rotation::Inverses>,
@@ -106,12 +108,12 @@ fn collider<'a>(
         law,
         species,
         pairs,
-        rough: spin.and_then(|spin| {
-            Some(kernel::Rough {
-                rule: spin.tangential.as_ref()?,
+        rough: spin
+            .filter(|spin| !spin.tangential.is_empty())
+            .map(|spin| kernel::Rough {
+                rules: &spin.tangential,
                 inverses: &spin.inverses,
-            })
-        }),
+            }),
     }
 }
 

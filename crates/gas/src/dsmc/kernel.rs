@@ -226,11 +226,12 @@ pub(crate) struct Collider<'a> {
     pub rough: Option<Rough<'a>>,
 }
 
-/// The tangential half of the collisions of rough particles: the rule and each species'
+/// The tangential half of the collisions of rough particles: the rule of each pair of
+/// species (row-major; one entry for one rule of all pairs) and each species'
 /// reciprocals of mass and inertia.
 #[derive(Clone, Copy)]
 pub(crate) struct Rough<'a> {
-    pub rule: &'a restitution::rough::Tangential,
+    pub rules: &'a [restitution::rough::Tangential],
     pub inverses: &'a [crate::rotation::Inverses],
 }
 
@@ -448,8 +449,12 @@ impl Collider<'_> {
         };
         let relative: Vector<D> = std::array::from_fn(|k| va[k] - vb[k]);
         let s = self.species;
+        let rule = match rough.rules {
+            [one] => one,
+            rules => &rules[sa * s.len() + sb],
+        };
         let kick = crate::rotation::tangential_kick(
-            rough.rule,
+            rule,
             e,
             &relative,
             normal,

@@ -5,7 +5,7 @@
 //! Walls are smooth (no torque), the thermostats heat translation only, and a collision
 //! the TC model makes elastic is smooth as well.
 
-use super::EventDriven;
+use super::{EventDriven, Particle};
 use crate::error::{Error, Result};
 use crate::rotation::{tangential_kick, Inverses, Rotation, Spinning};
 use crate::system::Vector;
@@ -45,6 +45,10 @@ impl<const D: usize> EventDriven<D> {
         let (Some(rule), Some(rotation)) = (&self.tangential, &mut self.rotation) else {
             return;
         };
+        let rule = match &self.tangential_pairs {
+            None => rule,
+            Some((table, kinds)) => table.rule(kinds[i] as usize, kinds[j] as usize),
+        };
         let (mut a, mut b) = (self.particles[i], self.particles[j]);
         let mut relative: Vector<D> = std::array::from_fn(|k| a.velocity[k] - b.velocity[k]);
         relative[0] -= jump;
@@ -77,4 +81,34 @@ impl<const D: usize> EventDriven<D> {
             virial.add_tangential(distance, n, &kick.to_j);
         }
     }
+}
+
+/// The tangential rules per pair of kinds of a law that has them, and each particle's
+/// kind (by its radius and mass); fails for a particle of no kind.
+pub(super) fn kinds_of<const D: usize>(
+    law: &dyn restitution::Restitution,
+    particles: &[Particle<D>],
+) -> Result<Option<(restitution::rough::TangentialPairs, Vec<u16>)>> {
+    let Some(table) = law.tangential_pairs() else {
+        return Ok(None);
+    };
+    let kinds = particles
+        .iter()
+        .map(|p| {
+            table
+                .kind_of(p.radius, p.mass)
+                .map(|k| k as u16)
+                .ok_or_else(|| {
+                    Error::out_of_range(
+                        "tangential_restitution",
+                        format!(
+                            "no rule for particles of radius {} and mass {}",
+                            p.radius, p.mass
+                        ),
+                        "a rule for every pair of species",
+                    )
+                })
+        })
+        .collect::<Result<Vec<u16>>>()?;
+    Ok(Some((table.clone(), kinds)))
 }

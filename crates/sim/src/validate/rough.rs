@@ -6,15 +6,18 @@
 //! engines without rotation, a stochastic law (its baths take normal energy only).
 
 use super::Species;
-use crate::description::{LawKind, RunDescription};
+use crate::description::{LawKind, RestitutionValue, RunDescription};
 use crate::engines::{kind_name, kinds_that, Abilities};
 use crate::error::{Error, Result};
 
 /// The rough particles of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoughSpec {
-    /// Tangential restitution beta > -1.
-    pub beta: f64,
+    /// Tangential restitution beta of each pair of species (one row and column per
+    /// species; some entry > -1).
+    pub betas: Vec<Vec<f64>>,
+    /// Whether the run file gave a matrix (else one beta for all pairs).
+    pub per_pair: bool,
     /// Walton's friction coefficient, if given.
     pub friction: Option<f64>,
     /// Inertia factor of each species.
@@ -24,10 +27,18 @@ pub struct RoughSpec {
 }
 
 impl RoughSpec {
-    /// The tangential rule.
-    pub fn tangential(&self) -> restitution::rough::Tangential {
-        restitution::rough::Tangential::new(self.beta, self.friction)
-            .expect("checked by validation")
+    /// The tangential rule of species a and b.
+    pub fn tangential(&self, a: usize, b: usize) -> restitution::rough::Tangential {
+        // beta = -1 with friction is refused by the rule itself: a smooth pair of a rough
+        // mixture takes no friction.
+        let beta = self.betas[a][b];
+        let friction = self.friction.filter(|_| beta > -1.0);
+        restitution::rough::Tangential::new(beta, friction).expect("checked by validation")
+    }
+
+    /// The beta of one kind of particle with itself (`rough_theory`).
+    pub fn beta(&self) -> f64 {
+        self.betas[0][0]
     }
 }
 
@@ -40,16 +51,7 @@ pub(crate) fn rough_spec(
     let c = &description.collision;
     let s = &description.system;
     let dimension = s.dimension as usize;
-    let beta = c.tangential_restitution;
-    if let Some(b) = beta {
-        if !(b.is_finite() && (-1.0..=1.0).contains(&b)) {
-            return Err(Error::out_of_range(
-                "collision.tangential_restitution",
-                crate::output::number(b),
-                "-1 <= beta <= 1 (-1: smooth)",
-            ));
-        }
-    }
+    let betas = betas(description, species.len())?;
     if let Some(mu) = c.friction {
         if !(mu.is_finite() && (0.0..=1e30).contains(&mu)) {
             return Err(Error::out_of_range(
@@ -85,7 +87,10 @@ pub(crate) fn rough_spec(
             }
         }
     }
-    let Some(beta) = beta.filter(|&b| b > -1.0) else {
+    let rough = betas
+        .as_ref()
+        .is_some_and(|m| m.iter().flatten().any(|&b| b > -1.0));
+    let Some(betas) = betas.filter(|_| rough) else {
         if let Some(mu) = c.friction {
             return Err(Error::out_of_range(
                 "collision.friction",
@@ -139,9 +144,66 @@ pub(crate) fn rough_spec(
         Some(list) => list.iter().map(|x| x.inertia.unwrap_or(default)).collect(),
     };
     Ok(Some(RoughSpec {
-        beta,
+        per_pair: matches!(c.tangential_restitution, Some(RestitutionValue::PerPair(_))),
+        betas,
         friction: c.friction,
         inertia,
         temperature,
     }))
+}
+
+/// `collision.tangential_restitution` as a matrix over the `species` (None if absent):
+/// each entry in [-1, 1]; a matrix needs `system.species`, one row and column per species,
+/// symmetric.
+fn betas(description: &RunDescription, species: usize) -> Result<Option<Vec<Vec<f64>>>> {
+    let key = "collision.tangential_restitution";
+    let in_range = |key: &str, b: f64| {
+        if b.is_finite() && (-1.0..=1.0).contains(&b) {
+            Ok(())
+        } else {
+            Err(Error::out_of_range(
+                key,
+                crate::output::number(b),
+                "-1 <= beta <= 1 (-1: smooth)",
+            ))
+        }
+    };
+    match &description.collision.tangential_restitution {
+        None => Ok(None),
+        Some(RestitutionValue::One(b)) => {
+            in_range(key, *b)?;
+            Ok(Some(vec![vec![*b; species]; species]))
+        }
+        Some(RestitutionValue::PerPair(matrix)) => {
+            if description.system.species.is_none() {
+                return Err(Error::input(
+                    key,
+                    "a matrix needs system.species (one row per species); give one number otherwise",
+                ));
+            }
+            if matrix.len() != species || matrix.iter().any(|row| row.len() != species) {
+                return Err(Error::input(
+                    key,
+                    format!(
+                        "a {species} x {species} matrix: one row and column per species of \
+                         system.species"
+                    ),
+                ));
+            }
+            for (i, row) in matrix.iter().enumerate() {
+                for (j, &b) in row.iter().enumerate() {
+                    let entry = format!("{key}[{i}][{j}]");
+                    in_range(&entry, b)?;
+                    if b != matrix[j][i] {
+                        return Err(Error::out_of_range(
+                            &entry,
+                            crate::output::number(b),
+                            &format!("{key}[{j}][{i}] = {} (symmetric)", matrix[j][i]),
+                        ));
+                    }
+                }
+            }
+            Ok(Some(matrix.clone()))
+        }
+    }
 }

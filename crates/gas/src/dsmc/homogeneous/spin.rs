@@ -88,14 +88,37 @@ impl<const D: usize> HomogeneousDsmc<D> {
         let inverses = (0..species.len())
             .map(|s| Inverses::of(species.masses[s], species.radii[s], inertia[s]))
             .collect();
+        let tangential = self.rules_per_pair();
         self.core.spin = Some(Spin {
-            tangential: self.core.law.tangential().copied(),
+            tangential,
             inertia,
             inverses,
             sliding,
         });
         // The classes of the exact scheme hold the records' order: sort anew.
         self.core.classes = None;
+    }
+
+    /// The law's tangential rules per pair of the engine's species (row-major), one rule
+    /// for all, or none for a smooth law. A species the law's table lacks takes the
+    /// table's first rule (the sim layer names a rule for every species).
+    fn rules_per_pair(&self) -> Vec<restitution::rough::Tangential> {
+        let law = self.core.law.as_ref();
+        let (Some(one), species) = (law.tangential(), &self.core.species) else {
+            return Vec::new();
+        };
+        let Some(table) = law.tangential_pairs() else {
+            return vec![*one];
+        };
+        let kind = |s: usize| {
+            table
+                .kind_of(species.radii[s], species.masses[s])
+                .unwrap_or(0)
+        };
+        let n = species.len();
+        (0..n * n)
+            .map(|k| *table.rule(kind(k / n), kind(k % n)))
+            .collect()
     }
 
     /// Smooth records again (the spins dropped).
