@@ -218,7 +218,7 @@ def table(args):
             continue
         th = theory(alpha, beta)
         row = {"alpha": alpha, "beta": beta, "theory": th}
-        cells_ = [f"{alpha}", f"{beta}", f"{-beta}", f"{len(res['dynamo'])}/{len(res['haff'])}"]
+        cells_ = [f"{alpha}", f"{beta}", f"{-beta + 0.0}", f"{len(res['dynamo'])}/{len(res['haff'])}"]
         for key in ("ratio", "slope"):
             d = mean_se([r[key] for r in res["dynamo"]])
             h = mean_se([r[key] for r in res["haff"]])

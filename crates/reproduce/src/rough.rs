@@ -234,7 +234,7 @@ fn hcs(ctx: &Context) -> Result<Outcome> {
     }
     let mut md = format!(
         "# rough-hcs: rough spheres in the homogeneous cooling state (3D, q = 2/5)\n\n\
-         **Theory.** The Maxwellian approximation (Gaussian translational and angular \
+         **Paper.** (the theory) The Maxwellian approximation (Gaussian translational and angular \
          velocities, uncorrelated): T_rot / T_tr = r solves B r^2 + (C - A) r - B = 0 \
          (Huthmann & Zippelius 1997; Luding et al. 1998, Eq. (10)), the cooling rate per \
          collision (4/3)(A - B r); `gas::theory::rough` (its rates checked against Monte \

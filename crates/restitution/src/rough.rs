@@ -149,11 +149,11 @@ impl TangentialPairs {
                     "kinds that differ in radius or mass",
                 ));
             }
-            for b in 0..s {
-                if rules[a][b] != rules[b][a] {
+            for (b, rule) in rules[a].iter().enumerate() {
+                if *rule != rules[b][a] {
                     return Err(Error::out_of_range(
                         &format!("tangential_restitution[{a}][{b}]"),
-                        rules[a][b].beta,
+                        rule.beta,
                         "a symmetric matrix",
                     ));
                 }
