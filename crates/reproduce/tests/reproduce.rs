@@ -368,7 +368,7 @@ fn kinetic_diffusion_engines_agree_and_match_chapman_enskog() {
 /// literature's deviations, from the velocity correlations the theory leaves out, are of
 /// a few percent: Kremer, Santos & Garzó 2014; measured here up to 6 %); perfectly rough
 /// elastic spheres keep their energy to round-off (1e-12 over 20 collisions per particle)
-/// and reach equipartition within the statistics of 1000 spheres (5 %); smooth spheres
+/// and reach equipartition within the statistics of 1000 spheres (below); smooth spheres
 /// cool as Haff's law with van Noije & Ernst's a2 within 3 % (a 10-collision fit).
 #[test]
 fn rough_hcs_engines_agree_and_keep_the_limits() {
@@ -378,8 +378,13 @@ fn rough_hcs_engines_agree_and_keep_the_limits() {
     let deviation = value(&o, "largest_deviation");
     assert!(deviation.abs() < 0.1, "{deviation}");
     assert!(value(&o, "elastic_energy_drift") < 1e-12);
+    // One sample's T_rot / T_tr spreads by sqrt(4 / (3 N)) = 3.7 % at N = 1000 (each
+    // temperature sqrt(2 / (3 N))); the second half's average spreads less: 4 of the one.
     let equipartition = value(&o, "elastic_equipartition");
-    assert!((equipartition - 1.0).abs() < 0.05, "{equipartition}");
+    assert!(
+        (equipartition - 1.0).abs() < 4.0 * (4.0f64 / 3000.0).sqrt(),
+        "{equipartition}"
+    );
     let eps = 0.8f64;
     let a2 = gas::theory::van_noije_ernst_a2::<3>(eps);
     let haff = (1.0 - eps * eps) / 3.0 * (1.0 + 3.0 * a2 / 16.0) / (1.0 - a2 / 16.0);
