@@ -110,7 +110,7 @@ fn ratio(case: Case, alpha: f64, collisions: f64, seed: u64) -> Result<f64> {
         .filter(|(i, _)| **i >= 0.5 * last)
         .map(|(i, row)| (6.0 * i, row.msd))
         .collect();
-    Ok(slope(&points))
+    Ok(super::slope(&points))
 }
 
 /// The box side over the critical length 2 pi / k_perp of the HCS's transverse (shear)
@@ -133,26 +133,6 @@ fn finite_size_shift(case: Case) -> f64 {
     let ns = gas::theory::NavierStokes::enskog::<3>(n, 1.0, 1.0, 1.0, case.phi, 1.0);
     let side = (case.particles as f64 / n).cbrt();
     2.837297 / (6.0 * std::f64::consts::PI * ns.shear_viscosity * side) / ns.self_diffusion
-}
-
-/// The least-squares slope of y against x.
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let m = points.len() as f64;
-    let (xm, ym) = (
-        points.iter().map(|p| p.0).sum::<f64>() / m,
-        points.iter().map(|p| p.1).sum::<f64>() / m,
-    );
-    let sxx: f64 = points.iter().map(|p| (p.0 - xm).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - xm) * (p.1 - ym)).sum();
-    sxy / sxx
-}
-
-/// Mean and standard error of the mean.
-fn mean_error(values: &[f64]) -> (f64, f64) {
-    let m = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / m;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (m - 1.0);
-    (mean, (var / m).sqrt())
 }
 
 fn diffusion(ctx: &Context) -> Result<Outcome> {
@@ -249,7 +229,7 @@ fn measure_all(
             let values = (0..seeds)
                 .map(|s| ratio(case, alpha, collisions, 31 + s as u64))
                 .collect::<Result<Vec<f64>>>()?;
-            let (mean, error) = mean_error(&values);
+            let (mean, error) = super::mean_and_error(&values);
             let reduced =
                 gas::theory::ReducedTransport::enskog::<3>(case.phi, alpha).self_diffusion;
             let method = if case.dsmc() {

@@ -214,6 +214,16 @@ pub(crate) fn mean_and_error(x: &[f64]) -> (f64, f64) {
 }
 
 /// `n` points from `a` to `b` inclusive.
+/// The least-squares slope of y against x.
+pub(crate) fn slope(points: &[(f64, f64)]) -> f64 {
+    let m = points.len() as f64;
+    let xm = points.iter().map(|p| p.0).sum::<f64>() / m;
+    let ym = points.iter().map(|p| p.1).sum::<f64>() / m;
+    let sxx: f64 = points.iter().map(|p| (p.0 - xm).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|p| (p.0 - xm) * (p.1 - ym)).sum();
+    sxy / sxx
+}
+
 pub(crate) fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)

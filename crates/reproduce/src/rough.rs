@@ -110,25 +110,7 @@ fn measure(
         .iter()
         .map(|s| (s.collisions_per_particle, -s.temperature.ln()))
         .collect();
-    Ok((ratio, slope(&points)))
-}
-
-/// The least-squares slope of y against x.
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let m = points.len() as f64;
-    let xm = points.iter().map(|p| p.0).sum::<f64>() / m;
-    let ym = points.iter().map(|p| p.1).sum::<f64>() / m;
-    let sxx: f64 = points.iter().map(|p| (p.0 - xm).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - xm) * (p.1 - ym)).sum();
-    sxy / sxx
-}
-
-/// Mean and standard error of the mean.
-fn mean_error(values: &[f64]) -> (f64, f64) {
-    let m = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / m;
-    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (m - 1.0);
-    (mean, (var / m).sqrt())
+    Ok((ratio, super::slope(&points)))
 }
 
 /// One row of the study.
@@ -190,7 +172,7 @@ fn limits(quick: bool) -> Result<(f64, f64, f64)> {
         .filter(|s| s.collisions_per_particle >= 10.0)
         .map(|s| (s.collisions_per_particle, -s.temperature.ln()))
         .collect();
-    Ok((drift, equipartition, slope(&points)))
+    Ok((drift, equipartition, super::slope(&points)))
 }
 
 /// The normal restitution of the smooth limit.
@@ -230,8 +212,8 @@ fn hcs(ctx: &Context) -> Result<Outcome> {
                     method,
                     alpha,
                     beta,
-                    ratio: mean_error(&ratios),
-                    cooling: mean_error(&coolings),
+                    ratio: super::mean_and_error(&ratios),
+                    cooling: super::mean_and_error(&coolings),
                     theory_ratio: hcs.ratio,
                     theory_cooling: hcs.cooling_per_collision,
                 });
