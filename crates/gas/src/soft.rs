@@ -32,6 +32,11 @@
 //!
 //! Uniform shear flow: Lees–Edwards boundaries (`soft/lees_edwards.rs`,
 //! [`SoftSphere::set_shear`]).
+//!
+//! Rough spheres and disks ([`SoftSphere::set_friction`] and a rotation): the tangential
+//! force of [`tangential`] (a Cundall–Strack spring of Mindlin's stiffness, damped, cut at
+//! Coulomb's limit) and its torques, the angular velocities integrated by the same
+//! velocity Verlet; the energy the springs hold counts with the elastic energy.
 
 pub mod accuracy;
 mod container;
@@ -39,10 +44,13 @@ pub use container::ContainerState;
 pub mod contact;
 mod lees_edwards;
 pub mod neighbors;
+pub mod oblique;
 mod state;
 mod step;
+pub mod tangential;
 mod tracking;
 pub use state::SoftSphereState;
+pub use tangential::{ContactHistory, Spring};
 
 use crate::engine::{Counters, Engine, Report, ReportSection, ReportValue};
 use crate::error::{require_positive, Error, Result};
@@ -223,6 +231,11 @@ pub struct SoftSphere<const D: usize> {
     /// positions after the last step they were followed to.
     tracks: Option<crate::tail::Tracks>,
     tracked_positions: Vec<Vector<D>>,
+    /// Coulomb's friction coefficient of rough contacts ([`SoftSphere::set_friction`]).
+    friction: Option<f64>,
+    /// Rough particles: their rotation and the contacts' tangential springs (with a
+    /// friction and a rotation).
+    rough: Option<tangential::Rough>,
 }
 
 impl<const D: usize> SoftSphere<D> {
@@ -317,6 +330,8 @@ impl<const D: usize> SoftSphere<D> {
             view: empty_system(),
             tracks: None,
             tracked_positions: Vec::new(),
+            friction: None,
+            rough: None,
             system,
         };
         // Forces of the initial state (velocities known exactly at t = 0); overlaps present
@@ -381,8 +396,14 @@ impl<const D: usize> SoftSphere<D> {
         self.material
     }
 
-    /// Elastic energy held in the overlaps now, Σ (2/5) ρ ξ^{5/2} over the pairs in contact.
+    /// Elastic energy held in the overlaps now, Σ (2/5) ρ ξ^{5/2} over the pairs in
+    /// contact, and in the tangential springs of rough contacts, Σ (1/2) k_t |δ|².
     pub fn elastic_energy(&self) -> f64 {
+        self.normal_elastic_energy() + self.rough.as_ref().map_or(0.0, |r| r.history.stored)
+    }
+
+    /// Σ (2/5) ρ ξ^{5/2} over the pairs in contact.
+    fn normal_elastic_energy(&self) -> f64 {
         let s = &self.system;
         let images = self.images_at(self.time);
         self.contacts
@@ -573,11 +594,22 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
         Some(self.collision_counts.clone())
     }
 
-    /// The contacts (section `contacts`: [`ContactReport`]).
+    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
+        SoftSphere::set_rotation(self, rotation)
+    }
+
+    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
+        self.rough.as_ref().map(|r| &r.rotation)
+    }
+
+    /// The contacts (section `contacts`: [`ContactReport`]) and, for rough spheres, their
+    /// rotation (section `rotation`: the contacts that slid).
     fn report(&self) -> Report {
-        Report {
-            sections: vec![self.contact_report().section()],
+        let mut sections = vec![self.contact_report().section()];
+        if let Some(rough) = &self.rough {
+            sections.push(rough.rotation.report(self.tally.collisions));
         }
+        Report { sections }
     }
 
     fn memory_bytes(&self) -> usize {
@@ -590,5 +622,11 @@ impl<const D: usize> Engine<D> for SoftSphere<D> {
             + self.neighbors.memory_bytes()
             + self.view.velocities.capacity() * std::mem::size_of::<Vector<D>>() * 2
             + self.view.radii.capacity() * 16
+            + self.rough.as_ref().map_or(0, |r| {
+                (r.history.torques.capacity() + r.rotation.angular.capacity()) * 24
+                    + r.rotation.inertia.capacity() * 8
+                    + (r.history.springs.capacity() + r.aligned.capacity()) * 32
+                    + r.twists.capacity() * 24
+            })
     }
 }

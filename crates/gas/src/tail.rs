@@ -117,13 +117,15 @@ impl Tracks {
 }
 
 /// The optional parts that end an engine's saved state: the walls of a container, the
-/// shear, the tensor virial, the particles' tracks, their rotation. Written up to the last one present (nothing for a periodic
+/// shear, the tensor virial, the particles' tracks, their rotation, the history of an
+/// engine's contacts (`H`: soft-sphere MD's tangential springs; [`Never`] for the engines
+/// without). Written up to the last one present (nothing for a periodic
 /// unsheared gas, whose states stay byte for byte as before they existed; only the walls
 /// for a container, as the walls alone were written before), each as an option; a reader
 /// takes the end of the data as absence (`sim::checkpoint::Sections::engine` pads the data
 /// with zero bytes, which read as None).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Tail<W> {
+pub struct Tail<W, H = Never> {
     pub walls: Option<W>,
     pub shear: Option<Shear>,
     pub virial: Option<Virial>,
@@ -131,9 +133,16 @@ pub struct Tail<W> {
     pub tracks: Option<Tracks>,
     /// The particles' rotation (rough spheres).
     pub rotation: Option<crate::rotation::Rotation>,
+    /// The history of the contacts (soft-sphere MD's tangential springs).
+    pub history: Option<H>,
 }
 
-impl<W> Default for Tail<W> {
+/// The contact history of engines that have none: no value exists, so that such an
+/// engine's tail cannot hold one (and a state that claims one does not read).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Never {}
+
+impl<W, H> Default for Tail<W, H> {
     fn default() -> Self {
         Tail {
             walls: None,
@@ -141,22 +150,26 @@ impl<W> Default for Tail<W> {
             virial: None,
             tracks: None,
             rotation: None,
+            history: None,
         }
     }
 }
 
-impl<W> Tail<W> {
+impl<W, H> Tail<W, H> {
     pub fn is_empty(&self) -> bool {
         self.walls.is_none()
             && self.shear.is_none()
             && self.virial.is_none()
             && self.tracks.is_none()
             && self.rotation.is_none()
+            && self.history.is_none()
     }
 
     /// How many parts are written: up to the last one present.
     fn written(&self) -> usize {
-        if self.rotation.is_some() {
+        if self.history.is_some() {
+            6
+        } else if self.rotation.is_some() {
             5
         } else if self.tracks.is_some() {
             4
@@ -181,7 +194,7 @@ impl<W> Tail<W> {
     }
 }
 
-impl<W: Serialize> Serialize for Tail<W> {
+impl<W: Serialize, H: Serialize> Serialize for Tail<W, H> {
     fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
         let len = self.written();
         let mut t = s.serialize_tuple(len)?;
@@ -200,17 +213,20 @@ impl<W: Serialize> Serialize for Tail<W> {
         if len >= 5 {
             t.serialize_element(&self.rotation)?;
         }
+        if len >= 6 {
+            t.serialize_element(&self.history)?;
+        }
         t.end()
     }
 }
 
-impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
+impl<'de, W: Deserialize<'de>, H: Deserialize<'de>> Deserialize<'de> for Tail<W, H> {
     fn deserialize<De: Deserializer<'de>>(d: De) -> std::result::Result<Self, De::Error> {
-        struct TailVisitor<W>(std::marker::PhantomData<W>);
-        impl<'de, W: Deserialize<'de>> Visitor<'de> for TailVisitor<W> {
-            type Value = Tail<W>;
+        struct TailVisitor<W, H>(std::marker::PhantomData<(W, H)>);
+        impl<'de, W: Deserialize<'de>, H: Deserialize<'de>> Visitor<'de> for TailVisitor<W, H> {
+            type Value = Tail<W, H>;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("up to five options: walls, shear, virial, tracks, rotation")
+                f.write_str("up to six options: walls, shear, virial, tracks, rotation, history")
             }
             fn visit_seq<A: SeqAccess<'de>>(
                 self,
@@ -223,22 +239,24 @@ impl<'de, W: Deserialize<'de>> Deserialize<'de> for Tail<W> {
                 let rotation = seq
                     .next_element::<Option<crate::rotation::Rotation>>()?
                     .flatten();
+                let history = seq.next_element::<Option<H>>()?.flatten();
                 Ok(Tail {
                     walls,
                     shear,
                     virial,
                     tracks,
                     rotation,
+                    history,
                 })
             }
         }
-        d.deserialize_tuple(5, TailVisitor(std::marker::PhantomData))
+        d.deserialize_tuple(6, TailVisitor(std::marker::PhantomData))
     }
 }
 
 /// Zero bytes a reader of postcard appends to an engine's state so that the options of a
 /// [`Tail`] missing at its end read as None.
-pub const TAIL_PADDING: usize = 5;
+pub const TAIL_PADDING: usize = 6;
 
 #[cfg(test)]
 mod tests {
@@ -301,6 +319,7 @@ mod tests {
                                     virial,
                                     tracks: tracks.clone(),
                                     rotation,
+                                    history: None,
                                 },
                             };
                             let bytes = padded(postcard::to_stdvec(&state).unwrap());

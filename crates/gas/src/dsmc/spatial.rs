@@ -371,6 +371,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 virial: self.virial,
                 tracks: self.tracks_in_order(),
                 rotation: None,
+                history: None,
             },
         }
     }

@@ -350,6 +350,7 @@ impl<const D: usize> Checkpoint<D> for EventDriven<D> {
                 virial: self.virial,
                 tracks: self.tracks.clone(),
                 rotation: self.rotation.clone(),
+                history: None,
             },
         }
     }

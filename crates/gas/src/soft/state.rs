@@ -2,6 +2,7 @@
 
 use super::contact::ViscoelasticMaterial;
 use super::neighbors::NeighborList;
+use super::tangential::{ContactHistory, Rough};
 use super::{
     empty_system, neighbor_skin, unknown, ContactStatistics, ContainerState, SoftSphere,
     SoftSphereOptions,
@@ -39,8 +40,9 @@ pub struct SoftSphereState<const D: usize> {
     /// periodic unsheared runs' states, which stay as they were byte for byte; a container
     /// alone is written as the optional container that was the last field before:
     /// [`crate::tail::Tail`]).
+    /// Rough spheres add their rotation and the contacts' tangential springs.
     #[serde(default, skip_serializing_if = "Tail::is_empty")]
-    pub tail: Tail<ContainerState>,
+    pub tail: Tail<ContainerState, ContactHistory>,
 }
 
 impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
@@ -66,7 +68,8 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 shear: self.shear,
                 virial: self.virial,
                 tracks: self.tracks.clone(),
-                rotation: None,
+                rotation: self.rough.as_ref().map(|r| r.rotation.clone()),
+                history: self.rough.as_ref().map(|r| r.history.clone()),
             },
         }
     }
@@ -209,8 +212,14 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
                 "a finite number >= 0 (or NaN: not recorded)",
             ));
         }
+        let rough = restore_rough(&state)?;
+        let twisted = |i: usize| {
+            rough
+                .as_ref()
+                .is_some_and(|r| r.history.torques[i] != [0.0; 3])
+        };
         let active = (0..n as u32)
-            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0))
+            .filter(|&i| state.forces[i as usize].iter().any(|&f| f != 0.0) || twisted(i as usize))
             .collect();
         let tracked_positions = match state.tail.tracks {
             Some(_) => state.system.positions.clone(),
@@ -245,6 +254,63 @@ impl<const D: usize> Checkpoint<D> for SoftSphere<D> {
             view: empty_system(),
             tracked_positions,
             tracks: state.tail.tracks,
+            friction: rough.as_ref().map(|r| r.history.friction),
+            rough,
         })
     }
+}
+
+/// The rough side of a restored state, checked: a rotation and a contact history come
+/// together, the history has a spring per contact and a torque per particle, all finite.
+fn restore_rough<const D: usize>(state: &SoftSphereState<D>) -> Result<Option<Rough>> {
+    let n = state.system.len();
+    let (rotation, history) = match (&state.tail.rotation, &state.tail.history) {
+        (None, None) => return Ok(None),
+        (Some(r), Some(h)) => (r.clone(), h.clone()),
+        _ => {
+            return Err(Error::out_of_range(
+                "rotation",
+                "a rotation without the contacts' springs, or the other way",
+                "both for rough spheres, neither for smooth ones",
+            ))
+        }
+    };
+    rotation.check(n, D)?;
+    Rough::check_friction(history.friction)?;
+    if history.springs.len() != state.contacts.len() || history.torques.len() != n {
+        return Err(Error::LengthMismatch {
+            what: "contacts and springs, particles and torques".into(),
+        });
+    }
+    let finite = |v: &[f64; 3]| v.iter().all(|x| x.is_finite());
+    if let Some(i) = history.torques.iter().position(|t| !finite(t)) {
+        return Err(Error::NotFinite {
+            what: "torques",
+            index: i,
+        });
+    }
+    if let Some(i) = history
+        .springs
+        .iter()
+        .position(|s| !finite(&s.displacement))
+    {
+        return Err(Error::NotFinite {
+            what: "springs",
+            index: i,
+        });
+    }
+    if !(history.stored.is_finite() && history.stored >= 0.0) {
+        return Err(Error::out_of_range(
+            "stored",
+            history.stored,
+            "a finite spring energy >= 0",
+        ));
+    }
+    Ok(Some(Rough {
+        history,
+        rotation,
+        aligned: Vec::new(),
+        fresh: Vec::new(),
+        twists: Vec::new(),
+    }))
 }

@@ -6,8 +6,9 @@
 //! needed only for the pairs in contact and are computed there. What remains per particle
 //! is the drift and the pair search of the neighbour list.
 //!
-//! Shear and the tensor virial take their own copy of the step (`EXTENDED`, as the
-//! event-driven engine's `step_as`): the periodic gas's loops have none of their branches.
+//! Shear, the tensor virial and rough particles take their own copy of the step
+//! (`EXTENDED`, as the event-driven engine's `step_as`): the periodic gas's loops have none
+//! of their branches.
 
 use super::contact::normal_force;
 use super::SoftSphere;
@@ -56,14 +57,20 @@ fn drift(x: &mut [f64], v: &[f64], dt: f64, length: f64) {
 impl<const D: usize> SoftSphere<D> {
     /// One velocity-Verlet step of length `dt` (see the [module](super) documentation).
     pub(super) fn step(&mut self, dt: f64) {
-        if self.shear.is_some() || self.virial.is_some() {
+        if self.extended() {
             self.step_extended(dt);
         } else {
             self.step_as::<false>(dt);
         }
     }
 
-    /// [`Self::step`] with shear or the tensor virial, out of line.
+    /// Whether the step is the extended one: shear, the tensor virial or rough particles.
+    #[inline]
+    fn extended(&self) -> bool {
+        self.shear.is_some() || self.virial.is_some() || self.rough.is_some()
+    }
+
+    /// [`Self::step`] with shear, the tensor virial or rough particles, out of line.
     #[inline(never)]
     fn step_extended(&mut self, dt: f64) {
         self.step_as::<true>(dt);
@@ -74,7 +81,11 @@ impl<const D: usize> SoftSphere<D> {
     #[inline(always)]
     fn step_as<const EXTENDED: bool>(&mut self, dt: f64) {
         let (power_before, virial_before, stress_before) = self.contact_rates::<EXTENDED>();
+        let stored_before = self.rough.as_ref().map_or(0.0, |r| r.history.stored);
         self.half_kick(dt);
+        if EXTENDED {
+            self.half_kick_spins(dt);
+        }
         if EXTENDED && self.shear.is_some() {
             self.drift_sheared(dt);
         } else if self.system.is_cubic() {
@@ -96,18 +107,32 @@ impl<const D: usize> SoftSphere<D> {
         let (power, virial, begun) = self.compute_forces_as::<EXTENDED>(Some(dt));
         self.tally_walls(dt);
         self.half_kick(dt);
+        if EXTENDED {
+            self.half_kick_spins(dt);
+        }
         self.steps += 1;
         self.tally.collisions += begun;
         self.tally.events += 1;
         self.tally.energy_lost += 0.5 * dt * (power_before + power);
         self.tally.virial += 0.5 * dt * (virial_before + virial);
         if EXTENDED {
+            // What the tangential springs took and still hold is not lost.
+            if let Some(rough) = &self.rough {
+                self.tally.energy_lost -= rough.history.stored - stored_before;
+            }
             // The trapezoid of the tensor, as of the virial.
             if let Some(total) = &mut self.virial {
                 for (c, t) in total.0.iter_mut().enumerate() {
                     *t += 0.5 * dt * (stress_before.0[c] + self.stress_rate.0[c]);
                 }
             }
+        }
+    }
+
+    /// ω += (dt/2) τ / I of rough particles with a torque.
+    fn half_kick_spins(&mut self, dt: f64) {
+        if let Some(rough) = &mut self.rough {
+            rough.half_kick(&self.active, &self.system, dt);
         }
     }
 
@@ -130,7 +155,7 @@ impl<const D: usize> SoftSphere<D> {
     /// rate Σ F_n d and the number of contacts begun (with the tensor virial, its rate
     /// Σ F_n d n n into `stress_rate`).
     pub(super) fn compute_forces(&mut self, predicting: Option<f64>) -> (f64, f64, u64) {
-        if self.shear.is_some() || self.virial.is_some() {
+        if self.extended() {
             self.compute_forces_as::<true>(predicting)
         } else {
             self.compute_forces_as::<false>(predicting)
@@ -199,7 +224,12 @@ impl<const D: usize> SoftSphere<D> {
         let (mut power, mut virial) = (0.0, 0.0);
         let mut stress = Virial::default();
         self.impulses.clear();
-        for &(i, j) in &self.current {
+        if EXTENDED {
+            if let Some(rough) = &mut self.rough {
+                rough.begin(&self.contacts, &self.current);
+            }
+        }
+        for (c, &(i, j)) in self.current.iter().enumerate() {
             let (i, j) = (i as usize, j as usize);
             let (r, across): (Vector<D>, f64) = match &images {
                 Some(images) => images.separation(&s.positions[i], &s.positions[j], &s.sides),
@@ -226,13 +256,35 @@ impl<const D: usize> SoftSphere<D> {
             let xi_dot = -(0..D).map(|k| dv[k] * normal[k]).sum::<f64>();
             let rho = self.material.elastic_constant(s.radii[i], s.radii[j]);
             let (force, dissipative) = normal_force(rho, a, xi, xi_dot);
-            self.impulses
-                .push(std::array::from_fn(|k| force * normal[k]));
+            let mut impulse: Vector<D> = std::array::from_fn(|k| force * normal[k]);
             power += dissipative * xi_dot;
             virial += force * d;
             if EXTENDED {
                 stress.add(force, d, &normal);
+                if let Some(rough) = &mut self.rough {
+                    let mut mid: Vector<D> =
+                        std::array::from_fn(|k| s.velocities[j][k] - s.velocities[i][k]);
+                    if across != 0.0 {
+                        mid[0] += across * images.as_ref().map_or(0.0, |im| im.jump);
+                    }
+                    let (tangential, taken) = rough.contact(
+                        c,
+                        (i, j),
+                        s,
+                        &self.material,
+                        &normal,
+                        (&dv, &mid),
+                        predicting,
+                        (xi, force),
+                    );
+                    for k in 0..D {
+                        impulse[k] += tangential[k];
+                    }
+                    power += taken;
+                    stress.add_tangential(d, &normal, &tangential);
+                }
             }
+            self.impulses.push(impulse);
             let relative = xi / contact;
             if relative > self.statistics.max_relative_overlap {
                 self.statistics.max_relative_overlap = relative;
@@ -242,6 +294,13 @@ impl<const D: usize> SoftSphere<D> {
         for &i in &self.active {
             self.forces[i as usize] = [0.0; D];
             self.touching[i as usize] = 0;
+        }
+        if EXTENDED {
+            if let Some(rough) = &mut self.rough {
+                for &i in &self.active {
+                    rough.history.torques[i as usize] = [0.0; 3];
+                }
+            }
         }
         self.active.clear();
         for (&(i, j), f) in self.current.iter().zip(&self.impulses) {
@@ -261,6 +320,11 @@ impl<const D: usize> SoftSphere<D> {
             for (k, f) in f.iter().enumerate() {
                 self.forces[i][k] -= f;
                 self.forces[j][k] += f;
+            }
+        }
+        if EXTENDED {
+            if let Some(rough) = &mut self.rough {
+                rough.add_torques(&self.current);
             }
         }
         self.add_container_forces();
@@ -296,7 +360,7 @@ impl<const D: usize> SoftSphere<D> {
         };
         let (mut power, mut virial) = (0.0, 0.0);
         let mut stress = Virial::default();
-        for &(i, j) in &self.contacts {
+        for (c, &(i, j)) in self.contacts.iter().enumerate() {
             let (i, j) = (i as usize, j as usize);
             let (r, across): (Vector<D>, f64) = match &images {
                 Some(images) => images.separation(&s.positions[i], &s.positions[j], &s.sides),
@@ -322,6 +386,12 @@ impl<const D: usize> SoftSphere<D> {
             if EXTENDED {
                 let normal: Vector<D> = std::array::from_fn(|k| r[k] / d);
                 stress.add(force, d, &normal);
+                if let Some(rough) = &self.rough {
+                    let (t, taken) =
+                        rough.now(c, (i, j), s, &self.material, &normal, &dv, (xi, force));
+                    power += taken;
+                    stress.add_tangential(d, &normal, &t);
+                }
             }
         }
         (power, virial, stress)
