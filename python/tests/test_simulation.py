@@ -47,6 +47,12 @@ CONFIGS = {
         "collision": {"law": "constant", "restitution": 0.8, "tangential_restitution": 0.0},
         "run": {"collisions_per_particle": 10.0, "samples": 5},
     },
+    "rough-soft-sphere": {
+        "system": {"particles": 300, "packing_fraction": 0.05, "seed": 2, "inertia": 0.4},
+        "collision": {"law": "viscoelastic", "young": 1e5, "poisson": 0.3,
+                      "dissipative_constant": 0.01, "friction": 0.5},
+        "run": {"engine": "soft-sphere", "end_time": 3.0, "samples": 4},
+    },
     "soft-sphere": {
         "system": {"particles": 300, "packing_fraction": 0.05, "seed": 2},
         "collision": {"law": "viscoelastic", "young": 1e5, "poisson": 0.3,

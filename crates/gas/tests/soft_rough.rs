@@ -391,3 +391,33 @@ fn bad_input_names_the_key() {
         .to_string();
     assert!(e.contains("springs"), "{e}");
 }
+
+/// The table of docs/rough.md ("Soft spheres against Walton's model"): the effective β of
+/// oblique contacts against g_t/g_n for μ = 0.1 and 0.3 (q = 0.4, ε ≈ 0.75), with Walton's
+/// two-regime model of the same sticking β₀ (the engine's at g_t/g_n = 0.01) and ε.
+/// `cargo test --release -p haff-gas --test soft_rough walton_table -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn walton_table() {
+    let m = ViscoelasticMaterial::new(1e12, 0.3, 2e-3 * 1e-7f64.powf(0.4)).unwrap();
+    let q = 0.4;
+    let dt = duration(&m) / 2000.0;
+    let sticking = oblique_contact(m, 1e9, (RADIUS, MASS, q), (1.0, 0.01), dt).unwrap();
+    println!(
+        "sticking beta0 = {:.4}, eps = {:.4}",
+        sticking.beta, sticking.eps
+    );
+    println!("| g_t/g_n | μ | β (MD) | β (Walton) | slid (MD) |");
+    println!("|---|---|---|---|---|");
+    for mu in [0.1, 0.3] {
+        for psi in [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0] {
+            let md = oblique_contact(m, mu, (RADIUS, MASS, q), (1.0, psi), dt).unwrap();
+            let walton = (-1.0 + mu * (1.0 + md.eps) * (1.0 + 1.0 / q) / psi).min(sticking.beta);
+            println!(
+                "| {psi} | {mu} | {:.4} | {walton:.4} | {} |",
+                md.beta,
+                if md.slid { "yes" } else { "no" }
+            );
+        }
+    }
+}

@@ -246,9 +246,14 @@ fn flow<const D: usize>(engine: &mut dyn Driven<D>, plan: &Plan) -> Result<()> {
     }
     if let Some(rough) = &plan.rough {
         let rotation = thermal_rotation(engine, plan, rough)?;
-        engine
-            .set_rotation(Some(rotation))
-            .map_err(|e| Error::input("collision.tangential_restitution", e))?;
+        engine.set_rotation(Some(rotation)).map_err(|e| {
+            // Soft-sphere MD's spheres are rough by their friction alone.
+            let key = match rough.betas.is_empty() {
+                true => "collision.friction",
+                false => "collision.tangential_restitution",
+            };
+            Error::input(key, e)
+        })?;
     }
     if plan.pressure_tensor {
         let key = if plan.shear.is_some() {

@@ -13,6 +13,8 @@ pub fn of_plan(plan: &crate::Plan) -> Result<Box<dyn Restitution>> {
     let fail = |e| Error::law("collision.tangential_restitution", e);
     Ok(match &plan.rough {
         None => law,
+        // Soft-sphere MD: the contact force makes the tangential half.
+        Some(rough) if rough.betas.is_empty() => law,
         Some(rough) if !rough.per_pair => {
             Box::new(restitution::rough::Rough::new(law, rough.tangential(0, 0)).map_err(fail)?)
         }

@@ -334,3 +334,99 @@ fn bad_rough_keys_are_refused_by_name() {
         );
     }
 }
+
+/// A soft-sphere gas made rough by `collision.friction` alone.
+fn soft_gas(dimension: u32, extra_system: &str, extra_collision: &str) -> String {
+    format!(
+        "[system]\ndimension = {dimension}\nparticles = 200\npacking_fraction = 0.1\nseed = 5\n\
+         {extra_system}\n[collision]\nlaw = \"viscoelastic\"\nyoung = 1e4\npoisson = 0.3\n\
+         dissipative_constant = 1e-3\n{extra_collision}\n\
+         [run]\nengine = \"soft-sphere\"\ncollisions_per_particle = 2\nsamples = 6\n\
+         spacing = \"linear\"\n"
+    )
+}
+
+/// Soft-sphere MD with `collision.friction`: the rotational temperature column, the
+/// `rotation` section (no `rough_theory`: no constant beta), snapshots with the angular
+/// velocities, resumed bit for bit from a check-point (springs of open contacts, torques
+/// and spins in it); spins start at rest (rotational_temperature = 0) and the contacts
+/// heat them.
+#[test]
+fn soft_spheres_are_rough_by_their_friction() {
+    for dimension in [2, 3] {
+        let text = soft_gas(dimension, "rotational_temperature = 0.0", "friction = 0.4")
+            + "[output]\nsnapshots = { every = 3 }\n";
+        let mut run = Simulation::from_toml(&text, "soft.toml".as_ref()).unwrap();
+        let dir = temp_dir(&format!("soft-{dimension}"));
+        run.set_output_dir(&dir);
+        assert!(run
+            .advance(Point::CollisionsPerParticle(0.9), &mut ())
+            .unwrap());
+        let file = dir.join("soft.bin");
+        run.save(&file).unwrap();
+        let mut loaded = Simulation::load(&file).unwrap();
+        run.run(&mut (), None).unwrap();
+        loaded.set_output_dir(&dir);
+        loaded.run(&mut (), None).unwrap();
+        assert_eq!(loaded.samples(), run.samples(), "{dimension}D");
+        run.write(&dir).unwrap();
+        let csv = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+        assert!(csv
+            .lines()
+            .next()
+            .unwrap()
+            .ends_with(",rotational_temperature"));
+        let samples = run.samples();
+        assert_eq!(samples[0].rotational_temperature, Some(0.0));
+        assert!(samples.last().unwrap().rotational_temperature.unwrap() > 0.0);
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+                .unwrap();
+        assert!(summary.get("rough_theory").is_none());
+        assert!(summary["rotation"]["sliding_contacts"].as_u64().unwrap() > 0);
+        let vtu = std::fs::read_to_string(dir.join("snapshot_000003.vtu")).unwrap();
+        assert!(vtu.contains("angular_velocity"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+/// Soft-sphere MD refuses a tangential restitution (its contact force yields one),
+/// rotation in 1D, a rotational temperature of smooth spheres, and a step that does not
+/// resolve the tangential oscillation of light-inertia spheres (q = 0.01: 9 times faster
+/// than the normal one, 50 steps per contact give 5.5 steps to it, 10 are needed),
+/// naming the key.
+#[test]
+fn soft_spheres_refuse_what_their_contacts_decide() {
+    let cases = [
+        (
+            3,
+            "",
+            "tangential_restitution = 0.3\nfriction = 0.4",
+            "collision.tangential_restitution",
+        ),
+        (
+            3,
+            "",
+            "tangential_restitution = 0.3",
+            "collision.tangential_restitution",
+        ),
+        (1, "", "friction = 0.4", "collision.friction"),
+        (
+            3,
+            "rotational_temperature = 1.0",
+            "",
+            "system.rotational_temperature",
+        ),
+        (3, "", "friction = -0.4", "collision.friction"),
+        (3, "inertia = 0.01", "friction = 0.4", "collision.friction"),
+    ];
+    for (dimension, system, collision, key) in cases {
+        let text = soft_gas(dimension, system, collision);
+        let error = match Simulation::from_toml(&text, "bad.toml".as_ref()) {
+            Ok(mut run) => run.run(&mut (), None).err().expect("refused"),
+            Err(e) => e,
+        };
+        assert!(error.is_input(), "{error}");
+        assert!(error.to_string().contains(key), "{collision}: {error}");
+    }
+}

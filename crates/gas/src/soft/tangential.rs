@@ -40,6 +40,10 @@ use crate::system::{System, Vector};
 use restitution::rough::cross;
 use serde::{Deserialize, Serialize};
 
+/// Time steps per tangential oscillation of a sticking contact that a rough soft-sphere
+/// run needs at least (see `SoftSphere::set_rotation`).
+pub const MIN_TANGENTIAL_STEPS: f64 = 10.0;
+
 /// One contact's history: its tangential displacement δ and whether it has slid while
 /// loading (see [`Rough::contact`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
@@ -401,6 +405,40 @@ impl<const D: usize> SoftSphere<D> {
         Ok(())
     }
 
+    /// Refuses a step that does not resolve the tangential oscillation of a sticking
+    /// contact: its frequency is that of the normal one times
+    /// r = √((k_t/k_n) m_eff / m_t) <= √((k_t/k_n)(1 + 1/q)) (1/m_t = Σ (1 + 1/q)/m: the
+    /// contact point's inertia; k_t/k_n = 2(1 − ν)/(2 − ν)), for the smallest q. The step
+    /// must take at least [`MIN_TANGENTIAL_STEPS`] steps per contact duration over r (the
+    /// engine's β then converges at first order, ~0.13 r / steps: 1e-2 at the bound).
+    fn check_tangential_step(&self, rotation: &Rotation) -> Result<()> {
+        let nu = self.material.poisson;
+        let smallest = rotation
+            .inertia
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        if self.system.is_empty() {
+            return Ok(());
+        }
+        let ratio = (2.0 * (1.0 - nu) / (2.0 - nu) * (1.0 + 1.0 / smallest)).sqrt();
+        let contact = super::shortest_contact(&self.system, &self.material)?;
+        let steps = contact / self.time_step / ratio;
+        if steps < MIN_TANGENTIAL_STEPS {
+            return Err(Error::UnresolvedStep {
+                name: "steps_per_contact",
+                value: contact / self.time_step,
+                allowed: format!(
+                    "at least {} steps per contact for spheres of inertia factor {smallest} \
+                     (their tangential oscillation is {ratio:.2} times faster than the \
+                     normal one): more steps per contact or a larger inertia",
+                    (MIN_TANGENTIAL_STEPS * ratio).ceil()
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// Gives the spheres `rotation` (checked: one entry per sphere, inertia factors in
     /// range, disks about z; the contacts' springs start relaxed), or takes it away.
     /// Refused without a friction ([`SoftSphere::set_friction`]): smooth contacts exert no
@@ -418,6 +456,7 @@ impl<const D: usize> SoftSphere<D> {
                 "a friction coefficient first: smooth contacts exert no torque",
             ));
         };
+        self.check_tangential_step(&rotation)?;
         let n = self.system.len();
         self.rough = Some(Rough {
             history: ContactHistory {
@@ -444,7 +483,7 @@ mod tests {
     #[test]
     fn mindlin_ratio() {
         let m = ViscoelasticMaterial::new(1e5, 0.3, 1e-3).unwrap();
-        let (r1, r2, xi) = (0.5, 0.7, 1e-3);
+        let (r1, r2, xi) = (0.5, 0.7, 1e-3f64);
         let k_n = 1.5 * m.elastic_constant(r1, r2) * xi.sqrt();
         let ratio = mindlin_stiffness(&m, r1, r2, xi) / k_n;
         assert!((ratio - 2.0 * 0.7 / 1.7).abs() < 1e-14, "{ratio}");

@@ -25,7 +25,7 @@ pub(super) const ABILITIES: Abilities = Abilities {
     shear: true,
     stress: true,
     displacements: true,
-    rotation: false,
+    rotation: true,
 };
 
 /// The material and the time step (`run.steps_per_contact` or `run.time_step`).
@@ -181,6 +181,11 @@ pub(super) fn start<const D: usize>(
         gas::Error::UnresolvedStep { .. } => Error::input(step_key, e),
         _ => Error::input("system", e),
     })?;
+    if let Some(friction) = plan.rough.as_ref().and_then(|r| r.friction) {
+        engine
+            .set_friction(Some(friction))
+            .map_err(|e| Error::input("collision.friction", e))?;
+    }
     enclose(&mut engine, plan)?;
     Ok(Box::new(engine))
 }
@@ -228,6 +233,10 @@ fn check_state<const D: usize>(
 ) -> std::result::Result<(), String> {
     super::initial::particles(plan, &state.system)?;
     super::initial::box_side(plan, &state.system)?;
+    let friction = state.tail.history.as_ref().map(|h| h.friction);
+    if friction != plan.rough.as_ref().and_then(|r| r.friction) {
+        return Err("the contacts' friction differs from collision.friction".into());
+    }
     match plan.engine {
         EngineSpec::SoftSphere(options, material)
             if state.options == options && state.material == material => {}

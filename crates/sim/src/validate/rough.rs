@@ -4,6 +4,10 @@
 //! Refused: beta outside [-1, 1], a friction that is negative or not finite or given for
 //! smooth spheres, an inertia factor outside (0, 2/3] (disks (0, 1/2]), rotation in 1D,
 //! engines without rotation, a stochastic law (its baths take normal energy only).
+//!
+//! Soft-sphere MD has no tangential restitution to give: its contacts' tangential force
+//! (`gas::soft::tangential`) yields one; `collision.friction` alone makes its spheres
+//! rough, and `collision.tangential_restitution` is refused for it.
 
 use super::Species;
 use crate::description::{LawKind, RestitutionValue, RunDescription};
@@ -14,7 +18,7 @@ use crate::error::{Error, Result};
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoughSpec {
     /// Tangential restitution beta of each pair of species (one row and column per
-    /// species; some entry > -1).
+    /// species; some entry > -1); empty for soft-sphere MD, whose contact force yields it.
     pub betas: Vec<Vec<f64>>,
     /// Whether the run file gave a matrix (else one beta for all pairs).
     pub per_pair: bool,
@@ -87,6 +91,9 @@ pub(crate) fn rough_spec(
             }
         }
     }
+    if engine.contacts {
+        return soft_contacts(description, betas.is_some(), species.len());
+    }
     let rough = betas
         .as_ref()
         .is_some_and(|m| m.iter().flatten().any(|&b| b > -1.0));
@@ -130,6 +137,59 @@ pub(crate) fn rough_spec(
              another law",
         ));
     }
+    Ok(Some(RoughSpec {
+        per_pair: matches!(c.tangential_restitution, Some(RestitutionValue::PerPair(_))),
+        betas,
+        friction: c.friction,
+        inertia: inertia(description, species.len()),
+        temperature: rotational_temperature(description)?,
+    }))
+}
+
+/// Soft-sphere MD's rough spheres: `collision.friction` alone (the tangential restitution
+/// follows from the contact force), `given_beta` refused.
+fn soft_contacts(
+    description: &RunDescription,
+    given_beta: bool,
+    species: usize,
+) -> Result<Option<RoughSpec>> {
+    let s = &description.system;
+    if given_beta {
+        return Err(Error::input(
+            "collision.tangential_restitution",
+            "run.engine = \"soft-sphere\" takes no tangential restitution: its contacts' \
+             tangential force (Mindlin's spring, damped by dissipative_constant, cut at \
+             collision.friction) yields it (docs/rough.md); give collision.friction alone",
+        ));
+    }
+    let Some(friction) = description.collision.friction else {
+        if s.rotational_temperature.is_some() {
+            return Err(Error::input(
+                "system.rotational_temperature",
+                "smooth spheres do not exchange rotation: give collision.friction for \
+                 run.engine = \"soft-sphere\"",
+            ));
+        }
+        return Ok(None);
+    };
+    if s.dimension < 2 {
+        return Err(Error::input(
+            "collision.friction",
+            "rods (1D) do not rotate: rough particles are disks (2D) or spheres (3D)",
+        ));
+    }
+    Ok(Some(RoughSpec {
+        betas: Vec::new(),
+        per_pair: false,
+        friction: Some(friction),
+        inertia: inertia(description, species),
+        temperature: rotational_temperature(description)?,
+    }))
+}
+
+/// `system.rotational_temperature`, by default the temperature, checked.
+fn rotational_temperature(description: &RunDescription) -> Result<f64> {
+    let s = &description.system;
     let temperature = s.rotational_temperature.unwrap_or(s.temperature);
     if !(temperature == 0.0 || (1e-30..=1e30).contains(&temperature)) {
         return Err(Error::out_of_range(
@@ -138,18 +198,20 @@ pub(crate) fn rough_spec(
             "0 or 1e-30 <= value <= 1e30",
         ));
     }
-    let default = s.inertia.unwrap_or(if dimension == 2 { 0.5 } else { 0.4 });
-    let inertia = match &s.species {
-        None => vec![default; species.len()],
+    Ok(temperature)
+}
+
+/// The inertia factor of each of `species` species: `system.species[i].inertia`, else
+/// `system.inertia`, else a solid sphere's 2/5 (a disk's 1/2).
+fn inertia(description: &RunDescription, species: usize) -> Vec<f64> {
+    let s = &description.system;
+    let default = s
+        .inertia
+        .unwrap_or(if s.dimension == 2 { 0.5 } else { 0.4 });
+    match &s.species {
+        None => vec![default; species],
         Some(list) => list.iter().map(|x| x.inertia.unwrap_or(default)).collect(),
-    };
-    Ok(Some(RoughSpec {
-        per_pair: matches!(c.tangential_restitution, Some(RestitutionValue::PerPair(_))),
-        betas,
-        friction: c.friction,
-        inertia,
-        temperature,
-    }))
+    }
 }
 
 /// `collision.tangential_restitution` as a matrix over the `species` (None if absent):
