@@ -200,7 +200,7 @@ fn rough_gas(friction: f64, dt_fraction: f64) -> SoftSphere<3> {
         ((k as f64) * 0.618_033_988_749_895).fract().max(1e-12)
     };
     let mut normal =
-        move || (-2.0 * uniform().ln()).sqrt() * (6.283_185_307_179_586 * uniform()).cos();
+        move || (-2.0 * uniform().ln()).sqrt() * (std::f64::consts::TAU * uniform()).cos();
     let n = n_side.pow(3);
     let positions = (0..n)
         .map(|p| {
@@ -286,10 +286,10 @@ fn angular_momentum_is_kept() {
         let w = Engine::rotation(engine).unwrap().angular.clone();
         let s = Engine::system(engine);
         let mut l = [0.0; 3];
-        for i in 0..2 {
+        for (i, spin) in w.iter().enumerate() {
             let orbital = cross(&s.positions[i], &s.velocities[i]);
             for k in 0..3 {
-                l[k] += s.masses[i] * orbital[k] + 0.4 * MASS * RADIUS * RADIUS * w[i][k];
+                l[k] += s.masses[i] * orbital[k] + 0.4 * MASS * RADIUS * RADIUS * spin[k];
             }
         }
         l

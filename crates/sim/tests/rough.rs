@@ -423,7 +423,7 @@ fn soft_spheres_refuse_what_their_contacts_decide() {
     for (dimension, system, collision, key) in cases {
         let text = soft_gas(dimension, system, collision);
         let error = match Simulation::from_toml(&text, "bad.toml".as_ref()) {
-            Ok(mut run) => run.run(&mut (), None).err().expect("refused"),
+            Ok(mut run) => run.run(&mut (), None).expect_err("refused"),
             Err(e) => e,
         };
         assert!(error.is_input(), "{error}");

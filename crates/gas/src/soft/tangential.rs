@@ -507,8 +507,8 @@ mod tests {
         let mut again = spring;
         let g_t = tangential_part(&g, &n);
         let held: [f64; 3] = std::array::from_fn(|k| -10.0 * again.displacement[k] - 0.1 * g_t[k]);
-        for k in 0..3 {
-            assert!((held[k] - f.force[k]).abs() < 1e-14);
+        for (h, f) in held.iter().zip(f.force) {
+            assert!((h - f).abs() < 1e-14);
         }
         let within = tangential_force(&mut again, &n, &g, None, 10.0, 0.01, 2.0, 1.0);
         assert!(!within.sliding);
