@@ -188,3 +188,60 @@ fn a_rough_gas_continues_from_its_checkpoint() {
         assert!(a.sliding > 0, "some contacts slide");
     }
 }
+
+/// Rough viscoelastic spheres (the normal restitution of the viscoelastic law, fast form,
+/// beta_v = 0.3; tangential beta = 0, q = 0.4) cool per collision as the Maxwellian theory
+/// with the collision-averaged normal loss says (`gas::theory::rough_viscoelastic`), from
+/// T_rot = T_tr to 40 collisions per particle (T_tr falls ~1e-3), in DSMC exact and blocks.
+/// Tolerance: 4 standard errors over 4 seeds plus the first Sonine corrections' order,
+/// |a2| per unit of ln T travelled ((1 + |ln(T/T_0)|) |a2| T, a2 the largest measured).
+#[test]
+fn rough_viscoelastic_spheres_cool_as_the_theory_says() {
+    use gas::theory::rough_viscoelastic::RoughViscoelastic;
+    use restitution::{ScaledForm, Viscoelastic};
+    let (n, q, beta) = (4000, 0.4, 0.0);
+    let normal = || Viscoelastic::new(0.3, "fast".parse::<ScaledForm>().unwrap()).unwrap();
+    let taus = [10.0, 20.0, 40.0];
+    let theory = RoughViscoelastic {
+        dimension: 3,
+        beta,
+        inertia: q,
+        mass: 1.0,
+    };
+    let law_of_speed = normal();
+    let expected = theory.evolve(&|g| law_of_speed.eps(g), [1.0, 1.0], &taus, 0.02);
+    for scheme in [Scheme::Exact, Scheme::default()] {
+        let mut measured = vec![(vec![], vec![]); taus.len()];
+        let mut a2 = 0.0f64;
+        for seed in 0..4 {
+            let system = gas::init::monodisperse::<3>(n, 0.05, 1.0, 1.0, 1.0, seed).unwrap();
+            let law = Box::new(Rough::new(Box::new(normal()), Tangential::new(beta, None).unwrap()).unwrap());
+            let t0 = temperature(&system);
+            let spins = Rotation::thermal(&system, vec![q; n], t0, seed);
+            let mut engine = HomogeneousDsmc::new(system, 0.05, law, seed, scheme).unwrap();
+            engine.set_rotation(Some(spins)).unwrap();
+            for (k, &tau) in taus.iter().enumerate() {
+                let target = (tau * n as f64 / 2.0) as u64;
+                engine.run_collisions(target - engine.counters().collisions);
+                let system = engine.system().clone();
+                let t_rot = engine.rotation().unwrap().temperature(&system, None);
+                measured[k].0.push(temperature(&system) / t0);
+                measured[k].1.push(t_rot / t0);
+                a2 = a2.max(sonine_a2(&system).abs());
+            }
+        }
+        for (k, want) in expected.iter().enumerate() {
+            for (what, values, expected) in
+                [("T_tr", &measured[k].0, want[0]), ("T_rot", &measured[k].1, want[1])]
+            {
+                let (mean, error) = mean_and_error(values);
+                let tolerance = 4.0 * error + a2 * (1.0 - expected.ln()) * expected;
+                println!(
+                    "{scheme:?} tau {}: {what} {mean:.5e} ± {error:.1e} vs {expected:.5e} (a2 {a2:.3})",
+                    taus[k]
+                );
+                assert!((mean - expected).abs() < tolerance, "{scheme:?} {what} tau {}", taus[k]);
+            }
+        }
+    }
+}

@@ -13,7 +13,8 @@ use std::path::Path;
 /// `haff bench soft-sphere [RUN_FILE]`: nanoseconds per time step per particle (one core),
 /// the median of repeats after a warm-up of as many steps, with the engine's time step, the
 /// neighbour-list rebuilds and the contacts begun. Without a file: 3D, N = 10^4,
-/// phi = 0.05, Y = 1e5, nu = 0.3, A = 0.01, T = m = sigma = 1.
+/// phi = 0.05, Y = 1e5, nu = 0.3, A = 0.01, T = m = sigma = 1. A file with
+/// `collision.friction` times rough spheres.
 pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
     let text = match &args.run {
         Some(path) => std::fs::read_to_string(path)
@@ -52,8 +53,22 @@ pub fn soft_sphere(args: &crate::BenchSoftArgs) -> CliResult {
             s.seed + repeat as u64,
         )
         .map_err(|e| CliError::argument("RUN_FILE", e))?;
-        let mut engine = sim::engines::soft_sphere(system, options, material)
+        let mut engine = sim::engines::soft_sphere(system.clone(), options, material)
             .map_err(|e| CliError::argument("RUN_FILE", e))?;
+        // Rough spheres (collision.friction): their spins at the run's rotational
+        // temperature.
+        if let Some(rough) = &plan.rough {
+            let spins = gas::rotation::Rotation::thermal(
+                &system,
+                vec![rough.inertia[0]; system.len()],
+                rough.temperature,
+                s.seed,
+            );
+            engine
+                .set_friction(rough.friction)
+                .and_then(|()| engine.set_rotation(Some(spins)))
+                .map_err(|e| CliError::argument("RUN_FILE", e))?;
+        }
         engine.run_steps(steps);
         let before = engine.counters().collisions;
         let start = std::time::Instant::now();

@@ -25,6 +25,7 @@
 //! zeta = (1 - alpha^2) omega / D, the module's Haff law.
 
 mod laws;
+pub(crate) use laws::averages as restitution_averages;
 mod sonine;
 
 pub use sonine::DrivenState;

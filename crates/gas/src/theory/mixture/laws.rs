@@ -125,7 +125,7 @@ impl<const D: usize> MixtureTheory<D> {
 /// K1 = <1 + eps>_3 and K2 = <(1 + eps)^2>_3 over the weight g^3 exp(-g^2 / (2 s^2)) of
 /// normal relative speeds g (Simpson in u = g / s; normalized by the weight's integral by
 /// the same rule, whose error then cancels).
-fn averages(eps: impl Fn(f64) -> f64, s: f64) -> (f64, f64) {
+pub(crate) fn averages(eps: impl Fn(f64) -> f64, s: f64) -> (f64, f64) {
     let h = U_MAX / INTERVALS as f64;
     let (mut norm, mut k1, mut k2) = (0.0, 0.0, 0.0);
     for n in 1..=INTERVALS {
