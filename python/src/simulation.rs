@@ -370,8 +370,24 @@ impl PySimulation {
                 column(&|r| r.velocity_component(k)),
             ));
         }
+        // Rough particles: the rotation columns (a rough run's slabs are not all empty).
+        if rows.iter().any(|r| r.angular_velocity.is_some()) {
+            columns.push((
+                "rotational_temperature".into(),
+                column(&|r| r.rotational_temperature),
+            ));
+            for (k, axis) in ["x", "y", "z"].into_iter().enumerate() {
+                columns.push((
+                    format!("angular_velocity_{axis}"),
+                    column(&|r| r.angular_velocity.as_ref().map(|w| w[k])),
+                ));
+            }
+        }
         for (name, values) in columns {
-            debug_assert!(sim::profiles::PROFILES_HEADER.contains(&name.as_str()));
+            debug_assert!(
+                sim::profiles::PROFILES_HEADER.contains(&name.as_str())
+                    || sim::profiles::ROTATION_COLUMNS.contains(&name.as_str())
+            );
             out.set_item(name, PyArray1::from_vec(py, values))?;
         }
         Ok(Some(out))

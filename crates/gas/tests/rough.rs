@@ -215,7 +215,9 @@ fn rough_viscoelastic_spheres_cool_as_the_theory_says() {
         let mut a2 = 0.0f64;
         for seed in 0..4 {
             let system = gas::init::monodisperse::<3>(n, 0.05, 1.0, 1.0, 1.0, seed).unwrap();
-            let law = Box::new(Rough::new(Box::new(normal()), Tangential::new(beta, None).unwrap()).unwrap());
+            let law = Box::new(
+                Rough::new(Box::new(normal()), Tangential::new(beta, None).unwrap()).unwrap(),
+            );
             let t0 = temperature(&system);
             let spins = Rotation::thermal(&system, vec![q; n], t0, seed);
             let mut engine = HomogeneousDsmc::new(system, 0.05, law, seed, scheme).unwrap();
@@ -231,16 +233,21 @@ fn rough_viscoelastic_spheres_cool_as_the_theory_says() {
             }
         }
         for (k, want) in expected.iter().enumerate() {
-            for (what, values, expected) in
-                [("T_tr", &measured[k].0, want[0]), ("T_rot", &measured[k].1, want[1])]
-            {
+            for (what, values, expected) in [
+                ("T_tr", &measured[k].0, want[0]),
+                ("T_rot", &measured[k].1, want[1]),
+            ] {
                 let (mean, error) = mean_and_error(values);
                 let tolerance = 4.0 * error + a2 * (1.0 - expected.ln()) * expected;
                 println!(
                     "{scheme:?} tau {}: {what} {mean:.5e} ± {error:.1e} vs {expected:.5e} (a2 {a2:.3})",
                     taus[k]
                 );
-                assert!((mean - expected).abs() < tolerance, "{scheme:?} {what} tau {}", taus[k]);
+                assert!(
+                    (mean - expected).abs() < tolerance,
+                    "{scheme:?} {what} tau {}",
+                    taus[k]
+                );
             }
         }
     }

@@ -3,6 +3,8 @@
 //! `profiles.csv` per slab: density, packing fraction, temperature and its components,
 //! mean velocity. Cells without a value are empty: the components a dimension lacks, the
 //! velocity of an empty slab, the temperatures of a slab with fewer than two particles.
+//! Rough particles append [`ROTATION_COLUMNS`]: each slab's rotational temperature about its
+//! mean angular velocity, and that mean ([`gas::profile::rotation_profile`]).
 
 use crate::description::ProfilesOutput;
 use crate::error::Result;
@@ -32,6 +34,14 @@ pub const PROFILES_HEADER: [&str; 12] = [
     "velocity_z",
 ];
 
+/// The columns rough particles append to `profiles.csv` (a contract).
+pub const ROTATION_COLUMNS: [&str; 4] = [
+    "rotational_temperature",
+    "angular_velocity_x",
+    "angular_velocity_y",
+    "angular_velocity_z",
+];
+
 /// One row of `profiles.csv`: one slab at one sample.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -52,6 +62,13 @@ pub struct ProfileRow {
     /// The slab's centre-of-mass velocity, D components (None when empty).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub velocity: Option<Vec<f64>>,
+    /// Rough particles: the rotational temperature about the slab's mean spin (None below
+    /// two particles).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotational_temperature: Option<f64>,
+    /// Rough particles: the slab's mean angular velocity, 3 components (None when empty).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<Vec<f64>>,
 }
 
 impl ProfileRow {
@@ -76,6 +93,9 @@ pub struct ProfileSeries {
     pub weight: f64,
     /// `bins` rows per sample, in sample order.
     pub rows: Vec<ProfileRow>,
+    /// Whether the particles rotate ([`ROTATION_COLUMNS`]).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub rough: bool,
 }
 
 impl ProfileSeries {
@@ -89,6 +109,7 @@ impl ProfileSeries {
                 bins,
                 weight: plan.particle_weight,
                 rows: Vec::new(),
+                rough: plan.rough.is_some(),
             })
     }
 
@@ -106,9 +127,18 @@ impl ProfileSeries {
             ];
             row.extend((0..3).map(|k| cell(r.temperature_component(k))));
             row.extend((0..3).map(|k| cell(r.velocity_component(k))));
+            if self.rough {
+                row.push(cell(r.rotational_temperature));
+                let spin = |k: usize| r.angular_velocity.as_ref().map(|w| w[k]);
+                row.extend((0..3).map(|k| cell(spin(k))));
+            }
             row
         });
-        write_csv_file(path, &PROFILES_HEADER, rows)
+        let mut header = PROFILES_HEADER.to_vec();
+        if self.rough {
+            header.extend(ROTATION_COLUMNS);
+        }
+        write_csv_file(path, &header, rows)
     }
 }
 
@@ -123,16 +153,29 @@ impl<const D: usize> Observer<D> for ProfileSeries {
         }
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());
         let slabs = gas::profile::profile(engine.system(), self.axis, self.bins, self.weight);
-        self.rows.extend(slabs.iter().map(|s| ProfileRow {
-            time,
-            collisions_per_particle: cpp,
-            position: s.position,
-            density: s.density,
-            packing_fraction: s.packing_fraction,
-            temperature: s.temperature(),
-            temperatures: s.temperature.map(|t| t.to_vec()),
-            velocity: s.velocity.map(|v| v.to_vec()),
-        }));
+        let spins = match self.rough {
+            true => {
+                let system = engine.system().clone();
+                engine.rotation().map_or_else(Vec::new, |rotation| {
+                    gas::profile::rotation_profile(&system, rotation, self.axis, self.bins)
+                })
+            }
+            false => Vec::new(),
+        };
+        let spin = |b: usize| spins.get(b).copied();
+        self.rows
+            .extend(slabs.iter().enumerate().map(|(b, s)| ProfileRow {
+                time,
+                collisions_per_particle: cpp,
+                position: s.position,
+                density: s.density,
+                packing_fraction: s.packing_fraction,
+                temperature: s.temperature(),
+                temperatures: s.temperature.map(|t| t.to_vec()),
+                velocity: s.velocity.map(|v| v.to_vec()),
+                rotational_temperature: spin(b).and_then(|x| x.rotational_temperature),
+                angular_velocity: spin(b).and_then(|x| x.angular_velocity.map(|w| w.to_vec())),
+            }));
         Ok(())
     }
 
@@ -148,7 +191,9 @@ impl<const D: usize> Observer<D> for ProfileSeries {
         _engine: &mut dyn Engine<D>,
     ) -> std::result::Result<(), String> {
         let records: ProfileSeries = records_from(record)?;
-        if (records.axis, records.bins, records.weight) != (self.axis, self.bins, self.weight) {
+        if (records.axis, records.bins, records.weight, records.rough)
+            != (self.axis, self.bins, self.weight, self.rough)
+        {
             return Err("the profile records do not match output.profiles".into());
         }
         let samples = schedule.samples_before(done);
@@ -160,10 +205,11 @@ impl<const D: usize> Observer<D> for ProfileSeries {
             ));
         }
         let sized = |v: &Option<Vec<f64>>| v.as_ref().is_none_or(|v| v.len() == D);
+        let spun = |v: &Option<Vec<f64>>| v.as_ref().is_none_or(|v| v.len() == 3);
         if !records
             .rows
             .iter()
-            .all(|r| sized(&r.temperatures) && sized(&r.velocity))
+            .all(|r| sized(&r.temperatures) && sized(&r.velocity) && spun(&r.angular_velocity))
         {
             return Err(format!("profile rows with components other than {D}"));
         }

@@ -430,3 +430,39 @@ fn soft_spheres_refuse_what_their_contacts_decide() {
         assert!(error.to_string().contains(key), "{collision}: {error}");
     }
 }
+
+/// Rough disks under shear with profiles along y: `profiles.csv` appends the rotation
+/// columns (each slab's rotational temperature about its mean spin, and that spin), which a
+/// check-point resumes bit for bit; smooth runs keep the issue's twelve columns (tested in
+/// `profiles.rs`).
+#[test]
+fn profiles_of_rough_particles_carry_their_spin() {
+    let text = "[system]\ndimension = 2\nparticles = 500\npacking_fraction = 0.1\nseed = 4\n\
+                [collision]\nlaw = \"constant\"\nrestitution = 0.9\ntangential_restitution = 0.0\n\
+                [run]\ncollisions_per_particle = 20\nsamples = 11\nspacing = \"linear\"\n\
+                [shear]\nrate = 0.5\n[output]\nprofiles = { axis = \"y\", bins = 4 }\n";
+    let mut run = Simulation::from_toml(text, "sheared.toml".as_ref()).unwrap();
+    let dir = temp_dir("profiles");
+    assert!(run
+        .advance(Point::CollisionsPerParticle(7.0), &mut ())
+        .unwrap());
+    let file = dir.join("sheared.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.profile_rows(), run.profile_rows());
+    loaded.write(&dir).unwrap();
+    let csv = std::fs::read_to_string(dir.join("profiles.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines.next().unwrap().ends_with(
+        ",velocity_z,rotational_temperature,angular_velocity_x,angular_velocity_y,\
+         angular_velocity_z"
+    ));
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    assert_eq!(last.len(), 16);
+    assert!(last[12].parse::<f64>().unwrap() > 0.0);
+    // Disks spin about z only.
+    assert_eq!((last[13], last[14]), ("0", "0"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
