@@ -26,6 +26,7 @@ pub mod gauss;
 pub mod hydrodynamics;
 pub mod mixture;
 pub mod rough;
+pub mod rough_sonine;
 pub mod sonine;
 pub mod transport;
 pub mod usf;
