@@ -49,10 +49,11 @@
 //! equipartition with all cumulants 0 and no cooling.
 //!
 //! **Where the linear approximation fails.** The rotational equation (E3) has a restoring
-//! coefficient of order (eta/q)^2 for small roughness, the order of its source terms; near
-//! beta ≈ -0.6 ... -0.9 (q = 2/5) it crosses zero and a02 grows without bound (no root
-//! connected with the Maxwellian ratio: [`hcs`] gives None). |a02| above about 1 marks
-//! values not to trust (docs/rough.md has the map and the comparison with DSMC).
+//! coefficient of order (eta/q)^2 for small roughness, the order of its source terms; between
+//! beta ≈ -0.95 and -0.55 (alpha from 0.4 to 0.95, q = 2/5) it crosses zero and a02 grows
+//! without bound (no root connected with the Maxwellian ratio: [`hcs`] gives None). A
+//! cumulant above about 1 marks values not to trust (docs/rough.md has the map and the
+//! comparison with DSMC).
 
 use super::rough::RoughMaxwellian;
 

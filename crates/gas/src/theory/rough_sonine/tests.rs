@@ -136,7 +136,7 @@ fn the_cooling_state_solves_its_equations() {
 
 /// The quasi-smooth limit is singular (Santos, Kremer & dos Santos 2011): as beta -> -1
 /// the Sonine a20 of rough spheres tends to a limit of its own, not to the smooth spheres'
-/// van Noije & Ernst value (the rotational temperature grows like 1/eta, and its energy
+/// van Noije & Ernst value (the rotational temperature grows like 1/eta^2, and its energy
 /// fed back into translation stays finite). Here: the limit exists (beta = -1 + 1e-5 and
 /// -1 + 1e-6 agree to 1e-4) and lies apart from the smooth value (by 0.02 to 0.036 at
 /// alpha = 0.9, 0.7, 0.5, q = 2/5; asserted: more than 0.01).
