@@ -105,7 +105,8 @@ const CSVS: [(&str, &str); 32] = [
     ),
     (
         "rough-hcs",
-        "dsmc,alpha,beta,ratio,ratio_error,theory_ratio,cooling,cooling_error,theory_cooling",
+        "dsmc,alpha,beta,ratio,ratio_error,theory_ratio,cooling,cooling_error,theory_cooling,\
+         sonine_ratio,sonine_cooling,a2,a2_error,sonine_a20,sonine_largest_cumulant",
     ),
     (
         "giese-fig1",

@@ -26,6 +26,7 @@ pub mod gauss;
 pub mod hydrodynamics;
 pub mod mixture;
 pub mod rough;
+pub mod rough_sonine;
 pub mod rough_viscoelastic;
 pub mod sonine;
 pub mod transport;

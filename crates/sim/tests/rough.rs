@@ -73,6 +73,23 @@ fn rough_runs_write_their_rotation_and_resume_bit_for_bit() {
             let theory = &summary["rough_theory"];
             assert_eq!(theory["beta"], 0.3);
             assert!(theory["hcs_ratio"].as_f64().unwrap() > 0.0);
+            // The first Sonine approximation beside it: the gas crate's numbers bit for bit.
+            let sonine = gas::theory::rough_sonine::hcs(&gas::theory::rough::RoughMaxwellian {
+                dimension: dimension as usize,
+                alpha: 0.85,
+                beta: 0.3,
+                inertia: 0.35,
+            })
+            .unwrap();
+            let section = &theory["sonine"];
+            assert_eq!(section["hcs_ratio"], sonine.ratio);
+            assert_eq!(section["a20"], sonine.a20);
+            assert_eq!(section["a02"], sonine.a02);
+            assert_eq!(section["a11"], sonine.a11);
+            assert_eq!(
+                section["hcs_cooling_per_collision"],
+                sonine.cooling_per_collision
+            );
             assert_eq!(summary["rotation"]["sliding_contacts"], 0);
             if positions {
                 let vtu = std::fs::read_to_string(dir.join("snapshot_000004.vtu")).unwrap();

@@ -33,9 +33,9 @@
 //!
 //! The approximation: the velocity distributions are Gaussians and translation and
 //! rotation uncorrelated. Both fail by a few percent in the cooling state (the cumulants
-//! a20, a02 and the correlation a11 of Santos, Kremer & Garzó, Phys. Rev. E 81, 011301
-//! (2010); Kremer, Santos & Garzó, Phys. Rev. E 90, 022205 (2014)); the first Sonine
-//! corrections are not computed here.
+//! a20, a02 and the correlation a11; Santos, Kremer & dos Santos, Phys. Fluids 23, 030604
+//! (2011); Kremer, Santos & Garzó, Phys. Rev. E 90, 022205 (2014)); their first Sonine
+//! approximation is [`super::rough_sonine`].
 
 /// The Maxwellian theory of a rough gas of one kind of particle.
 #[derive(Debug, Clone, Copy, PartialEq)]
