@@ -4,6 +4,7 @@
 use super::cell_sort::CellSorter;
 use super::domain::{Slabs, Traffic};
 use super::kernel::{self, scaled, Collider, Moments, Simulator, SpeciesTally};
+use super::rough::Spin;
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
 use crate::engine::{Checkpoint, Counters, Engine};
@@ -19,9 +20,12 @@ use std::sync::Arc;
 mod container;
 mod flow;
 mod ranks;
+pub(super) mod record;
+mod rough;
 mod sums;
 mod tracking;
 use flow::stream_one;
+use record::{with_records, Particle, Records};
 use std::time::Instant;
 use sums::{mass_and_momentum, spread_about_mean};
 
@@ -75,7 +79,8 @@ pub struct SpatialOptions {
 /// for uniformly placed particles, the mean collision rate of a homogeneous gas is exact for
 /// any cell size and step.
 pub struct SpatialDsmc<const D: usize> {
-    simulators: Vec<Simulator<D>>,
+    /// The particles of this rank: smooth, or rough with their spins ([`record`]).
+    records: Records<D>,
     species: Species,
     law: Box<dyn Restitution>,
     /// The law of each pair of species (pairwise laws; [`super::species::engine_laws`]).
@@ -120,6 +125,11 @@ pub struct SpatialDsmc<const D: usize> {
     /// and the positions after the last step they were followed to, by identity.
     tracks: Option<crate::tail::Tracks>,
     tracked_positions: Vec<Vector<D>>,
+    /// Rough particles: the tangential rules, inertia factors and contacts that slid
+    /// ([`rough`]); None for smooth ones.
+    spin: Option<Spin>,
+    /// Output buffer of the rotation (rough particles).
+    rotation: Option<crate::rotation::Rotation>,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -251,8 +261,8 @@ impl<const D: usize> SpatialDsmc<D> {
             simulators = mine.iter().map(|&i| simulators[i]).collect();
             ordinals = Some(mine.into_iter().map(|i| i as u64).collect());
         }
-        Ok(SpatialDsmc {
-            simulators,
+        let mut engine = SpatialDsmc {
+            records: Records::Smooth(simulators),
             species,
             law,
             pairs,
@@ -287,7 +297,17 @@ impl<const D: usize> SpatialDsmc<D> {
             virial: None,
             tracks: None,
             tracked_positions: Vec::new(),
-        })
+            spin: None,
+            rotation: None,
+        };
+        if engine.law.tangential().is_some() {
+            // Rough particles start as solid spheres (disks) at rest until given their
+            // rotation.
+            let solid = if D == 2 { 0.5 } else { 0.4 };
+            let inertia = vec![solid; engine.species.len()];
+            engine.give_rotation(&vec![[0.0; 3]; n], inertia, 0);
+        }
+        Ok(engine)
     }
 
     /// The engine of `snapshot` over the ranks of `comm` (every rank reads the same
@@ -329,6 +349,9 @@ impl<const D: usize> SpatialDsmc<D> {
             engine.tracks = Some(tracks);
             engine.set_tracking(true)?;
         }
+        if let Some(rotation) = snapshot.tail.rotation {
+            engine.set_rotation_of(Some(rotation))?;
+        }
         Ok(engine)
     }
 
@@ -346,6 +369,7 @@ impl<const D: usize> SpatialDsmc<D> {
         // Lab velocities: the flow is part of the state.
         self.fill_system(false);
         let system = self.system.clone();
+        let rotation = self.rotation_now().cloned();
         let species_collisions = super::species::in_saved_order(
             &self.species,
             &self.species_collisions,
@@ -370,7 +394,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 shear: self.shear,
                 virial: self.virial,
                 tracks: self.tracks_in_order(),
-                rotation: None,
+                rotation,
             },
         }
     }
@@ -460,32 +484,37 @@ impl<const D: usize> SpatialDsmc<D> {
     /// One step of time dt: stream, sort into cells (on several ranks: migrate first),
     /// collide in every cell, sum over the cells exactly.
     fn step(&mut self, dt: f64) {
+        with_records!(self, records => self.step_records(&mut records, dt));
+    }
+
+    /// [`SpatialDsmc::step`] of `records` (the engine's, moved out for the step).
+    fn step_records<R: Particle<D>>(&mut self, records: &mut Vec<R>, dt: f64) {
         let clock = Instant::now();
         let (sides, cells, width) = (self.sides, self.cells, self.widths());
         let cell_count = self.cell_count();
-        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
+        let key = |p: &R| cell_key(&p.body().position, &width, &cells);
         let faces = self.sliding_faces(dt);
-        let stream = |p: &mut Simulator<D>| stream_one(p, dt, &sides, faces);
+        let stream = |p: &mut R| stream_one(p.body_mut(), dt, &sides, faces);
         let starts = if self.comm.size() == 1 && self.walls.is_some() {
-            self.stream_in_container(dt);
+            self.stream_in_container(records, dt);
             self.sorter
-                .update_and_sort(&mut self.simulators, cell_count, |_| {}, key)
+                .update_and_sort(records, cell_count, |_| {}, key)
         } else if self.comm.size() == 1 {
             self.sorter
-                .update_and_sort(&mut self.simulators, cell_count, stream, key)
+                .update_and_sort(records, cell_count, stream, key)
         } else if self.walls.is_some() {
             // Each rank streams its particles in the container, then they migrate.
-            self.stream_in_container(dt);
-            self.stream_and_sort_over_ranks(0.0)
+            self.stream_in_container(records, dt);
+            self.stream_and_sort_over_ranks(records, 0.0)
         } else {
-            self.stream_and_sort_over_ranks(dt)
+            self.stream_and_sort_over_ranks(records, dt)
         };
         if self.tracks.is_some() {
-            self.follow_tracks(dt);
+            self.follow_tracks(records, dt);
         }
-        let groups = split_at_starts(&mut self.simulators, &starts);
+        let groups = split_at_starts(records, &starts);
         let collider = Collider {
-            rough: None,
+            rough: self.spin.as_ref().and_then(Spin::kernel),
             law: self.law.as_ref(),
             species: &self.species,
             pairs: self.pairs.as_deref(),
@@ -527,8 +556,11 @@ impl<const D: usize> SpatialDsmc<D> {
                 (tally, spread_about_mean(cell, species, mass, momentum))
             })
             .collect();
-        let (tally, spread, species_collisions, virial) = self.sum_over_cells(&results);
+        let (tally, spread, species_collisions, virial, sliding) = self.sum_over_cells(&results);
         self.tally.add(&tally);
+        if let Some(spin) = self.spin.as_mut() {
+            spin.sliding += sliding;
+        }
         if let (Some(total), Some(step)) = (self.virial.as_mut(), &virial) {
             total.merge(step);
         }
@@ -656,7 +688,7 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
     fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         let s = &self.system;
-        self.simulators.capacity() * size_of::<Simulator<D>>()
+        self.records.memory_bytes()
             + self.sorter.memory_bytes()
             + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
             + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
@@ -682,6 +714,22 @@ impl<const D: usize> Engine<D> for SpatialDsmc<D> {
             return None;
         }
         self.exact_velocity_statistics()
+    }
+
+    /// Gives the particles `rotation` in the order of [`Engine::system`] (collective);
+    /// the inertia factor must be one per species.
+    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
+        self.set_rotation_of(rotation)
+    }
+
+    /// The particles' rotation in the order of [`Engine::system`] (collective).
+    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
+        self.rotation_now()
+    }
+
+    /// Rough particles: the section `rotation` (contacts that slid, all ranks).
+    fn report(&self) -> crate::engine::Report {
+        self.rough_report()
     }
 }
 

@@ -16,9 +16,9 @@ use gas::{Checkpoint, Engine, HomogeneousDsmc, SpatialDsmc, System};
 use restitution::Restitution;
 use std::sync::Arc;
 
-/// What each scheme can do: all have point particles and no collapse; the spatial one has
-/// positions (and tracks them, on one rank); the blocks and the spatial scheme spread over
-/// ranks; the blocks drive.
+/// What each scheme can do: all have point particles, rough ones too, and no collapse; the
+/// spatial one has positions (and tracks them, on one rank); the blocks and the spatial
+/// scheme spread over ranks; the blocks drive.
 pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
     Abilities {
         positions: scheme == DsmcScheme::Spatial,
@@ -40,7 +40,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         shear: true,
         stress: true,
         displacements: scheme == DsmcScheme::Spatial,
-        rotation: scheme != DsmcScheme::Spatial,
+        rotation: true,
     }
 }
 
