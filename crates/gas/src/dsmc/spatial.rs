@@ -3,31 +3,29 @@
 
 use super::cell_sort::CellSorter;
 use super::domain::{Slabs, Traffic};
-use super::kernel::{self, scaled, Collider, Moments, Simulator, SpeciesTally};
+use super::kernel::{Moments, Simulator};
 use super::rough::Spin;
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
-use crate::engine::{Checkpoint, Counters, Engine};
+use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
 use crate::parallel::{Communicator, Local};
-use crate::rng::{Purpose, Stream};
 use crate::system::{wrap, System, Vector};
 use crate::theory;
-use rayon::prelude::*;
 use restitution::Restitution;
 use std::sync::Arc;
 
 mod container;
+mod engine;
 mod flow;
 mod ranks;
 pub(super) mod record;
 mod rough;
+mod step;
 mod sums;
 mod tracking;
-use flow::stream_one;
-use record::{with_records, Particle, Records};
-use std::time::Instant;
-use sums::{mass_and_momentum, spread_about_mean};
+use record::Records;
+use step::{cell_index, cell_key};
 
 /// Collision cell width in mean free paths when none is given.
 pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
@@ -63,7 +61,7 @@ pub struct SpatialOptions {
 ///
 /// Each step of time dt: (1) every particle streams freely, x += v dt (wrapped); (2) the
 /// particles are sorted by collision cell (a stable sort: the order is unique); (3) in every
-/// occupied cell, in parallel, the exact majorant process of [`kernel`] runs for dt among
+/// occupied cell, in parallel, the exact majorant process of [`super::kernel`] runs for dt among
 /// the cell's n_c particles with pair rate W c_D |g| F / V_cell, where W = g2 sigma^(D-1)
 /// with g2 of the mean packing fraction (the "Enskog-factor DSMC" approximation: no
 /// spatial offset of the collision partners) and F = phi V_box / (sum of sphere volumes)
@@ -479,272 +477,5 @@ impl<const D: usize> SpatialDsmc<D> {
             self.step(dt);
             self.time = if last { end } else { self.time + dt };
         }
-    }
-
-    /// One step of time dt: stream, sort into cells (on several ranks: migrate first),
-    /// collide in every cell, sum over the cells exactly.
-    fn step(&mut self, dt: f64) {
-        with_records!(self, records => self.step_records(&mut records, dt));
-    }
-
-    /// [`SpatialDsmc::step`] of `records` (the engine's, moved out for the step).
-    fn step_records<R: Particle<D>>(&mut self, records: &mut Vec<R>, dt: f64) {
-        let clock = Instant::now();
-        let (sides, cells, width) = (self.sides, self.cells, self.widths());
-        let cell_count = self.cell_count();
-        let key = |p: &R| cell_key(&p.body().position, &width, &cells);
-        let faces = self.sliding_faces(dt);
-        let stream = |p: &mut R| stream_one(p.body_mut(), dt, &sides, faces);
-        let starts = if self.comm.size() == 1 && self.walls.is_some() {
-            self.stream_in_container(records, dt);
-            self.sorter
-                .update_and_sort(records, cell_count, |_| {}, key)
-        } else if self.comm.size() == 1 {
-            self.sorter
-                .update_and_sort(records, cell_count, stream, key)
-        } else if self.walls.is_some() {
-            // Each rank streams its particles in the container, then they migrate.
-            self.stream_in_container(records, dt);
-            self.stream_and_sort_over_ranks(records, 0.0)
-        } else {
-            self.stream_and_sort_over_ranks(records, dt)
-        };
-        if self.tracks.is_some() {
-            self.follow_tracks(records, dt);
-        }
-        let groups = split_at_starts(records, &starts);
-        let collider = Collider {
-            rough: self.spin.as_ref().and_then(Spin::kernel),
-            law: self.law.as_ref(),
-            species: &self.species,
-            pairs: self.pairs.as_deref(),
-        };
-        let cell_volume = if crate::system::is_cube(&self.sides) {
-            width[0].powi(D as i32)
-        } else {
-            width.iter().product()
-        };
-        let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
-            / cell_volume;
-        let (seed, step, species) = (self.seed, self.steps, &self.species);
-        let with_virial = self.virial.is_some();
-        let results: Vec<(SpeciesTally, Moments<D>)> = groups
-            .into_par_iter()
-            .map(|cell| {
-                let mut tally = SpeciesTally::new(species.len());
-                tally.virial = with_virial.then(crate::shear::Virial::default);
-                let (mass, momentum) = mass_and_momentum(cell, species);
-                if cell.len() < 2 {
-                    return (tally, spread_about_mean(cell, species, mass, momentum));
-                }
-                let mean = scaled(&momentum, mass);
-                let mut bound = kernel::speed_bound(cell, &mean);
-                let mut rng = Stream::new(seed, Purpose::Cell, step, key(&cell[0]));
-                collider.run_for(
-                    cell,
-                    &mean,
-                    pair_rate,
-                    (0.0, dt),
-                    &mut bound,
-                    &mut rng,
-                    &mut tally,
-                );
-                if tally.counters.collisions == 0 {
-                    return (tally, spread_about_mean(cell, species, mass, momentum));
-                }
-                let (mass, momentum) = mass_and_momentum(cell, species);
-                (tally, spread_about_mean(cell, species, mass, momentum))
-            })
-            .collect();
-        let (tally, spread, species_collisions, virial, sliding) = self.sum_over_cells(&results);
-        self.tally.add(&tally);
-        if let Some(spin) = self.spin.as_mut() {
-            spin.sliding += sliding;
-        }
-        if let (Some(total), Some(step)) = (self.virial.as_mut(), &virial) {
-            total.merge(step);
-        }
-        kernel::add_counts(&mut self.species_collisions, &species_collisions);
-        self.temperature = spread / (self.total * D) as f64;
-        self.steps += 1;
-        self.traffic.steps += 1;
-        self.traffic.step_seconds += clock.elapsed().as_secs_f64();
-    }
-}
-
-/// Linear index of the cell holding x (in [0, L)^D): the last axis most significant.
-#[inline]
-fn cell_key<const D: usize>(x: &Vector<D>, width: &[f64; D], cells: &[u64; D]) -> u64 {
-    (0..D).rev().fold(0, |key, k| {
-        key * cells[k] + cell_index(x[k], width[k], cells[k])
-    })
-}
-
-/// The index along one axis of the cell holding coordinate x (in [0, L)).
-#[inline]
-fn cell_index(x: f64, width: f64, cells: u64) -> u64 {
-    // Through i64 (x / width is in [0, cells)): the same value as `as u64`, which x86
-    // converts with a branchy sequence of instructions.
-    ((x / width) as i64 as u64).min(cells - 1)
-}
-
-fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
-    let mut parts = Vec::with_capacity(starts.len());
-    let mut at = 0;
-    for &next in starts.iter().skip(1) {
-        let (head, tail) = data.split_at_mut(next - at);
-        parts.push(head);
-        data = tail;
-        at = next;
-    }
-    parts.push(data);
-    parts
-}
-
-impl<const D: usize> Engine<D> for SpatialDsmc<D> {
-    /// Runs until the time reaches `t` (the last step shortened to end there).
-    fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX, u64::MAX);
-    }
-
-    /// Runs until `collisions` more collisions have happened, at the end of a step (the last
-    /// steps shortened to the expected remaining count).
-    fn run_collisions(&mut self, collisions: u64) {
-        let target = self.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target, u64::MAX);
-    }
-
-    /// Runs toward `end` and `collisions`, pausing at the end of the step where the tally
-    /// reaches `pause` (see [`crate::Engine::run_paused`]).
-    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
-        self.run(end, collisions, pause);
-    }
-
-    fn time(&self) -> f64 {
-        self.time
-    }
-
-    fn counters(&self) -> Counters {
-        self.tally
-    }
-
-    /// Physical particles per simulated particle, F = phi V_box / (sum of sphere volumes).
-    fn weight(&self) -> f64 {
-        self.weight
-    }
-
-    /// The current state in the engine's current order (sorted by cell every step); on
-    /// several ranks, gathered from all of them in rank order (the same order; collective).
-    /// Under shear, velocities relative to the flow (peculiar: v - a y e_x).
-    fn system(&mut self) -> &System<D> {
-        self.fill_system(true);
-        &self.system
-    }
-
-    fn shear(&self) -> Option<crate::shear::Shear> {
-        self.shear
-    }
-
-    fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
-        SpatialDsmc::set_shear(self, shear)
-    }
-
-    fn set_tracking(&mut self, on: bool) -> Result<()> {
-        SpatialDsmc::set_tracking(self, on)
-    }
-
-    /// The displacements in the engine's current order (that of [`Engine::system`]).
-    fn displacements(&mut self) -> Option<Vec<Vector<D>>> {
-        SpatialDsmc::displacements(self)
-    }
-
-    fn virial_tensor(&self) -> Option<crate::shear::Virial> {
-        self.virial
-    }
-
-    /// Sums the tensor virial of the collisions (the impact direction's n n), from zero
-    /// unless summed already.
-    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
-        if !on {
-            self.virial = None;
-        } else if self.virial.is_none() {
-            self.virial = Some(crate::shear::Virial::default());
-        }
-        Ok(())
-    }
-
-    /// The collisions of each species' particles so far (each collision counts for both).
-    fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
-        Some(super::species::by_species(
-            &self.species,
-            &self.species_collisions,
-            &self.tally,
-        ))
-    }
-
-    /// Bytes held between steps: records, the sort's scratch (4 per particle and per
-    /// cell), the output of [`SpatialDsmc::system`] once taken, the species tables. A step
-    /// also allocates one entry per occupied cell, freed at its end.
-    fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let s = &self.system;
-        self.records.memory_bytes()
-            + self.sorter.memory_bytes()
-            + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
-            + self.species.memory_bytes()
-    }
-
-    fn particles(&self) -> usize {
-        self.len()
-    }
-
-    fn walls(&self) -> Option<Vec<crate::walls::WallRecord>> {
-        self.walls.as_ref().map(|w| w.records())
-    }
-
-    fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
-        self.reports_of_ranks()
-    }
-
-    /// Exact sums over ranks; under shear None (the observers take the peculiar
-    /// velocities of [`Engine::system`]).
-    fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
-        if self.shear.is_some() {
-            return None;
-        }
-        self.exact_velocity_statistics()
-    }
-
-    /// Gives the particles `rotation` in the order of [`Engine::system`] (collective);
-    /// the inertia factor must be one per species.
-    fn set_rotation(&mut self, rotation: Option<crate::rotation::Rotation>) -> Result<()> {
-        self.set_rotation_of(rotation)
-    }
-
-    /// The particles' rotation in the order of [`Engine::system`] (collective).
-    fn rotation(&mut self) -> Option<&crate::rotation::Rotation> {
-        self.rotation_now()
-    }
-
-    /// Rough particles: the section `rotation` (contacts that slid, all ranks).
-    fn report(&self) -> crate::engine::Report {
-        self.rough_report()
-    }
-}
-
-impl<const D: usize> Checkpoint<D> for SpatialDsmc<D> {
-    type State = SpatialSnapshot<D>;
-    /// The collision law.
-    type Needs = Box<dyn Restitution>;
-
-    fn save(&mut self) -> SpatialSnapshot<D> {
-        self.snapshot()
-    }
-
-    /// Continues the run of `state` bit for bit with the law it used, in this process
-    /// ([`SpatialDsmc::restore_distributed`] over ranks).
-    fn restore(state: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
-        Self::restore_distributed(state, law, Arc::new(Local))
     }
 }

@@ -61,7 +61,7 @@ impl<const D: usize> SpatialDsmc<D> {
         let faces = self.sliding_faces(dt);
         let stream = |p: &mut R| {
             if dt != 0.0 {
-                super::stream_one(p.body_mut(), dt, &sides, faces);
+                super::flow::stream_one(p.body_mut(), dt, &sides, faces);
             }
         };
         if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
