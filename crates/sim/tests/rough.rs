@@ -6,10 +6,11 @@
 use sim::{Point, Simulation};
 
 /// The engines that have rough particles, as `[run]` lines.
-const ENGINES: [&str; 3] = [
+const ENGINES: [&str; 4] = [
     "engine = \"event-driven\"",
     "engine = \"dsmc\"\ndsmc_scheme = \"blocks\"",
     "engine = \"dsmc\"\ndsmc_scheme = \"exact\"",
+    "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"",
 ];
 
 fn gas(dimension: u32, engine: &str, extra_system: &str, extra_collision: &str) -> String {
@@ -34,7 +35,7 @@ fn rough_runs_write_their_rotation_and_resume_bit_for_bit() {
     for engine in ENGINES {
         for dimension in [2, 3] {
             // Snapshots need positions (not homogeneous DSMC).
-            let positions = engine.contains("event-driven");
+            let positions = engine.contains("event-driven") || engine.contains("spatial");
             let mut text = gas(
                 dimension,
                 engine,
@@ -332,5 +333,86 @@ fn bad_rough_keys_are_refused_by_name() {
             error.to_string().contains(key),
             "{system} {collision}: {error}"
         );
+    }
+}
+
+/// An engine without rough particles (soft-sphere MD) refuses the key, naming it and the
+/// engines that have them.
+#[test]
+fn engines_without_rotation_refuse_the_key() {
+    let text = "[system]\nparticles = 40\npacking_fraction = 0.1\n\
+                [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\n\
+                dissipative_constant = 0.01\ntangential_restitution = 0.5\n\
+                [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\n";
+    let error = Simulation::from_toml(text, "soft.toml".as_ref())
+        .err()
+        .expect("refused");
+    let message = error.to_string();
+    assert!(error.is_input(), "{message}");
+    assert!(
+        message.contains("collision.tangential_restitution")
+            && message.contains("\"event-driven\"")
+            && message.contains("\"dsmc\""),
+        "{message}"
+    );
+}
+
+/// The spins are part of a check-point's energy. A perfectly rough elastic gas (alpha =
+/// beta = 1: energy kept) resumes from its check-point even where the start's spins,
+/// drawn at T_rot0 without rescaling, hold more than N d_rot T_rot0 / 2 (the seeds with
+/// T_rot(0) > T_rot0, of which there must be one: the oracle that the bound allows for the
+/// draw); a check-point whose last spin was forged to 1e300 is refused, naming the energy
+/// (the fuzz harness found such a state run to infinite temperatures).
+#[test]
+fn a_check_point_s_spins_count_in_its_energy() {
+    for engine in ENGINES {
+        let mut above = 0;
+        for seed in 1..=6 {
+            let text = gas(
+                3,
+                engine,
+                "rotational_temperature = 0.5",
+                "tangential_restitution = 1.0\n",
+            )
+            .replace("restitution = 0.85", "restitution = 1.0")
+            .replace("seed = 5", &format!("seed = {seed}"));
+            let mut run = Simulation::from_toml(&text, "e.toml".as_ref()).unwrap();
+            let dir = temp_dir(&format!("energy-{seed}"));
+            run.set_output_dir(&dir);
+            assert!(run
+                .advance(Point::CollisionsPerParticle(2.5), &mut ())
+                .unwrap());
+            above += (run.samples()[0].rotational_temperature.unwrap() > 0.5) as usize;
+            let file = dir.join(sim::checkpoint::FILE_NAME);
+            run.save(&file).unwrap();
+            if let Err(e) = Simulation::resume(&dir) {
+                panic!("{engine}, seed {seed}: {e}");
+            }
+            // The state ends with the spins, then the sliding contacts (0: one byte).
+            let bytes = std::fs::read(&file).unwrap();
+            let first = bytes.iter().position(|&b| b == b'\n').unwrap();
+            let mut header: serde_json::Value = serde_json::from_slice(&bytes[..first]).unwrap();
+            let records = header["records_bytes"].as_u64().unwrap() as usize;
+            let mut state = bytes[first + 2 + records..].to_vec();
+            let at = state.len() - 9;
+            assert_eq!(state[state.len() - 1], 0);
+            let w: f64 = f64::from_le_bytes(state[at..at + 8].try_into().unwrap());
+            assert!(w.is_finite() && w != 0.0 && w.abs() < 100.0, "a spin: {w}");
+            state[at..at + 8].copy_from_slice(&1e300f64.to_le_bytes());
+            let mut crc = crc32fast::Hasher::new();
+            crc.update(&bytes[first + 1..first + 1 + records]);
+            crc.update(&state);
+            header["crc32"] = crc.finalize().into();
+            let mut forged = serde_json::to_vec(&header).unwrap();
+            forged.extend_from_slice(&bytes[first..first + 2 + records]);
+            forged.extend(state);
+            std::fs::write(&file, forged).unwrap();
+            let error = Simulation::resume(&dir)
+                .err()
+                .expect("a spin of 1e300 refused");
+            assert!(error.to_string().contains("energy"), "{engine}: {error}");
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
+        assert!(above > 0, "{engine}: no start drew T_rot above T_rot0");
     }
 }
