@@ -229,3 +229,34 @@ fn a_rough_gas_continues_from_its_checkpoint() {
     assert_eq!(a, b);
     assert!(a.sliding > 0, "some contacts slide");
 }
+
+/// `set_rotation(None)`: on a gas without rotation it leaves the particles as they are
+/// (the homogeneous engine once dropped them all: its smooth records were swapped for the
+/// placeholder's empty store); on a spinning gas of a smooth law it takes the spins away
+/// and keeps the rest; a rough law's gas refuses it. Homogeneous and spatial DSMC.
+#[test]
+fn taking_the_rotation_away_keeps_the_particles() {
+    let system = gas::init::monodisperse::<3>(500, 0.1, 1.0, 1.0, 1.0, 6).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.4; 500], 1.0, 6);
+    let make = |scheme: &str, law: Box<dyn Restitution>| -> Box<dyn Engine<3>> {
+        let s = system.clone();
+        match scheme {
+            "exact" => Box::new(HomogeneousDsmc::new(s, 0.1, law, 1, Scheme::Exact).unwrap()),
+            "blocks" => Box::new(HomogeneousDsmc::new(s, 0.1, law, 1, Scheme::default()).unwrap()),
+            _ => Box::new(SpatialDsmc::new(s, 0.1, law, 1, SpatialOptions::default()).unwrap()),
+        }
+    };
+    for scheme in ["exact", "blocks", "spatial"] {
+        let mut e = make(scheme, constant(0.8));
+        let before = e.system().clone();
+        e.set_rotation(None).unwrap();
+        assert_eq!(e.system(), &before, "{scheme}: no rotation to take");
+        e.set_rotation(Some(rotation.clone())).unwrap();
+        assert_eq!(e.rotation().unwrap().angular, rotation.angular);
+        e.set_rotation(None).unwrap();
+        assert!(e.rotation().is_none());
+        assert_eq!(e.system(), &before, "{scheme}: spins taken away");
+        let mut rough_engine = make(scheme, rough(0.8, 0.3, None));
+        assert!(rough_engine.set_rotation(None).is_err(), "{scheme}");
+    }
+}

@@ -298,13 +298,7 @@ impl<const D: usize> SpatialDsmc<D> {
             spin: None,
             rotation: None,
         };
-        if engine.law.tangential().is_some() {
-            // Rough particles start as solid spheres (disks) at rest until given their
-            // rotation.
-            let solid = if D == 2 { 0.5 } else { 0.4 };
-            let inertia = vec![solid; engine.species.len()];
-            engine.give_rotation(&vec![[0.0; 3]; n], inertia, 0);
-        }
+        engine.start_rough_at_rest();
         Ok(engine)
     }
 

@@ -82,26 +82,28 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     /// Smooth records again (the spins dropped).
     fn take_rotation(&mut self) {
-        if let Store::Rough(now, _) =
-            std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new()))
-        {
-            self.store = if self.core.species.len() == 1 {
-                Store::Uniform(now.into_iter().map(|r| r.velocity).collect(), Vec::new())
-            } else {
-                Store::Mixed(
-                    now.into_iter()
-                        .map(|r| Tagged {
-                            velocity: r.velocity,
-                            species: r.species,
-                        })
-                        .collect(),
-                    Vec::new(),
-                )
+        // (Smooth records stay as they are: replacing them by the placeholder's empty
+        // store once dropped the gas of a smooth engine asked to take away no rotation.)
+        self.store =
+            match std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new())) {
+                Store::Rough(now, _) => {
+                    self.core.classes = None;
+                    if self.core.species.len() == 1 {
+                        Store::Uniform(now.into_iter().map(|r| r.velocity).collect(), Vec::new())
+                    } else {
+                        Store::Mixed(
+                            now.into_iter()
+                                .map(|r| Tagged {
+                                    velocity: r.velocity,
+                                    species: r.species,
+                                })
+                                .collect(),
+                            Vec::new(),
+                        )
+                    }
+                }
+                smooth => smooth,
             };
-            self.core.classes = None;
-        } else {
-            self.store = std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new()));
-        }
         self.core.spin = None;
     }
 

@@ -38,8 +38,8 @@ impl<const D: usize> SpatialDsmc<D> {
     }
 
     /// Turns the records into rough ones with the angular velocities `angular` (of all
-    /// particles, in the order of [`crate::Engine::system`]: each rank takes its records') and
-    /// the species' inertia factors. Collective.
+    /// particles, in the order of [`crate::Engine::system`]: each rank takes its
+    /// records') and the species' inertia factors. Collective.
     pub(super) fn give_rotation(&mut self, angular: &[[f64; 3]], inertia: Vec<f64>, sliding: u64) {
         let places = self.global_places();
         let rolling: Vec<Rolling<D>> = each!(std::mem::take(&mut self.records), records => records
@@ -61,13 +61,24 @@ impl<const D: usize> SpatialDsmc<D> {
 
     /// Smooth records again (the spins dropped).
     fn take_rotation(&mut self) {
-        if let Records::Rough(rolling) = std::mem::take(&mut self.records) {
-            self.records = Records::Smooth(rolling.into_iter().map(|r| r.body).collect());
-        } else {
-            self.records = std::mem::take(&mut self.records);
-        }
+        self.records = match std::mem::take(&mut self.records) {
+            Records::Rough(rolling) => {
+                Records::Smooth(rolling.into_iter().map(|r| r.body).collect())
+            }
+            smooth => smooth,
+        };
         self.spin = None;
         self.rotation = None;
+    }
+
+    /// A fresh engine of a rough law: solid spheres (disks) at rest until given their
+    /// rotation (`Engine::set_rotation`).
+    pub(super) fn start_rough_at_rest(&mut self) {
+        if self.law.tangential().is_some() {
+            let solid = if D == 2 { 0.5 } else { 0.4 };
+            let inertia = vec![solid; self.species.len()];
+            self.give_rotation(&vec![[0.0; 3]; self.total], inertia, 0);
+        }
     }
 
     /// The place of each of this rank's records in the order of [`crate::Engine::system`]
@@ -100,8 +111,8 @@ impl<const D: usize> SpatialDsmc<D> {
         }
     }
 
-    /// The rotation of all particles in the order of [`crate::Engine::system`] (collective);
-    /// None for smooth ones.
+    /// The rotation of all particles in the order of [`crate::Engine::system`]
+    /// (collective); None for smooth ones.
     pub(super) fn rotation_now(&mut self) -> Option<&Rotation> {
         self.spin.as_ref()?;
         let Records::Rough(records) = std::mem::take(&mut self.records) else {
