@@ -84,9 +84,9 @@ fn spins_travel_with_their_particles() {
             assert!(w[0] == j as f64 && w[1] == 0.0 && w[2] == 0.0, "{w:?}");
             assert!(!seen[j], "label {j} twice");
             seen[j] = true;
-            for axis in 0..3 {
-                let laps = (system.positions[j][axis] + moved[k][axis] - now.positions[k][axis])
-                    / now.sides[axis];
+            let (start, here) = (&system.positions[j], &now.positions[k]);
+            for (axis, step) in moved[k].iter().enumerate() {
+                let laps = (start[axis] + step - here[axis]) / now.sides[axis];
                 assert!(
                     (laps - laps.round()).abs() < 1e-9,
                     "walls {walled}: record {k} carries the spin of particle {j}, axis {axis}: {laps}"
