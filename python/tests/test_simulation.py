@@ -42,6 +42,13 @@ CONFIGS = {
                       "tangential_restitution": 0.4, "friction": 0.2},
         "run": {"engine": "dsmc", "collisions_per_particle": 10.0, "samples": 6},
     },
+    "rough-dsmc-spatial": {
+        "system": {"particles": 2000, "packing_fraction": 0.05, "seed": 13, "inertia": 0.35},
+        "collision": {"law": "constant", "restitution": 0.85,
+                      "tangential_restitution": 0.2, "friction": 0.3},
+        "run": {"engine": "dsmc", "dsmc_scheme": "spatial", "collisions_per_particle": 8.0,
+                "samples": 5},
+    },
     "rough-event-driven": {
         "system": {"particles": 500, "packing_fraction": 0.1, "seed": 7, "inertia": 0.4},
         "collision": {"law": "constant", "restitution": 0.8, "tangential_restitution": 0.0},

@@ -140,6 +140,27 @@ fn bench_dsmc_runs_the_spatial_scheme() {
     assert_eq!(report["scheme"], "spatial");
     assert_eq!(number(&report["particles_per_cell"]), 15.6);
     assert!(number(&report["collisions_per_second"]) > 0.0);
+    // Rough particles (solid spheres, spins at the temperature).
+    let rough = json_of(&[
+        "bench",
+        "dsmc",
+        "--scheme",
+        "spatial",
+        "--particles",
+        "20000",
+        "--law",
+        "0.8",
+        "--tangential-restitution",
+        "0.0",
+        "--collisions",
+        "1",
+        "--repeats",
+        "1",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(rough["tangential_restitution"], "0.0");
+    assert!(number(&rough["collisions_per_second"]) > 0.0);
     assert_rejected(
         &[
             "bench",

@@ -1,6 +1,6 @@
-//! `mpirun -n R haff run FILE`: the spatial DSMC run, and the homogeneous one of the block
-//! scheme, on 1, 2 and 4 MPI ranks write the same files, byte for byte, as the run in one
-//! process (4 ranks oversubscribe a 2-core
+//! `mpirun -n R haff run FILE`: the spatial DSMC run (smooth, in a container, rough), and
+//! the homogeneous one of the block scheme, on 1, 2 and 4 MPI ranks write the same files,
+//! byte for byte, as the run in one process (4 ranks oversubscribe a 2-core
 //! machine, which only slows them). Built with the feature `mpi` (`scripts/test` builds and
 //! runs it: `cargo test --release -p haff-cli --features mpi --test mpi`); without it, the
 //! binary refuses a launch on several ranks and a run file asking for ranks.
@@ -112,6 +112,28 @@ fn blocks_on_one_two_and_four_ranks_write_the_same_files() {
 fn a_container_on_one_two_and_four_ranks_writes_the_same_files() {
     let files = ["timeseries.csv", "walls.csv", "profiles.csv"];
     assert_same_files("container", CONTAINER, 4000, &files);
+}
+
+/// Rough particles of the spatial scheme: a mixture with Walton's friction, each
+/// species its inertia.
+#[cfg(feature = "mpi")]
+const ROUGH: &str = "[system]\ndimension = 3\nparticles = 4000\npacking_fraction = 0.1\nseed = 5\n\
+                     species = [{ diameter = 1.0, mass = 1.0, fraction = 0.5 }, \
+                     { diameter = 1.4, mass = 2.0, fraction = 0.5, inertia = 0.25 }]\n\
+                     [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
+                     tangential_restitution = 0.4\nfriction = 0.3\n\
+                     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\n\
+                     collisions_per_particle = 20\nsamples = 8\n";
+
+/// Rough particles on ranks: the spins travel with their records between the ranks'
+/// slabs, the sliding contacts are summed over them; the time series (with
+/// `rotational_temperature`) and the species' (theirs per species) are the single
+/// process's, byte for byte.
+#[cfg(feature = "mpi")]
+#[test]
+fn rough_particles_on_one_two_and_four_ranks_write_the_same_files() {
+    let files = ["timeseries.csv", "species.csv"];
+    assert_same_files("rough", ROUGH, 4000, &files);
 }
 
 #[cfg(feature = "mpi")]

@@ -27,6 +27,7 @@ mod domain;
 mod homogeneous;
 pub mod kernel;
 mod reduce;
+mod rough;
 mod spatial;
 pub(crate) mod species;
 

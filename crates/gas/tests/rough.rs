@@ -1,16 +1,17 @@
-//! Rough spheres and disks in the event-driven engine: energy kept to round-off when
-//! alpha = beta = 1, the smooth rule bit for bit when beta = -1, the rotational
-//! temperature's rise from rest against the Maxwellian theory
-//! (`gas::theory::rough`), and a check-point's continuation bit for bit.
+//! Rough spheres and disks in the event-driven engine and DSMC (homogeneous and
+//! spatial): energy kept to round-off when alpha = beta = 1, the smooth rule bit for bit
+//! when beta = -1, the rotational temperature's rise from rest against the Maxwellian
+//! theory (`gas::theory::rough`), and a check-point's continuation bit for bit. (What
+//! only the spatial engine has: `tests/rough_spatial.rs`.)
 
 mod common;
 
 use common::{constant, mean_and_error};
-use gas::dsmc::Scheme;
+use gas::dsmc::{Scheme, SpatialOptions};
 use gas::observe::{kinetic_energy, sonine_a2, temperature};
 use gas::rotation::Rotation;
 use gas::theory::rough::RoughMaxwellian;
-use gas::{Checkpoint, Engine, EventDriven, HomogeneousDsmc};
+use gas::{Checkpoint, Engine, EventDriven, HomogeneousDsmc, SpatialDsmc};
 use restitution::rough::{Rough, Tangential};
 use restitution::Restitution;
 
@@ -80,11 +81,28 @@ fn beta_minus_one_is_the_smooth_gas_bit_for_bit() {
         after.sort_by(|a, b| a.partial_cmp(b).unwrap());
         assert_eq!(before, after);
     }
+    // Spatial DSMC likewise (its records sorted into cells every step; that each spin
+    // stays with its particle: `tests/rough_spatial.rs`).
+    let system = gas::init::monodisperse::<2>(2000, 0.1, 1.0, 1.0, 1.0, 8).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.5; 2000], 1.0, 8);
+    let options = SpatialOptions::default();
+    let mut smooth = SpatialDsmc::new(system.clone(), 0.1, constant(0.7), 3, options).unwrap();
+    let mut spun = SpatialDsmc::new(system, 0.1, rough(0.7, -1.0, None), 3, options).unwrap();
+    spun.set_rotation(Some(rotation.clone())).unwrap();
+    smooth.run_collisions(5000);
+    spun.run_collisions(5000);
+    assert_eq!(smooth.system(), spun.system(), "spatial");
+    assert_eq!(smooth.counters(), spun.counters());
+    let mut before: Vec<[f64; 3]> = rotation.angular.clone();
+    let mut after = spun.rotation().unwrap().angular.clone();
+    before.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    after.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(before, after);
 }
 
 /// From rest (T_rot = 0) with Gaussian velocities the rotational temperature rises as
 /// the Maxwellian theory's exact solution of its linear equations says
-/// (`RoughMaxwellian::evolve`), in the event-driven engine and both DSMC schemes.
+/// (`RoughMaxwellian::evolve`), in the event-driven engine and the three DSMC schemes.
 /// Tolerance: 4 standard errors over 4 seeds plus |a2| measured at the end (the first
 /// Sonine corrections to the rates are of order a2 with coefficients below one, Santos,
 /// Kremer & Garzó 2010).
@@ -103,6 +121,9 @@ fn rotation_rises_from_rest_as_the_maxwellian_theory_says() {
                 "exact" => {
                     Box::new(HomogeneousDsmc::new(system, 0.05, law, seed, Scheme::Exact).unwrap())
                 }
+                "spatial" => Box::new(
+                    SpatialDsmc::new(system, 0.05, law, seed, SpatialOptions::default()).unwrap(),
+                ),
                 _ => Box::new(
                     HomogeneousDsmc::new(system, 0.05, law, seed, Scheme::default()).unwrap(),
                 ),
@@ -133,7 +154,7 @@ fn rotation_rises_from_rest_as_the_maxwellian_theory_says() {
             );
         }
     }
-    for engine in ["event-driven", "exact", "blocks"] {
+    for engine in ["event-driven", "exact", "blocks", "spatial"] {
         case::<3>(engine, 0.9, 0.4, 0.4);
         case::<2>(engine, 0.8, 0.8, 0.5);
     }
@@ -186,6 +207,57 @@ fn a_rough_gas_continues_from_its_checkpoint() {
         );
         assert_eq!(a, b);
         assert!(a.sliding > 0, "some contacts slide");
+    }
+    let system = gas::init::monodisperse::<2>(1000, 0.15, 1.0, 1.0, 1.0, 2).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.5; 1000], 1.0, 2);
+    let law = rough(0.8, 0.5, Some(0.2));
+    let options = SpatialOptions::default();
+    let mut engine = SpatialDsmc::new(system, 0.15, law.clone(), 4, options).unwrap();
+    engine.set_rotation(Some(rotation)).unwrap();
+    engine.run_collisions(3000);
+    let text = serde_json::to_string(&engine.save()).unwrap();
+    let mut restored =
+        SpatialDsmc::<2>::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
+    engine.run_collisions(3000);
+    restored.run_collisions(3000);
+    assert_eq!(engine.system(), restored.system(), "spatial");
+    assert_eq!(engine.counters(), restored.counters());
+    let (a, b) = (
+        engine.rotation().unwrap().clone(),
+        restored.rotation().unwrap().clone(),
+    );
+    assert_eq!(a, b);
+    assert!(a.sliding > 0, "some contacts slide");
+}
+
+/// `set_rotation(None)`: on a gas without rotation it leaves the particles as they are
+/// (the homogeneous engine once dropped them all: its smooth records were swapped for the
+/// placeholder's empty store); on a spinning gas of a smooth law it takes the spins away
+/// and keeps the rest; a rough law's gas refuses it. Homogeneous and spatial DSMC.
+#[test]
+fn taking_the_rotation_away_keeps_the_particles() {
+    let system = gas::init::monodisperse::<3>(500, 0.1, 1.0, 1.0, 1.0, 6).unwrap();
+    let rotation = Rotation::thermal(&system, vec![0.4; 500], 1.0, 6);
+    let make = |scheme: &str, law: Box<dyn Restitution>| -> Box<dyn Engine<3>> {
+        let s = system.clone();
+        match scheme {
+            "exact" => Box::new(HomogeneousDsmc::new(s, 0.1, law, 1, Scheme::Exact).unwrap()),
+            "blocks" => Box::new(HomogeneousDsmc::new(s, 0.1, law, 1, Scheme::default()).unwrap()),
+            _ => Box::new(SpatialDsmc::new(s, 0.1, law, 1, SpatialOptions::default()).unwrap()),
+        }
+    };
+    for scheme in ["exact", "blocks", "spatial"] {
+        let mut e = make(scheme, constant(0.8));
+        let before = e.system().clone();
+        e.set_rotation(None).unwrap();
+        assert_eq!(e.system(), &before, "{scheme}: no rotation to take");
+        e.set_rotation(Some(rotation.clone())).unwrap();
+        assert_eq!(e.rotation().unwrap().angular, rotation.angular);
+        e.set_rotation(None).unwrap();
+        assert!(e.rotation().is_none());
+        assert_eq!(e.system(), &before, "{scheme}: spins taken away");
+        let mut rough_engine = make(scheme, rough(0.8, 0.3, None));
+        assert!(rough_engine.set_rotation(None).is_err(), "{scheme}");
     }
 }
 

@@ -16,7 +16,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 /// Valid run files of every engine and law (small, so that accepted mutants run fast).
-const SEEDS: [&str; 18] = [
+const SEEDS: [&str; 19] = [
     "[system]\ndimension = 3\nparticles = 60\npacking_fraction = 0.1\nseed = 3\n\
      [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntc = 1e-4\n\
      [run]\ncollisions_per_particle = 5\nsamples = 5\nhistogram_at = [0.0, 5.0]\nhistogram_bins = 8\n",
@@ -96,6 +96,13 @@ const SEEDS: [&str; 18] = [
      [collision]\nlaw = \"viscoelastic\"\nyoung = 1e5\npoisson = 0.3\ndissipative_constant = 0.01\n\
      friction = 0.5\n\
      [run]\nengine = \"soft-sphere\"\nend_time = 0.5\nsamples = 3\nsteps_per_contact = 20\n",
+    "[system]\ndimension = 2\nparticles = 120\nbox = [30.0, 40.0]\ninertia = 0.4\nrotational_temperature = 0.5\n\
+     [collision]\nlaw = \"constant\"\nrestitution = 0.8\ntangential_restitution = 0.3\nfriction = 0.4\n\
+     [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 3\nsamples = 3\n\
+     [field]\ngravity = [0.0, -0.1]\n\
+     [[wall]]\naxis = \"y\"\nside = \"low\"\nkind = \"restitution\"\nrestitution = 0.7\n\
+     [[wall]]\naxis = \"y\"\nside = \"high\"\nkind = \"thermal\"\ntemperature = 1.0\n\
+     [output]\nmsd = true\n",
 ];
 
 /// Keys, in and out of the schema, that mutations insert.

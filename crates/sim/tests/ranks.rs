@@ -1,7 +1,8 @@
 //! A spatial DSMC run of the driver spread over ranks (threads of this process standing for
 //! MPI ranks, `sim::parallel::InProcess`) gives the single process's records bit for bit:
 //! time series, velocity histograms, modes and S(k), summary; its check-point continues on
-//! another number of ranks. So does a homogeneous DSMC run of the block scheme. Runs that cannot spread are refused naming the key. (The MPI
+//! another number of ranks; rough particles too. So does a homogeneous DSMC run of the
+//! block scheme. Runs that cannot spread are refused naming the key. (The MPI
 //! build is checked through mpirun in crates/cli/tests/mpi.rs.)
 
 use sim::parallel::{Communicator, InProcess, Local};
@@ -78,6 +79,25 @@ fn a_rough_blocks_run_spreads_and_resumes() {
     d.system.species.as_mut().unwrap()[1].inertia = Some(0.25);
     assert_same_on_ranks(&d);
     assert_resumes(&d, "rough");
+}
+
+/// Rough particles of the spatial scheme (Walton's friction; a mixture whose second
+/// species has an inertia of its own): the records cross the slabs with their spins, the
+/// sliding contacts are summed over the ranks; on 1, 2 and 4 ranks and resumed on 3 and
+/// 1, the records (rotational temperatures per species, the `rotation` section) are the
+/// single process's bit for bit.
+#[test]
+fn a_rough_spatial_run_spreads_and_resumes() {
+    let text = "[system]\ndimension = 3\nparticles = 3000\npacking_fraction = 0.1\nseed = 9\n\
+                species = [{ diameter = 1.0, mass = 1.0, fraction = 0.6 }, \
+                { diameter = 1.6, mass = 3.0, fraction = 0.4, inertia = 0.25 }]\n\
+                [collision]\nlaw = \"viscoelastic\"\nbeta = 0.2\n\
+                tangential_restitution = 0.4\nfriction = 0.3\n\
+                [run]\nengine = \"dsmc\"\ndsmc_scheme = \"spatial\"\ncollisions_per_particle = 40\n\
+                samples = 8\nhistogram_at = [0.0, 20.0]\n";
+    let d = RunDescription::from_toml(text, Path::new("rough.toml")).unwrap();
+    assert_same_on_ranks(&d);
+    assert_resumes(&d, "rough-spatial");
 }
 
 fn assert_same_on_ranks(d: &RunDescription) {

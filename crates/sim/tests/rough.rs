@@ -6,10 +6,11 @@
 use sim::{Point, Simulation};
 
 /// The engines that have rough particles, as `[run]` lines.
-const ENGINES: [&str; 3] = [
+const ENGINES: [&str; 4] = [
     "engine = \"event-driven\"",
     "engine = \"dsmc\"\ndsmc_scheme = \"blocks\"",
     "engine = \"dsmc\"\ndsmc_scheme = \"exact\"",
+    "engine = \"dsmc\"\ndsmc_scheme = \"spatial\"",
 ];
 
 fn gas(dimension: u32, engine: &str, extra_system: &str, extra_collision: &str) -> String {
@@ -34,7 +35,7 @@ fn rough_runs_write_their_rotation_and_resume_bit_for_bit() {
     for engine in ENGINES {
         for dimension in [2, 3] {
             // Snapshots need positions (not homogeneous DSMC).
-            let positions = engine.contains("event-driven");
+            let positions = engine.contains("event-driven") || engine.contains("spatial");
             let mut text = gas(
                 dimension,
                 engine,

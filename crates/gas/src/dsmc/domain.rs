@@ -14,7 +14,7 @@
 //! sums over cells are exact ([`crate::exact_sum`]), so every number is the single
 //! process's, bit for bit.
 
-use super::kernel::Simulator;
+use super::spatial::record::Particle;
 use crate::parallel::{Communicator, RankReport};
 use std::time::Instant;
 
@@ -90,10 +90,10 @@ impl Slabs {
 
     /// The slabs re-balanced for the particles of all ranks (`plane` gives each local
     /// particle's plane): one all-reduce of a count per plane.
-    pub fn rebalanced<const D: usize>(
+    pub fn rebalanced<T>(
         &self,
-        local: &[Simulator<D>],
-        plane: impl Fn(&Simulator<D>) -> u64,
+        local: &[T],
+        plane: impl Fn(&T) -> u64,
         comm: &dyn Communicator,
     ) -> Slabs {
         let mut counts = vec![0i64; self.planes as usize];
@@ -166,21 +166,16 @@ impl Traffic {
     }
 }
 
-/// f64 values per particle in messages: position, velocity, species, global place.
-pub(crate) const fn values_per_particle(d: usize) -> usize {
-    2 * d + 2
-}
-
 /// Moves the (already streamed) local particles to the ranks owning their cells and lays
 /// this rank's particles out in the global order before the sort into cells (each
 /// particle travels with its place in it). `ordinals` are the places of the local
 /// particles when the global order is not rank by rank (before the first step); after,
 /// it is rank by rank. The general path: the first step, and cells too fine for
 /// [`exchange_into_holes`] with its counting sort.
-pub(crate) fn migrate<const D: usize>(
-    local: &mut Vec<Simulator<D>>,
+pub(crate) fn migrate<const D: usize, R: Particle<D>>(
+    local: &mut Vec<R>,
     ordinals: Option<Vec<u64>>,
-    owner: impl Fn(&Simulator<D>) -> usize,
+    owner: impl Fn(&R) -> usize,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
 ) {
@@ -190,13 +185,13 @@ pub(crate) fn migrate<const D: usize>(
         None => ((rank as u64) << 40) | i as u64,
     };
     let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
-    let mut placed: Vec<(u64, Simulator<D>)> = Vec::with_capacity(local.len());
+    let mut placed: Vec<(u64, R)> = Vec::with_capacity(local.len());
     for (i, p) in local.iter().enumerate() {
         let to = owner(p);
         if to == rank {
             placed.push((place(i), *p));
         } else {
-            encode(&mut outgoing[to], p, place(i));
+            p.encode(&mut outgoing[to], place(i));
             traffic.migrants_sent += 1;
         }
     }
@@ -208,33 +203,13 @@ pub(crate) fn migrate<const D: usize>(
     placed.extend(
         incoming
             .iter()
-            .flat_map(|v| v.chunks_exact(values_per_particle(D)))
-            .map(|v| (v[2 * D + 1].to_bits(), decode(v))),
+            .flat_map(|v| v.chunks_exact(R::VALUES))
+            .map(|v| (v[2 * D + 1].to_bits(), R::decode(v))),
     );
     // Ranks + 1 runs, each in increasing places: the stable sort merges the runs it finds.
     placed.sort_by_key(|e| e.0);
     local.clear();
     local.extend(placed.into_iter().map(|e| e.1));
-}
-
-/// Appends particle `p` and its place in the global order to a message
-/// ([`values_per_particle`] values).
-pub(crate) fn encode<const D: usize>(out: &mut Vec<f64>, p: &Simulator<D>, place: u64) {
-    out.extend_from_slice(&p.position);
-    out.extend_from_slice(&p.velocity);
-    out.push(p.species as f64);
-    out.push(f64::from_bits(place));
-}
-
-/// The particle of a message row written by [`encode`].
-pub(crate) fn decode<const D: usize>(v: &[f64]) -> Simulator<D> {
-    Simulator {
-        position: std::array::from_fn(|k| v[k]),
-        velocity: std::array::from_fn(|k| v[D + k]),
-        species: v[2 * D] as u32,
-        // Identities are not carried between ranks (no tracks over ranks).
-        id: 0,
-    }
 }
 
 /// Where the particles of a rank stand after [`exchange_into_holes`], for
@@ -252,12 +227,12 @@ pub(crate) struct Sequence {
 /// particle (as `key` gives; the leaving ones' are replaced). Every other particle keeps
 /// its place: with the returned [`Sequence`], the stable sort by key gives the global order
 /// of the single process restricted to this rank, while moving few particles.
-pub(crate) fn exchange_into_holes<const D: usize>(
-    local: &mut Vec<Simulator<D>>,
+pub(crate) fn exchange_into_holes<const D: usize, R: Particle<D>>(
+    local: &mut Vec<R>,
     keys: &mut Vec<u32>,
     leaving: &[usize],
-    owner: impl Fn(&Simulator<D>) -> usize,
-    key: impl Fn(&Simulator<D>) -> u32,
+    owner: impl Fn(&R) -> usize,
+    key: impl Fn(&R) -> u32,
     comm: &dyn Communicator,
     traffic: &mut Traffic,
 ) -> Sequence {
@@ -265,7 +240,7 @@ pub(crate) fn exchange_into_holes<const D: usize>(
     let mut outgoing: Vec<Vec<f64>> = vec![Vec::new(); ranks];
     for &i in leaving {
         let p = &local[i];
-        encode(&mut outgoing[owner(p)], p, 0);
+        p.encode(&mut outgoing[owner(p)], 0);
     }
     traffic.migrants_sent += leaving.len() as u64;
     traffic.bytes_sent += outgoing.iter().map(|o| 8 * o.len() as u64).sum::<u64>();
@@ -276,8 +251,8 @@ pub(crate) fn exchange_into_holes<const D: usize>(
     let mut holes = leaving.iter().copied();
     let (mut first, mut upper) = (Vec::new(), Vec::new());
     for from in (0..ranks).filter(|&r| r != rank) {
-        for v in incoming[from].chunks_exact(values_per_particle(D)) {
-            let p = decode(v);
+        for v in incoming[from].chunks_exact(R::VALUES) {
+            let p = R::decode(v);
             let slot = match holes.next() {
                 Some(h) => {
                     local[h] = p;

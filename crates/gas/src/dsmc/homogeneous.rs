@@ -13,6 +13,7 @@ use super::kernel::{
     self, add_counts, Collider, Moments, Record, SpeciesTally, Spun, Tagged, Window,
 };
 use super::reduce;
+use super::rough::Spin;
 use super::species::{by_species, Species};
 use super::{check_input, mean_velocity, HomogeneousSnapshot, Scheme};
 use crate::driving::{Drive, Driving};
@@ -36,18 +37,6 @@ enum Store<const D: usize> {
     Mixed(Vec<Tagged<D>>, Vec<Tagged<D>>),
     /// Rough particles: velocity, species and angular velocity.
     Rough(Vec<Spun<D>>, Vec<Spun<D>>),
-}
-
-/// Rough particles: the law's tangential rule (none: the spins rotate freely), each
-/// species' inertia factor, and the contacts that slid.
-struct Spin {
-    /// The rule of each pair of species (row-major; one entry: one rule for all; empty:
-    /// a smooth law, the spins rotate freely).
-    tangential: Vec<restitution::rough::Tangential>,
-    inertia: Vec<f64>,
-    /// Each species' reciprocals of mass and inertia (the kick's, computed once).
-    inverses: Vec<crate::rotation::Inverses>,
-    sliding: u64,
 }
 
 /// Everything but the records.
@@ -108,12 +97,7 @@ fn collider<'a>(
         law,
         species,
         pairs,
-        rough: spin
-            .filter(|spin| !spin.tangential.is_empty())
-            .map(|spin| kernel::Rough {
-                rules: &spin.tangential,
-                inverses: &spin.inverses,
-            }),
+        rough: spin.and_then(Spin::kernel),
     }
 }
 

@@ -3,27 +3,29 @@
 
 use super::cell_sort::CellSorter;
 use super::domain::{Slabs, Traffic};
-use super::kernel::{self, scaled, Collider, Moments, Simulator, SpeciesTally};
+use super::kernel::{Moments, Simulator};
+use super::rough::Spin;
 use super::species::Species;
 use super::{check_input, frequency_estimate, positive, SpatialSnapshot, StepSize};
-use crate::engine::{Checkpoint, Counters, Engine};
+use crate::engine::Counters;
 use crate::error::{require_positive, Error, Result};
 use crate::parallel::{Communicator, Local};
-use crate::rng::{Purpose, Stream};
 use crate::system::{wrap, System, Vector};
 use crate::theory;
-use rayon::prelude::*;
 use restitution::Restitution;
 use std::sync::Arc;
 
 mod container;
+mod engine;
 mod flow;
 mod ranks;
+pub(super) mod record;
+mod rough;
+mod step;
 mod sums;
 mod tracking;
-use flow::stream_one;
-use std::time::Instant;
-use sums::{mass_and_momentum, spread_about_mean};
+use record::Records;
+use step::{cell_index, cell_key};
 
 /// Collision cell width in mean free paths when none is given.
 pub const DEFAULT_CELL_WIDTH_IN_MEAN_FREE_PATHS: f64 = 0.5;
@@ -59,7 +61,7 @@ pub struct SpatialOptions {
 ///
 /// Each step of time dt: (1) every particle streams freely, x += v dt (wrapped); (2) the
 /// particles are sorted by collision cell (a stable sort: the order is unique); (3) in every
-/// occupied cell, in parallel, the exact majorant process of [`kernel`] runs for dt among
+/// occupied cell, in parallel, the exact majorant process of [`super::kernel`] runs for dt among
 /// the cell's n_c particles with pair rate W c_D |g| F / V_cell, where W = g2 sigma^(D-1)
 /// with g2 of the mean packing fraction (the "Enskog-factor DSMC" approximation: no
 /// spatial offset of the collision partners) and F = phi V_box / (sum of sphere volumes)
@@ -75,7 +77,8 @@ pub struct SpatialOptions {
 /// for uniformly placed particles, the mean collision rate of a homogeneous gas is exact for
 /// any cell size and step.
 pub struct SpatialDsmc<const D: usize> {
-    simulators: Vec<Simulator<D>>,
+    /// The particles of this rank: smooth, or rough with their spins ([`record`]).
+    records: Records<D>,
     species: Species,
     law: Box<dyn Restitution>,
     /// The law of each pair of species (pairwise laws; [`super::species::engine_laws`]).
@@ -120,6 +123,11 @@ pub struct SpatialDsmc<const D: usize> {
     /// and the positions after the last step they were followed to, by identity.
     tracks: Option<crate::tail::Tracks>,
     tracked_positions: Vec<Vector<D>>,
+    /// Rough particles: the tangential rules, inertia factors and contacts that slid
+    /// ([`rough`]); None for smooth ones.
+    spin: Option<Spin>,
+    /// Output buffer of the rotation (rough particles).
+    rotation: Option<crate::rotation::Rotation>,
 }
 
 impl<const D: usize> SpatialDsmc<D> {
@@ -251,8 +259,8 @@ impl<const D: usize> SpatialDsmc<D> {
             simulators = mine.iter().map(|&i| simulators[i]).collect();
             ordinals = Some(mine.into_iter().map(|i| i as u64).collect());
         }
-        Ok(SpatialDsmc {
-            simulators,
+        let mut engine = SpatialDsmc {
+            records: Records::Smooth(simulators),
             species,
             law,
             pairs,
@@ -287,7 +295,11 @@ impl<const D: usize> SpatialDsmc<D> {
             virial: None,
             tracks: None,
             tracked_positions: Vec::new(),
-        })
+            spin: None,
+            rotation: None,
+        };
+        engine.start_rough_at_rest();
+        Ok(engine)
     }
 
     /// The engine of `snapshot` over the ranks of `comm` (every rank reads the same
@@ -329,6 +341,9 @@ impl<const D: usize> SpatialDsmc<D> {
             engine.tracks = Some(tracks);
             engine.set_tracking(true)?;
         }
+        if let Some(rotation) = snapshot.tail.rotation {
+            engine.set_rotation_of(Some(rotation))?;
+        }
         Ok(engine)
     }
 
@@ -346,6 +361,7 @@ impl<const D: usize> SpatialDsmc<D> {
         // Lab velocities: the flow is part of the state.
         self.fill_system(false);
         let system = self.system.clone();
+        let rotation = self.rotation_now().cloned();
         let species_collisions = super::species::in_saved_order(
             &self.species,
             &self.species_collisions,
@@ -370,7 +386,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 shear: self.shear,
                 virial: self.virial,
                 tracks: self.tracks_in_order(),
-                rotation: None,
+                rotation,
                 history: None,
             },
         }
@@ -456,248 +472,5 @@ impl<const D: usize> SpatialDsmc<D> {
             self.step(dt);
             self.time = if last { end } else { self.time + dt };
         }
-    }
-
-    /// One step of time dt: stream, sort into cells (on several ranks: migrate first),
-    /// collide in every cell, sum over the cells exactly.
-    fn step(&mut self, dt: f64) {
-        let clock = Instant::now();
-        let (sides, cells, width) = (self.sides, self.cells, self.widths());
-        let cell_count = self.cell_count();
-        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
-        let faces = self.sliding_faces(dt);
-        let stream = |p: &mut Simulator<D>| stream_one(p, dt, &sides, faces);
-        let starts = if self.comm.size() == 1 && self.walls.is_some() {
-            self.stream_in_container(dt);
-            self.sorter
-                .update_and_sort(&mut self.simulators, cell_count, |_| {}, key)
-        } else if self.comm.size() == 1 {
-            self.sorter
-                .update_and_sort(&mut self.simulators, cell_count, stream, key)
-        } else if self.walls.is_some() {
-            // Each rank streams its particles in the container, then they migrate.
-            self.stream_in_container(dt);
-            self.stream_and_sort_over_ranks(0.0)
-        } else {
-            self.stream_and_sort_over_ranks(dt)
-        };
-        if self.tracks.is_some() {
-            self.follow_tracks(dt);
-        }
-        let groups = split_at_starts(&mut self.simulators, &starts);
-        let collider = Collider {
-            rough: None,
-            law: self.law.as_ref(),
-            species: &self.species,
-            pairs: self.pairs.as_deref(),
-        };
-        let cell_volume = if crate::system::is_cube(&self.sides) {
-            width[0].powi(D as i32)
-        } else {
-            width.iter().product()
-        };
-        let pair_rate = theory::cross_section_factor::<D>() * self.species.max_weight * self.weight
-            / cell_volume;
-        let (seed, step, species) = (self.seed, self.steps, &self.species);
-        let with_virial = self.virial.is_some();
-        let results: Vec<(SpeciesTally, Moments<D>)> = groups
-            .into_par_iter()
-            .map(|cell| {
-                let mut tally = SpeciesTally::new(species.len());
-                tally.virial = with_virial.then(crate::shear::Virial::default);
-                let (mass, momentum) = mass_and_momentum(cell, species);
-                if cell.len() < 2 {
-                    return (tally, spread_about_mean(cell, species, mass, momentum));
-                }
-                let mean = scaled(&momentum, mass);
-                let mut bound = kernel::speed_bound(cell, &mean);
-                let mut rng = Stream::new(seed, Purpose::Cell, step, key(&cell[0]));
-                collider.run_for(
-                    cell,
-                    &mean,
-                    pair_rate,
-                    (0.0, dt),
-                    &mut bound,
-                    &mut rng,
-                    &mut tally,
-                );
-                if tally.counters.collisions == 0 {
-                    return (tally, spread_about_mean(cell, species, mass, momentum));
-                }
-                let (mass, momentum) = mass_and_momentum(cell, species);
-                (tally, spread_about_mean(cell, species, mass, momentum))
-            })
-            .collect();
-        let (tally, spread, species_collisions, virial) = self.sum_over_cells(&results);
-        self.tally.add(&tally);
-        if let (Some(total), Some(step)) = (self.virial.as_mut(), &virial) {
-            total.merge(step);
-        }
-        kernel::add_counts(&mut self.species_collisions, &species_collisions);
-        self.temperature = spread / (self.total * D) as f64;
-        self.steps += 1;
-        self.traffic.steps += 1;
-        self.traffic.step_seconds += clock.elapsed().as_secs_f64();
-    }
-}
-
-/// Linear index of the cell holding x (in [0, L)^D): the last axis most significant.
-#[inline]
-fn cell_key<const D: usize>(x: &Vector<D>, width: &[f64; D], cells: &[u64; D]) -> u64 {
-    (0..D).rev().fold(0, |key, k| {
-        key * cells[k] + cell_index(x[k], width[k], cells[k])
-    })
-}
-
-/// The index along one axis of the cell holding coordinate x (in [0, L)).
-#[inline]
-fn cell_index(x: f64, width: f64, cells: u64) -> u64 {
-    // Through i64 (x / width is in [0, cells)): the same value as `as u64`, which x86
-    // converts with a branchy sequence of instructions.
-    ((x / width) as i64 as u64).min(cells - 1)
-}
-
-fn split_at_starts<'a, T>(mut data: &'a mut [T], starts: &[usize]) -> Vec<&'a mut [T]> {
-    let mut parts = Vec::with_capacity(starts.len());
-    let mut at = 0;
-    for &next in starts.iter().skip(1) {
-        let (head, tail) = data.split_at_mut(next - at);
-        parts.push(head);
-        data = tail;
-        at = next;
-    }
-    parts.push(data);
-    parts
-}
-
-impl<const D: usize> Engine<D> for SpatialDsmc<D> {
-    /// Runs until the time reaches `t` (the last step shortened to end there).
-    fn run_until(&mut self, t: f64) {
-        self.run(t, u64::MAX, u64::MAX);
-    }
-
-    /// Runs until `collisions` more collisions have happened, at the end of a step (the last
-    /// steps shortened to the expected remaining count).
-    fn run_collisions(&mut self, collisions: u64) {
-        let target = self.tally.collisions.saturating_add(collisions);
-        self.run(f64::INFINITY, target, u64::MAX);
-    }
-
-    /// Runs toward `end` and `collisions`, pausing at the end of the step where the tally
-    /// reaches `pause` (see [`crate::Engine::run_paused`]).
-    fn run_paused(&mut self, end: f64, collisions: u64, pause: u64) {
-        self.run(end, collisions, pause);
-    }
-
-    fn time(&self) -> f64 {
-        self.time
-    }
-
-    fn counters(&self) -> Counters {
-        self.tally
-    }
-
-    /// Physical particles per simulated particle, F = phi V_box / (sum of sphere volumes).
-    fn weight(&self) -> f64 {
-        self.weight
-    }
-
-    /// The current state in the engine's current order (sorted by cell every step); on
-    /// several ranks, gathered from all of them in rank order (the same order; collective).
-    /// Under shear, velocities relative to the flow (peculiar: v - a y e_x).
-    fn system(&mut self) -> &System<D> {
-        self.fill_system(true);
-        &self.system
-    }
-
-    fn shear(&self) -> Option<crate::shear::Shear> {
-        self.shear
-    }
-
-    fn set_shear(&mut self, shear: Option<crate::shear::Shear>) -> Result<()> {
-        SpatialDsmc::set_shear(self, shear)
-    }
-
-    fn set_tracking(&mut self, on: bool) -> Result<()> {
-        SpatialDsmc::set_tracking(self, on)
-    }
-
-    /// The displacements in the engine's current order (that of [`Engine::system`]).
-    fn displacements(&mut self) -> Option<Vec<Vector<D>>> {
-        SpatialDsmc::displacements(self)
-    }
-
-    fn virial_tensor(&self) -> Option<crate::shear::Virial> {
-        self.virial
-    }
-
-    /// Sums the tensor virial of the collisions (the impact direction's n n), from zero
-    /// unless summed already.
-    fn set_virial_tensor(&mut self, on: bool) -> Result<()> {
-        if !on {
-            self.virial = None;
-        } else if self.virial.is_none() {
-            self.virial = Some(crate::shear::Virial::default());
-        }
-        Ok(())
-    }
-
-    /// The collisions of each species' particles so far (each collision counts for both).
-    fn species_collisions(&self) -> Option<Vec<crate::engine::SpeciesCollisions>> {
-        Some(super::species::by_species(
-            &self.species,
-            &self.species_collisions,
-            &self.tally,
-        ))
-    }
-
-    /// Bytes held between steps: records, the sort's scratch (4 per particle and per
-    /// cell), the output of [`SpatialDsmc::system`] once taken, the species tables. A step
-    /// also allocates one entry per occupied cell, freed at its end.
-    fn memory_bytes(&self) -> usize {
-        use std::mem::size_of;
-        let s = &self.system;
-        self.simulators.capacity() * size_of::<Simulator<D>>()
-            + self.sorter.memory_bytes()
-            + (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
-            + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>()
-            + self.species.memory_bytes()
-    }
-
-    fn particles(&self) -> usize {
-        self.len()
-    }
-
-    fn walls(&self) -> Option<Vec<crate::walls::WallRecord>> {
-        self.walls.as_ref().map(|w| w.records())
-    }
-
-    fn rank_reports(&self) -> Option<Vec<crate::parallel::RankReport>> {
-        self.reports_of_ranks()
-    }
-
-    /// Exact sums over ranks; under shear None (the observers take the peculiar
-    /// velocities of [`Engine::system`]).
-    fn velocity_statistics(&mut self) -> Option<crate::engine::VelocityStatistics> {
-        if self.shear.is_some() {
-            return None;
-        }
-        self.exact_velocity_statistics()
-    }
-}
-
-impl<const D: usize> Checkpoint<D> for SpatialDsmc<D> {
-    type State = SpatialSnapshot<D>;
-    /// The collision law.
-    type Needs = Box<dyn Restitution>;
-
-    fn save(&mut self) -> SpatialSnapshot<D> {
-        self.snapshot()
-    }
-
-    /// Continues the run of `state` bit for bit with the law it used, in this process
-    /// ([`SpatialDsmc::restore_distributed`] over ranks).
-    fn restore(state: SpatialSnapshot<D>, law: Box<dyn Restitution>) -> Result<Self> {
-        Self::restore_distributed(state, law, Arc::new(Local))
     }
 }

@@ -16,9 +16,9 @@ use gas::{Checkpoint, Engine, HomogeneousDsmc, SpatialDsmc, System};
 use restitution::Restitution;
 use std::sync::Arc;
 
-/// What each scheme can do: all have point particles and no collapse; the spatial one has
-/// positions (and tracks them, on one rank); the blocks and the spatial scheme spread over
-/// ranks; the blocks drive.
+/// What each scheme can do: all have point particles, rough ones too, and no collapse; the
+/// spatial one has positions (and tracks them, on one rank); the blocks and the spatial
+/// scheme spread over ranks; the blocks drive.
 pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
     Abilities {
         positions: scheme == DsmcScheme::Spatial,
@@ -40,7 +40,7 @@ pub(super) fn abilities(scheme: DsmcScheme) -> Abilities {
         shear: true,
         stress: true,
         displacements: scheme == DsmcScheme::Spatial,
-        rotation: scheme != DsmcScheme::Spatial,
+        rotation: true,
     }
 }
 
@@ -324,6 +324,7 @@ pub(super) fn restore_spatial<const D: usize>(
 trait Snapshot {
     fn packing_fraction(&self) -> f64;
     fn seed(&self) -> u64;
+    fn rotation(&self) -> Option<&gas::rotation::Rotation>;
 }
 
 impl<const D: usize> Snapshot for HomogeneousSnapshot<D> {
@@ -333,6 +334,9 @@ impl<const D: usize> Snapshot for HomogeneousSnapshot<D> {
     fn seed(&self) -> u64 {
         self.seed
     }
+    fn rotation(&self) -> Option<&gas::rotation::Rotation> {
+        self.tail.rotation.as_ref()
+    }
 }
 
 impl<const D: usize> Snapshot for SpatialSnapshot<D> {
@@ -341,6 +345,9 @@ impl<const D: usize> Snapshot for SpatialSnapshot<D> {
     }
     fn seed(&self) -> u64 {
         self.seed
+    }
+    fn rotation(&self) -> Option<&gas::rotation::Rotation> {
+        self.tail.rotation.as_ref()
     }
 }
 
@@ -363,5 +370,5 @@ fn check_state<const D: usize>(
     if in_box {
         super::initial::box_side(plan, system)?;
     }
-    super::initial::no_energy_gained(plan, system, None)
+    super::initial::no_energy_gained(plan, system, None, state.rotation())
 }

@@ -158,6 +158,7 @@ fn check_state<const D: usize>(
         plan,
         &state.system,
         state.baths.as_ref().map(|b| b.temperatures.as_slice()),
+        state.tail.rotation.as_ref(),
     )
 }
 

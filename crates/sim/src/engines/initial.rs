@@ -204,11 +204,18 @@ pub(super) fn box_side<const D: usize>(
 /// the initial one, `N (D/2) T0 (+ N modes T_bath)`: the initializer sets the temperature
 /// exactly (to round-off). The tolerance 1e-6 is far above the round-off of the collision
 /// updates (~1e-16 relative per collision, a random walk) and far below what an edit that
-/// would blow up the run (a velocity or bath temperature of 1e100) adds.
+/// would blow up the run (a velocity or bath temperature of 1e100) adds. Rough particles
+/// add their rotational energy (`rotation`, the state's, one entry per particle) on one
+/// side, the collisions exchanging it with the translation, and on the other the most
+/// the start's spins hold: they are drawn at T_rot0 without rescaling, so their energy is
+/// (T_rot0 / 2) times a chi-square of M = N d_rot degrees of freedom, bounded here by its
+/// mean M plus 10 standard deviations (2 M)^(1/2) (a legitimate state exceeds it with
+/// probability below 1e-20). A spin of 1e300 in a state is refused as a velocity is.
 pub(super) fn no_energy_gained<const D: usize>(
     plan: &Plan,
     system: &System<D>,
     bath_temperatures: Option<&[f64]>,
+    rotation: Option<&gas::rotation::Rotation>,
 ) -> std::result::Result<(), String> {
     if plan.driving.is_some()
         || plan.walls.iter().any(|w| w.kind.can_heat())
@@ -232,6 +239,15 @@ pub(super) fn no_energy_gained<const D: usize>(
         let modes = f64::from(modes);
         initial += n * modes * bath_temperature;
         now += modes * bath_temperatures.unwrap_or(&[]).iter().sum::<f64>();
+    }
+    if let Some(rotation) = rotation {
+        if rotation.angular.len() != system.len() || rotation.inertia.len() != system.len() {
+            return Err("a rotation of another number of particles".into());
+        }
+        let start = plan.rough.as_ref().map_or(0.0, |r| r.temperature);
+        let freedoms = n * gas::rotation::rotational_dimension(D) as f64;
+        initial += 0.5 * start * (freedoms + 10.0 * (2.0 * freedoms).sqrt());
+        now += rotation.energy(system);
     }
     if now.is_finite() && now <= initial * (1.0 + 1e-6) {
         Ok(())

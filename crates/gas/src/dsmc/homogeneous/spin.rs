@@ -3,11 +3,12 @@
 //! (`kernel::Collider::rough_kick`); the rotation is given and taken in the order of
 //! [`Engine::system`], every rank its share (collective).
 
-use super::{HomogeneousDsmc, Spin, Store};
+use super::{HomogeneousDsmc, Store};
 use crate::dsmc::kernel::{Spun, Tagged};
+use crate::dsmc::rough::{self, Spin};
 use crate::engine::Engine;
-use crate::error::{Error, Result};
-use crate::rotation::{Inverses, Rotation};
+use crate::error::Result;
+use crate::rotation::Rotation;
 use crate::system::Vector;
 
 impl<const D: usize> HomogeneousDsmc<D> {
@@ -17,35 +18,20 @@ impl<const D: usize> HomogeneousDsmc<D> {
     pub(super) fn set_rotation_of(&mut self, rotation: Option<Rotation>) -> Result<()> {
         let Some(rotation) = rotation else {
             if self.core.law.tangential().is_some() {
-                return Err(Error::out_of_range(
-                    "rotation",
-                    "none",
-                    "a rotation for every particle: the law is rough",
-                ));
+                return Err(rough::rotation_needed());
             }
             self.take_rotation();
             return Ok(());
         };
         rotation.check(self.core.total, D)?;
         let system = self.system().clone();
-        let mut inertia: Vec<Option<f64>> = vec![None; self.core.species.len()];
-        for (i, (&r, &m)) in system.radii.iter().zip(&system.masses).enumerate() {
-            let s = (0..self.core.species.len())
-                .find(|&s| self.core.species.radii[s] == r && self.core.species.masses[s] == m)
-                .expect("the engine's own species");
-            match inertia[s] {
-                None => inertia[s] = Some(rotation.inertia[i]),
-                Some(q) if q == rotation.inertia[i] => {}
-                Some(q) => {
-                    return Err(Error::out_of_range(
-                        format!("inertia[{i}]"),
-                        rotation.inertia[i],
-                        format!("{q}, the inertia factor of its species (one per species in DSMC)"),
-                    ))
-                }
-            }
-        }
-        let inertia = inertia.into_iter().map(|q| q.unwrap_or(0.4)).collect();
+        let species = &self.core.species;
+        let kinds = system.radii.iter().zip(&system.masses).map(|(&r, &m)| {
+            (0..species.len())
+                .find(|&s| species.radii[s] == r && species.masses[s] == m)
+                .expect("the engine's own species")
+        });
+        let inertia = rough::inertia_per_species(&rotation, kinds, species.len())?;
         self.give_rotation(rotation.angular, inertia, rotation.sliding);
         Ok(())
     }
@@ -84,65 +70,40 @@ impl<const D: usize> HomogeneousDsmc<D> {
                     .collect(),
             };
         self.store = Store::Rough(records, Vec::new());
-        let species = &self.core.species;
-        let inverses = (0..species.len())
-            .map(|s| Inverses::of(species.masses[s], species.radii[s], inertia[s]))
-            .collect();
-        let tangential = self.rules_per_pair();
-        self.core.spin = Some(Spin {
-            tangential,
+        self.core.spin = Some(Spin::new(
+            self.core.law.as_ref(),
+            &self.core.species,
             inertia,
-            inverses,
             sliding,
-        });
+        ));
         // The classes of the exact scheme hold the records' order: sort anew.
         self.core.classes = None;
     }
 
-    /// The law's tangential rules per pair of the engine's species (row-major), one rule
-    /// for all, or none for a smooth law. A species the law's table lacks takes the
-    /// table's first rule (the sim layer names a rule for every species).
-    fn rules_per_pair(&self) -> Vec<restitution::rough::Tangential> {
-        let law = self.core.law.as_ref();
-        let (Some(one), species) = (law.tangential(), &self.core.species) else {
-            return Vec::new();
-        };
-        let Some(table) = law.tangential_pairs() else {
-            return vec![*one];
-        };
-        let kind = |s: usize| {
-            table
-                .kind_of(species.radii[s], species.masses[s])
-                .unwrap_or(0)
-        };
-        let n = species.len();
-        (0..n * n)
-            .map(|k| *table.rule(kind(k / n), kind(k % n)))
-            .collect()
-    }
-
     /// Smooth records again (the spins dropped).
     fn take_rotation(&mut self) {
-        if let Store::Rough(now, _) =
-            std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new()))
-        {
-            self.store = if self.core.species.len() == 1 {
-                Store::Uniform(now.into_iter().map(|r| r.velocity).collect(), Vec::new())
-            } else {
-                Store::Mixed(
-                    now.into_iter()
-                        .map(|r| Tagged {
-                            velocity: r.velocity,
-                            species: r.species,
-                        })
-                        .collect(),
-                    Vec::new(),
-                )
+        // (Smooth records stay as they are: replacing them by the placeholder's empty
+        // store once dropped the gas of a smooth engine asked to take away no rotation.)
+        self.store =
+            match std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new())) {
+                Store::Rough(now, _) => {
+                    self.core.classes = None;
+                    if self.core.species.len() == 1 {
+                        Store::Uniform(now.into_iter().map(|r| r.velocity).collect(), Vec::new())
+                    } else {
+                        Store::Mixed(
+                            now.into_iter()
+                                .map(|r| Tagged {
+                                    velocity: r.velocity,
+                                    species: r.species,
+                                })
+                                .collect(),
+                            Vec::new(),
+                        )
+                    }
+                }
+                smooth => smooth,
             };
-            self.core.classes = None;
-        } else {
-            self.store = std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new()));
-        }
         self.core.spin = None;
     }
 
@@ -164,17 +125,14 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// The rotation of all particles in the order of `system` (collective); None for
     /// smooth ones.
     pub(super) fn rotation_now(&mut self) -> Option<&Rotation> {
-        let spin = self.core.spin.as_ref()?;
+        self.core.spin.as_ref()?;
         let Store::Rough(now, _) = &self.store else {
             return None;
         };
-        let (inertia, sliding) = (spin.inertia.clone(), spin.sliding);
         let all = super::gathered(now, &mut self.core);
-        self.rotation = Some(Rotation {
-            inertia: all.iter().map(|r| inertia[r.species as usize]).collect(),
-            angular: all.iter().map(|r| r.angular).collect(),
-            sliding,
-        });
+        let spin = self.core.spin.as_ref()?;
+        let kinds = all.iter().map(|r| r.species as usize);
+        self.rotation = Some(spin.rotation(kinds, all.iter().map(|r| r.angular).collect()));
         self.rotation.as_ref()
     }
 }

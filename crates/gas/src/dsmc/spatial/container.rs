@@ -9,6 +9,7 @@
 //! threads; the contacts' tallies are summed exactly.
 
 use super::super::kernel::Simulator;
+use super::record::Particle;
 use super::SpatialDsmc;
 use crate::error::Result;
 use crate::rng::{Purpose, Stream};
@@ -54,8 +55,11 @@ impl<const D: usize> SpatialDsmc<D> {
         self.walls.as_ref().map(|w| w.state())
     }
 
-    /// Streams every particle for `dt` in the container, tallying the walls.
-    pub(super) fn stream_in_container(&mut self, dt: f64) {
+    /// Streams every particle of `records` (this rank's) for `dt` in the container,
+    /// tallying the walls. Walls are smooth for rough particles: a contact changes the
+    /// velocity as the wall's rule says and leaves the spin alone (no torque), as in the
+    /// event-driven engine.
+    pub(super) fn stream_in_container<R: Particle<D>>(&mut self, records: &mut [R], dt: f64) {
         let Some(walls) = self.walls.as_ref() else {
             return;
         };
@@ -70,12 +74,12 @@ impl<const D: usize> SpatialDsmc<D> {
         };
         let masses = &self.species.masses;
         let count = walls.walls().len();
-        let sums = self
-            .simulators
+        let sums = records
             .par_chunks_mut(4096)
             .map(|chunk| {
                 let mut sums = vec![ContactSums::default(); count];
                 for p in chunk {
+                    let p = p.body_mut();
                     flight.stream(p, masses[p.species as usize], &mut sums);
                 }
                 sums

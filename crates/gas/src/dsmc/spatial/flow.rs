@@ -8,6 +8,7 @@
 //! the particle migrates by its new place like any other.
 
 use super::super::kernel::Simulator;
+use super::record::{each, with_records, Particle};
 use super::SpatialDsmc;
 use crate::error::{Error, Result};
 use crate::shear::Shear;
@@ -68,7 +69,8 @@ impl<const D: usize> SpatialDsmc<D> {
             }
         }
         let old = self.shear;
-        for p in &mut self.simulators {
+        each!(&mut self.records, records => for p in records.iter_mut() {
+            let p = p.body_mut();
             let y = p.position[1];
             if let Some(s) = &old {
                 p.velocity[0] -= s.flow(y);
@@ -76,7 +78,7 @@ impl<const D: usize> SpatialDsmc<D> {
             if let Some(s) = &shear {
                 p.velocity[0] += s.flow(y);
             }
-        }
+        });
         self.shear = shear;
         Ok(())
     }
@@ -92,14 +94,20 @@ impl<const D: usize> SpatialDsmc<D> {
     /// Fills the output system with the particles of all ranks (collective), their lab
     /// velocities or (`peculiar`, under shear) those relative to the flow.
     pub(super) fn fill_system(&mut self, peculiar: bool) {
-        let gathered = (self.comm.size() > 1).then(|| self.gathered());
+        with_records!(self, records => self.fill_system_of(&records, peculiar));
+    }
+
+    /// [`SpatialDsmc::fill_system`] from `records`, the engine's.
+    fn fill_system_of<R: Particle<D>>(&mut self, records: &[R], peculiar: bool) {
+        let gathered = (self.comm.size() > 1).then(|| self.gathered(records));
         let shear = if peculiar { self.shear } else { None };
         let s = &mut self.system;
         s.positions.clear();
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();
-        for p in gathered.as_ref().unwrap_or(&self.simulators) {
+        for p in gathered.as_deref().unwrap_or(records) {
+            let p = p.body();
             s.positions.push(p.position);
             s.velocities.push(match &shear {
                 None => p.velocity,

@@ -4,7 +4,7 @@
 
 use super::super::cell_sort::CellSorter;
 use super::super::domain::{self, REBALANCE_STEPS};
-use super::super::kernel::Simulator;
+use super::record::Particle;
 use super::{cell_index, cell_key, SpatialDsmc};
 use crate::parallel::RankReport;
 use rayon::prelude::*;
@@ -16,19 +16,20 @@ impl<const D: usize> SpatialDsmc<D> {
     pub(super) fn reports_of_ranks(&self) -> Option<Vec<RankReport>> {
         let (_, cells) = self.slabs.keys(self.comm.rank());
         self.traffic
-            .reports(self.comm.as_ref(), self.simulators.len(), cells)
+            .reports(self.comm.as_ref(), self.records.len(), cells)
     }
 
-    /// The particles of all ranks in the global order (collective).
-    pub(super) fn gathered(&mut self) -> Vec<Simulator<D>> {
+    /// The particles of all ranks in the global order (collective), from this rank's
+    /// `records`.
+    pub(super) fn gathered<R: Particle<D>>(&mut self, records: &[R]) -> Vec<R> {
         let clock = Instant::now();
         // Before the first step the global order is the places of `ordinals`; after,
         // rank by rank.
         let places = self.ordinals.as_ref();
-        let width = domain::values_per_particle(D);
-        let mut mine = Vec::with_capacity(width * self.simulators.len());
-        for (i, p) in self.simulators.iter().enumerate() {
-            domain::encode(&mut mine, p, places.map_or(0, |o| o[i]));
+        let width = R::VALUES;
+        let mut mine = Vec::with_capacity(width * records.len());
+        for (i, p) in records.iter().enumerate() {
+            p.encode(&mut mine, places.map_or(0, |o| o[i]));
         }
         let all = self.comm.all_gather(mine);
         let mut rows: Vec<&[f64]> = all.iter().flat_map(|v| v.chunks_exact(width)).collect();
@@ -36,43 +37,47 @@ impl<const D: usize> SpatialDsmc<D> {
             // One run per rank, each in increasing places: merged by the stable sort.
             rows.sort_by_key(|v| v[2 * D + 1].to_bits());
         }
-        let gathered = rows.into_iter().map(domain::decode).collect();
+        let gathered = rows.into_iter().map(R::decode).collect();
         self.traffic.gather_seconds += clock.elapsed().as_secs_f64();
         gathered
     }
 
-    /// Streams the particles for `dt` (0: streamed already, in a container), moves those
-    /// that left the rank's slab to their ranks and receives the arrivals, and sorts the
-    /// rank's particles by cell in the global order; returns where each non-empty cell
-    /// starts.
-    pub(super) fn stream_and_sort_over_ranks(&mut self, dt: f64) -> Vec<usize> {
+    /// Streams the particles `records` (this rank's) for `dt` (0: streamed already, in
+    /// a container), moves those that left the rank's slab to their ranks and receives
+    /// the arrivals, and sorts the rank's particles by cell in the global order; returns
+    /// where each non-empty cell starts.
+    pub(super) fn stream_and_sort_over_ranks<R: Particle<D>>(
+        &mut self,
+        records: &mut Vec<R>,
+        dt: f64,
+    ) -> Vec<usize> {
         let (sides, cells, width) = (self.sides, self.cells, self.widths());
-        let key = |p: &Simulator<D>| cell_key(&p.position, &width, &cells);
+        let key = |p: &R| cell_key(&p.body().position, &width, &cells);
         // The most significant digit of the key.
-        let plane = |p: &Simulator<D>| cell_index(p.position[D - 1], width[D - 1], cells[D - 1]);
+        let plane = |p: &R| {
+            let x = p.body().position[D - 1];
+            cell_index(x, width[D - 1], cells[D - 1])
+        };
         let faces = self.sliding_faces(dt);
-        let stream = |p: &mut Simulator<D>| {
+        let stream = |p: &mut R| {
             if dt != 0.0 {
-                super::stream_one(p, dt, &sides, faces);
+                super::flow::stream_one(p.body_mut(), dt, &sides, faces);
             }
         };
         if self.steps > 0 && self.steps.is_multiple_of(REBALANCE_STEPS) {
             let clock = Instant::now();
-            self.slabs = self
-                .slabs
-                .rebalanced(&self.simulators, plane, self.comm.as_ref());
+            self.slabs = self.slabs.rebalanced(records, plane, self.comm.as_ref());
             self.traffic.communication_seconds += clock.elapsed().as_secs_f64();
         }
         let (slabs, rank) = (&self.slabs, self.comm.rank());
         let (start, count) = slabs.keys(rank);
-        let owner = |p: &Simulator<D>| slabs.owner(plane(p));
-        if self.ordinals.is_none() && CellSorter::counts_cells(self.simulators.len(), count) {
+        let owner = |p: &R| slabs.owner(plane(p));
+        if self.ordinals.is_none() && CellSorter::counts_cells(records.len(), count) {
             // One pass: stream, and key or mark as leaving; then arrivals into the holes.
             const CHUNK: usize = 4096;
             let keys = self.sorter.keys();
-            keys.resize(self.simulators.len(), 0);
-            let leaving: Vec<usize> = self
-                .simulators
+            keys.resize(records.len(), 0);
+            let leaving: Vec<usize> = records
                 .par_chunks_mut(CHUNK)
                 .zip(keys.par_chunks_mut(CHUNK))
                 .enumerate()
@@ -91,7 +96,7 @@ impl<const D: usize> SpatialDsmc<D> {
                 .collect::<Vec<_>>()
                 .concat();
             let sequence = domain::exchange_into_holes(
-                &mut self.simulators,
+                records,
                 keys,
                 &leaving,
                 owner,
@@ -99,23 +104,19 @@ impl<const D: usize> SpatialDsmc<D> {
                 self.comm.as_ref(),
                 &mut self.traffic,
             );
-            self.sorter.sort_keyed_in_sequence(
-                &mut self.simulators,
-                count,
-                &sequence.first,
-                &sequence.last,
-            )
+            self.sorter
+                .sort_keyed_in_sequence(records, count, &sequence.first, &sequence.last)
         } else {
-            self.simulators.par_iter_mut().for_each(stream);
+            records.par_iter_mut().for_each(stream);
             domain::migrate(
-                &mut self.simulators,
+                records,
                 self.ordinals.take(),
                 owner,
                 self.comm.as_ref(),
                 &mut self.traffic,
             );
             self.sorter
-                .update_and_sort(&mut self.simulators, count, |_| {}, |p| key(p) - start)
+                .update_and_sort(records, count, |_| {}, |p| key(p) - start)
         }
     }
 }

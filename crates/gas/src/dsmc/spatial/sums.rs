@@ -1,9 +1,10 @@
 //! The spatial engine's sums over cells and particles: exact ([`super::super::reduce`]),
 //! so the same bits however cells and particles are spread over threads and ranks.
 
-use super::super::kernel::{scaled, Moments, Record, Simulator, SpeciesTally};
+use super::super::kernel::{scaled, Moments, Record, SpeciesTally};
 use super::super::reduce;
 use super::super::species::Species;
+use super::record::each;
 use super::SpatialDsmc;
 use crate::engine::{Counters, VelocityStatistics};
 use crate::exact_sum::sums_of;
@@ -15,11 +16,12 @@ impl<const D: usize> SpatialDsmc<D> {
     /// the cells are spread over ranks and threads. The spread pools the cells' spreads
     /// about their own means (parallel-axis theorem: sum of spread_c + M_c |u_c - u|^2, no
     /// cancellation however large the mean velocity), so it takes two sums: mass and
-    /// momentum first.
+    /// momentum first. Rough particles: also the contacts that slid.
+    #[allow(clippy::type_complexity)]
     pub(super) fn sum_over_cells(
         &mut self,
         results: &[(SpeciesTally, Moments<D>)],
-    ) -> (Counters, f64, Vec<u64>, Option<crate::shear::Virial>) {
+    ) -> (Counters, f64, Vec<u64>, Option<crate::shear::Virial>, u64) {
         let comm = self.comm.as_ref();
         let kinds = self.species.len();
         let with_tensor = self.virial.is_some();
@@ -28,7 +30,7 @@ impl<const D: usize> SpatialDsmc<D> {
             kinds,
             false,
             with_tensor,
-            false,
+            self.spin.is_some(),
             comm,
             &mut self.traffic,
         );
@@ -48,28 +50,30 @@ impl<const D: usize> SpatialDsmc<D> {
             spread,
             totals.species_collisions,
             totals.virial,
+            totals.sliding,
         )
     }
 
     /// The temperature and Sonine a2 of all particles and the box volume, from exact sums
     /// over the particles of all ranks (collective; [`reduce::velocity_statistics`]).
     pub(super) fn exact_velocity_statistics(&mut self) -> Option<VelocityStatistics> {
-        Some(reduce::velocity_statistics(
-            &self.simulators,
+        let volume = crate::system::box_volume(&self.sides);
+        Some(each!(&self.records, records => reduce::velocity_statistics(
+            records,
             &self.species,
             self.total,
-            crate::system::box_volume(&self.sides),
+            volume,
             self.comm.as_ref(),
             &mut self.traffic,
-        ))
+        )))
     }
 }
 
 /// The mass and momentum of a cell, summed in the order of [`Moments::of`] (so bit for bit
 /// its values), in one pass, without a mass lookup per particle for one species.
 #[inline]
-pub(super) fn mass_and_momentum<const D: usize>(
-    cell: &[Simulator<D>],
+pub(super) fn mass_and_momentum<const D: usize, R: Record<D>>(
+    cell: &[R],
     species: &Species,
 ) -> (f64, Vector<D>) {
     // -0.0: the start of std's float `Sum`, which `Moments::of` uses.
@@ -83,10 +87,10 @@ pub(super) fn mass_and_momentum<const D: usize>(
     };
     if species.len() == 1 {
         let m = species.masses[0];
-        cell.iter().for_each(|r| add(m, &r.velocity));
+        cell.iter().for_each(|r| add(m, r.velocity()));
     } else {
         cell.iter()
-            .for_each(|r| add(species.masses[r.species()], &r.velocity));
+            .for_each(|r| add(species.masses[r.species()], r.velocity()));
     }
     (mass, momentum)
 }
@@ -94,8 +98,8 @@ pub(super) fn mass_and_momentum<const D: usize>(
 /// The [`Moments`] of a cell from its mass and momentum (as [`Moments::of`] computes them,
 /// bit for bit): the spread sum of m |v - mean|^2 in a second pass.
 #[inline]
-pub(super) fn spread_about_mean<const D: usize>(
-    cell: &[Simulator<D>],
+pub(super) fn spread_about_mean<const D: usize, R: Record<D>>(
+    cell: &[R],
     species: &Species,
     mass: f64,
     momentum: Vector<D>,
@@ -107,10 +111,10 @@ pub(super) fn spread_about_mean<const D: usize>(
     };
     let spread = if species.len() == 1 {
         let m = species.masses[0];
-        cell.iter().map(|r| term(m, &r.velocity)).sum()
+        cell.iter().map(|r| term(m, r.velocity())).sum()
     } else {
         cell.iter()
-            .map(|r| term(species.masses[r.species()], &r.velocity))
+            .map(|r| term(species.masses[r.species()], r.velocity()))
             .sum()
     };
     Moments {

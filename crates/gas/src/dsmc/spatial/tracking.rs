@@ -5,6 +5,7 @@
 //! Not under shear (the flow carries particles along x), not over several ranks
 //! (identities stay on their rank).
 
+use super::record::{each, Particle};
 use super::SpatialDsmc;
 use crate::error::{Error, Result};
 use crate::system::Vector;
@@ -29,14 +30,14 @@ impl<const D: usize> SpatialDsmc<D> {
                 "one process (particles' identities stay on their rank)",
             ));
         }
-        if self.simulators.len() > u32::MAX as usize {
+        if self.records.len() > u32::MAX as usize {
             return Err(Error::out_of_range(
                 "tracking",
-                self.simulators.len(),
+                self.records.len(),
                 "at most 2^32 - 1 particles",
             ));
         }
-        let by_id = self.positions_by_id();
+        let by_id = each!(&self.records, records => positions_by_id(records));
         if self.tracks.is_none() {
             self.tracks = Some(Tracks::new(&by_id));
         }
@@ -49,31 +50,31 @@ impl<const D: usize> SpatialDsmc<D> {
     pub fn displacements(&self) -> Option<Vec<Vector<D>>> {
         let tracks = self.tracks.as_ref()?;
         let sides = &self.sides;
-        Some(
-            self.simulators
-                .iter()
-                .map(|p| {
-                    let i = p.id as usize;
-                    std::array::from_fn(|k| {
-                        p.position[k] + tracks.images[D * i + k] as f64 * sides[k]
-                            - tracks.origins[D * i + k]
-                    })
-                })
-                .collect(),
-        )
+        let displacement = |p: &super::Simulator<D>| -> Vector<D> {
+            let i = p.id as usize;
+            std::array::from_fn(|k| {
+                p.position[k] + tracks.images[D * i + k] as f64 * sides[k]
+                    - tracks.origins[D * i + k]
+            })
+        };
+        Some(each!(&self.records, records => records
+            .iter()
+            .map(|p| displacement(p.body()))
+            .collect()))
     }
 
     /// Counts the wraps of the streaming of a step of `dt` just done (before its
     /// collisions change the velocities). Out of line: a step without tracks keeps its
     /// code as before they existed.
     #[inline(never)]
-    pub(super) fn follow_tracks(&mut self, dt: f64) {
+    pub(super) fn follow_tracks<R: Particle<D>>(&mut self, records: &[R], dt: f64) {
         let Some(tracks) = self.tracks.as_mut() else {
             return;
         };
         let periodic: [bool; D] =
             std::array::from_fn(|k| !self.walls.as_ref().is_some_and(|w| w.closed(k)));
-        for p in &self.simulators {
+        for p in records {
+            let p = p.body();
             let i = p.id as usize;
             let last = &mut self.tracked_positions[i];
             let expected: Vector<D> = std::array::from_fn(|k| last[k] + dt * p.velocity[k]);
@@ -90,20 +91,20 @@ impl<const D: usize> SpatialDsmc<D> {
             origins: Vec::with_capacity(tracks.origins.len()),
             images: Vec::with_capacity(tracks.images.len()),
         };
-        for p in &self.simulators {
-            let i = D * p.id as usize;
+        each!(&self.records, records => for p in records {
+            let i = D * p.body().id as usize;
             ordered.origins.extend_from_slice(&tracks.origins[i..i + D]);
             ordered.images.extend_from_slice(&tracks.images[i..i + D]);
-        }
+        });
         Some(ordered)
     }
+}
 
-    /// The positions indexed by the particles' identities.
-    fn positions_by_id(&self) -> Vec<Vector<D>> {
-        let mut by_id = vec![[0.0; D]; self.simulators.len()];
-        for p in &self.simulators {
-            by_id[p.id as usize] = p.position;
-        }
-        by_id
+/// The positions of `records` indexed by the particles' identities.
+fn positions_by_id<const D: usize, R: Particle<D>>(records: &[R]) -> Vec<Vector<D>> {
+    let mut by_id = vec![[0.0; D]; records.len()];
+    for p in records {
+        by_id[p.body().id as usize] = p.body().position;
     }
+    by_id
 }
