@@ -408,6 +408,27 @@ fn soft_spheres_are_rough_by_their_friction() {
     }
 }
 
+/// Hot spins (T_rot = 4 T_tr at the start) heat translation above its initial energy: a
+/// check-point of such a soft-sphere run resumes (the energy check counts the spins) and
+/// continues bit for bit.
+#[test]
+fn soft_spheres_with_hot_spins_resume() {
+    let text = soft_gas(3, "rotational_temperature = 4.0", "friction = 0.5");
+    let mut run = Simulation::from_toml(&text, "hot.toml".as_ref()).unwrap();
+    let dir = temp_dir("hot");
+    assert!(run
+        .advance(Point::CollisionsPerParticle(1.2), &mut ())
+        .unwrap());
+    assert!(run.samples().last().unwrap().temperature > 1.0);
+    let file = dir.join("hot.bin");
+    run.save(&file).unwrap();
+    let mut loaded = Simulation::load(&file).unwrap();
+    run.run(&mut (), None).unwrap();
+    loaded.run(&mut (), None).unwrap();
+    assert_eq!(loaded.samples(), run.samples());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Soft-sphere MD refuses a tangential restitution (its contact force yields one),
 /// rotation in 1D, a rotational temperature of smooth spheres, and a step that does not
 /// resolve the tangential oscillation of light-inertia spheres (q = 0.01: 9 times faster

@@ -244,7 +244,8 @@ fn check_state<const D: usize>(
             return Err("the material or the soft-sphere options differ from the run file's".into())
         }
     }
-    super::initial::no_energy_gained(plan, &state.system, None, None)?;
+    // Rough spheres: spins exchange energy with translation (hot spins heat it).
+    super::initial::no_energy_gained(plan, &state.system, None, state.tail.rotation.as_ref())?;
     let contact = contact_duration(&plan.description, &plan.species, &state.material)
         .map_err(|e| e.to_string())?;
     let (finest, coarsest) = time_step_range(contact);
