@@ -408,12 +408,12 @@ fn soft_spheres_are_rough_by_their_friction() {
     }
 }
 
-/// Hot spins (T_rot = 4 T_tr at the start) heat translation above its initial energy: a
+/// Hot spins (T_rot = 20 T_tr at the start) heat translation above its initial energy: a
 /// check-point of such a soft-sphere run resumes (the energy check counts the spins) and
 /// continues bit for bit.
 #[test]
 fn soft_spheres_with_hot_spins_resume() {
-    let text = soft_gas(3, "rotational_temperature = 4.0", "friction = 0.5");
+    let text = soft_gas(3, "rotational_temperature = 20.0", "friction = 0.5");
     let mut run = Simulation::from_toml(&text, "hot.toml".as_ref()).unwrap();
     let dir = temp_dir("hot");
     assert!(run
