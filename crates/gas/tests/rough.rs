@@ -187,47 +187,41 @@ fn a_rough_gas_continues_from_its_checkpoint() {
         "some contacts slide: {}",
         a.sliding
     );
-    for scheme in [Scheme::Exact, Scheme::default()] {
+    let start = || {
         let system = gas::init::monodisperse::<2>(1000, 0.15, 1.0, 1.0, 1.0, 2).unwrap();
         let rotation = Rotation::thermal(&system, vec![0.5; 1000], 1.0, 2);
-        let law = rough(0.8, 0.5, Some(0.2));
-        let mut engine = HomogeneousDsmc::new(system, 0.15, law.clone(), 4, scheme).unwrap();
-        engine.set_rotation(Some(rotation)).unwrap();
-        engine.run_collisions(3000);
-        let text = serde_json::to_string(&engine.save()).unwrap();
-        let mut restored =
-            HomogeneousDsmc::<2>::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
-        engine.run_collisions(3000);
-        restored.run_collisions(3000);
-        assert_eq!(engine.system(), restored.system(), "{scheme:?}");
-        assert_eq!(engine.counters(), restored.counters());
-        let (a, b) = (
-            engine.rotation().unwrap().clone(),
-            restored.rotation().unwrap().clone(),
-        );
-        assert_eq!(a, b);
-        assert!(a.sliding > 0, "some contacts slide");
+        (system, rotation, rough(0.8, 0.5, Some(0.2)))
+    };
+    for scheme in [Scheme::Exact, Scheme::default()] {
+        let (system, rotation, law) = start();
+        let engine = HomogeneousDsmc::new(system, 0.15, law.clone(), 4, scheme).unwrap();
+        resumes_bit_for_bit(engine, rotation, law, &format!("{scheme:?}"));
     }
-    let system = gas::init::monodisperse::<2>(1000, 0.15, 1.0, 1.0, 1.0, 2).unwrap();
-    let rotation = Rotation::thermal(&system, vec![0.5; 1000], 1.0, 2);
-    let law = rough(0.8, 0.5, Some(0.2));
-    let options = SpatialOptions::default();
-    let mut engine = SpatialDsmc::new(system, 0.15, law.clone(), 4, options).unwrap();
+    let (system, rotation, law) = start();
+    let engine = SpatialDsmc::new(system, 0.15, law.clone(), 4, SpatialOptions::default()).unwrap();
+    resumes_bit_for_bit(engine, rotation, law, "spatial");
+}
+
+/// A DSMC engine given `rotation`, run 3000 collisions, saved through JSON and restored
+/// with `law`, continues 3000 more as the uninterrupted engine, spins and sliding count too.
+fn resumes_bit_for_bit<E>(mut engine: E, rotation: Rotation, law: Box<dyn Restitution>, what: &str)
+where
+    E: Checkpoint<2, Needs = Box<dyn Restitution>>,
+{
     engine.set_rotation(Some(rotation)).unwrap();
     engine.run_collisions(3000);
     let text = serde_json::to_string(&engine.save()).unwrap();
-    let mut restored =
-        SpatialDsmc::<2>::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
+    let mut restored = E::restore(serde_json::from_str(&text).unwrap(), law).unwrap();
     engine.run_collisions(3000);
     restored.run_collisions(3000);
-    assert_eq!(engine.system(), restored.system(), "spatial");
-    assert_eq!(engine.counters(), restored.counters());
+    assert_eq!(engine.system(), restored.system(), "{what}");
+    assert_eq!(engine.counters(), restored.counters(), "{what}");
     let (a, b) = (
         engine.rotation().unwrap().clone(),
         restored.rotation().unwrap().clone(),
     );
-    assert_eq!(a, b);
-    assert!(a.sliding > 0, "some contacts slide");
+    assert_eq!(a, b, "{what}");
+    assert!(a.sliding > 0, "{what}: some contacts slide");
 }
 
 /// `set_rotation(None)`: on a gas without rotation it leaves the particles as they are
