@@ -8,8 +8,8 @@
 //! plane points along z). One-dimensional rods have no rotation.
 
 use crate::error::{Error, Result};
-use crate::system::{System, Vector};
-use restitution::rough::{cross, Tangential};
+use crate::system::{dot, System, Vector};
+use restitution::rough::{Body, Tangential};
 use serde::{Deserialize, Serialize};
 
 /// The largest inertia factor of a sphere (a hollow shell, 2/3) and of a disk (a ring
@@ -182,77 +182,111 @@ fn squared(w: &[f64; 3]) -> f64 {
     w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
 }
 
-/// What the tangential kick needs of a particle's mass, radius a and inertia factor q, as
-/// reciprocals (an engine computes them once per species, or per collision): 1/m,
-/// 1/(q m) and 1/(q m a).
+/// A rough contact's constants, computed once per pair of species (DSMC) or per
+/// collision (event-driven MD): each particle's 1/m, 1/(q m a) and radius a, and the
+/// rule's impulse and energy per unit of the tangential speed, so that a sticking
+/// contact needs neither a square root nor a division (module `restitution::rough`:
+/// P_t = -(1 + beta) g_t / k_t takes (1 - beta^2) |g_t|^2 / (2 k_t)).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Inverses {
-    pub mass: f64,
-    pub inertia_mass: f64,
-    pub arm: f64,
+pub(crate) struct Contact {
+    inverse_mass: [f64; 2],
+    /// 1/(q m a): the change of a w per unit of torque over a.
+    arm: [f64; 2],
+    radius: [f64; 2],
+    /// (1 + beta) / k_t: the sticking impulse per unit of |g_t|.
+    stick: f64,
+    /// (1 - beta^2) / (2 k_t): the energy a sticking contact takes per unit of |g_t|^2.
+    stick_loss: f64,
+    k_t: f64,
+    friction: Option<f64>,
 }
 
-impl Inverses {
-    pub fn of(mass: f64, radius: f64, inertia: f64) -> Self {
-        let inertia_mass = 1.0 / (inertia * mass);
-        Inverses {
-            mass: 1.0 / mass,
-            inertia_mass,
-            arm: inertia_mass / radius,
+impl Contact {
+    /// The contact of `rule` between particles `i` and `j`.
+    pub fn new(rule: &Tangential, i: Body, j: Body) -> Self {
+        let inverse_mass = [1.0 / i.mass, 1.0 / j.mass];
+        let inertia_mass = [1.0 / (i.inertia * i.mass), 1.0 / (j.inertia * j.mass)];
+        let k_t = inverse_mass[0] + inverse_mass[1] + inertia_mass[0] + inertia_mass[1];
+        let beta = rule.beta();
+        Contact {
+            inverse_mass,
+            arm: [inertia_mass[0] / i.radius, inertia_mass[1] / j.radius],
+            radius: [i.radius, j.radius],
+            stick: (1.0 + beta) / k_t,
+            stick_loss: 0.5 * (1.0 - beta * beta) / k_t,
+            k_t,
+            friction: rule.friction(),
         }
     }
 }
 
-/// One particle at a rough contact, as an engine holds it.
-pub(crate) struct Spinning<'a, const D: usize> {
-    pub velocity: &'a mut Vector<D>,
-    pub angular: &'a mut [f64; 3],
-    pub radius: f64,
-    pub inverses: Inverses,
-}
-
 /// The tangential half of a collision whose normal impulse `normal_impulse` (its size)
 /// along the unit normal `n` from i to j an engine has applied: the tangential impulse
-/// of `rule` on i and j (`restitution::rough`), with `relative` the velocity of i less
-/// that of j's image (the normal impulse leaves its tangential part alone).
-#[inline]
+/// of the contact's rule (`restitution::rough::Tangential::impulse`) on i (velocity and
+/// angular velocity `i`) and j, with `relative` the velocity of i less that of j's image
+/// (the normal impulse leaves its tangential part alone). Disks (D = 2) spin about z.
+#[inline(always)]
 pub(crate) fn tangential_kick<const D: usize>(
-    rule: &Tangential,
+    contact: &Contact,
     n: &Vector<D>,
     relative: &Vector<D>,
     normal_impulse: f64,
-    i: Spinning<D>,
-    j: Spinning<D>,
+    i: (&mut Vector<D>, &mut [f64; 3]),
+    j: (&mut Vector<D>, &mut [f64; 3]),
 ) -> Kick {
-    let n3: [f64; 3] = std::array::from_fn(|k| if k < D { n[k] } else { 0.0 });
-    let spin: [f64; 3] = std::array::from_fn(|k| i.radius * i.angular[k] + j.radius * j.angular[k]);
-    let roll = cross(&spin, &n3);
-    let g: [f64; 3] = std::array::from_fn(|k| if k < D { relative[k] } else { 0.0 } + roll[k]);
-    let g_n = g[0] * n3[0] + g[1] * n3[1] + g[2] * n3[2];
-    let g_t: [f64; 3] = std::array::from_fn(|k| g[k] - g_n * n3[k]);
-    let speed = squared(&g_t).sqrt();
-    if speed == 0.0 {
-        return Kick::default();
+    let [ra, rb] = contact.radius;
+    // g_t = (v_i - v_j) - ((v_i - v_j) . n) n + (a_i w_i + a_j w_j) x n.
+    let g_n = dot(relative, n);
+    let mut g_t: Vector<D> = std::array::from_fn(|k| relative[k] - g_n * n[k]);
+    if D == 2 {
+        let s = ra * i.1[2] + rb * j.1[2];
+        g_t[0] -= s * n[1];
+        g_t[1] += s * n[0];
+    } else {
+        let s: [f64; 3] = std::array::from_fn(|k| ra * i.1[k] + rb * j.1[k]);
+        g_t[0] += s[1] * n[2] - s[2] * n[1];
+        g_t[1] += s[2] * n[0] - s[0] * n[2];
+        g_t[2] += s[0] * n[1] - s[1] * n[0];
     }
-    let (ii, ij) = (i.inverses, j.inverses);
-    let k_t = ii.mass + ij.mass + ii.inertia_mass + ij.inertia_mass;
-    let kick = rule.impulse(speed, normal_impulse, k_t);
-    let scale = kick.size / speed;
-    // The impulse on i, -|P_t| g_t / |g_t|, and its torque about i's centre over a_i.
-    let p: [f64; 3] = g_t.map(|x| -scale * x);
-    let torque = cross(&n3, &p);
-    for (k, pk) in p.iter().enumerate().take(D) {
-        i.velocity[k] += pk * ii.mass;
-        j.velocity[k] -= pk * ij.mass;
+    let g2 = dot(&g_t, &g_t);
+    // Sticking unless Coulomb's limit mu |P_n| is below the sticking impulse
+    // stick |g_t| (compared squared: both >= 0).
+    let sticking = contact.stick;
+    let (scale, energy_lost, sliding) = match contact.friction {
+        Some(mu) if (mu * normal_impulse).powi(2) < sticking * sticking * g2 => {
+            let (limit, speed) = (mu * normal_impulse, g2.sqrt());
+            let energy = limit * speed - 0.5 * limit * limit * contact.k_t;
+            (limit / speed, energy, true)
+        }
+        _ => (sticking, contact.stick_loss * g2, false),
+    };
+    // The impulse on i, -scale g_t, and its torque about i's centre over a_i.
+    let p: Vector<D> = g_t.map(|x| -scale * x);
+    let [ma, mb] = contact.inverse_mass;
+    for (k, pk) in p.iter().enumerate() {
+        i.0[k] += pk * ma;
+        j.0[k] -= pk * mb;
     }
-    for (k, tk) in torque.iter().enumerate() {
-        i.angular[k] += tk * ii.arm;
-        j.angular[k] += tk * ij.arm;
+    let [aa, ab] = contact.arm;
+    if D == 2 {
+        let torque = n[0] * p[1] - n[1] * p[0];
+        i.1[2] += torque * aa;
+        j.1[2] += torque * ab;
+    } else {
+        let torque = [
+            n[1] * p[2] - n[2] * p[1],
+            n[2] * p[0] - n[0] * p[2],
+            n[0] * p[1] - n[1] * p[0],
+        ];
+        for (k, tk) in torque.iter().enumerate() {
+            i.1[k] += tk * aa;
+            j.1[k] += tk * ab;
+        }
     }
     Kick {
-        energy_lost: kick.energy_lost,
-        sliding: kick.sliding,
-        to_j: p.map(|x| -x),
+        energy_lost,
+        sliding,
+        to_j: std::array::from_fn(|k| if k < D { -p[k] } else { 0.0 }),
     }
 }
 
@@ -322,23 +356,14 @@ mod tests {
             let relative: [f64; 3] = std::array::from_fn(|k| after[0][k] - after[1][k]);
             let [mut vi, mut vj] = after;
             let [mut wi, mut wj] = w;
+            let contact = Contact::new(&rule, bodies[0], bodies[1]);
             let kick = tangential_kick::<3>(
-                &rule,
+                &contact,
                 &n,
                 &relative,
                 p_n,
-                Spinning {
-                    velocity: &mut vi,
-                    angular: &mut wi,
-                    radius: 0.7,
-                    inverses: Inverses::of(1.3, 0.7, 0.4),
-                },
-                Spinning {
-                    velocity: &mut vj,
-                    angular: &mut wj,
-                    radius: 0.45,
-                    inverses: Inverses::of(0.6, 0.45, 2.0 / 3.0),
-                },
+                (&mut vi, &mut wi),
+                (&mut vj, &mut wj),
             );
             for k in 0..3 {
                 assert!((vi[k] - reference.velocities[0][k]).abs() < 1e-14);
@@ -348,6 +373,27 @@ mod tests {
             }
             if planar {
                 assert!(wi[0] == 0.0 && wi[1] == 0.0 && vi[2] == 0.0);
+                // The disks' own path (D = 2: spins about z only).
+                let plane = |x: [f64; 3]| [x[0], x[1]];
+                let [mut vi2, mut vj2] = after.map(plane);
+                let [mut wi2, mut wj2] = w;
+                let kick2 = tangential_kick::<2>(
+                    &contact,
+                    &plane(n),
+                    &plane(relative),
+                    p_n,
+                    (&mut vi2, &mut wi2),
+                    (&mut vj2, &mut wj2),
+                );
+                for k in 0..2 {
+                    assert!((vi2[k] - reference.velocities[0][k]).abs() < 1e-14);
+                    assert!((vj2[k] - reference.velocities[1][k]).abs() < 1e-14);
+                }
+                assert!((wi2[2] - reference.angular[0][2]).abs() < 1e-14);
+                assert!((wj2[2] - reference.angular[1][2]).abs() < 1e-14);
+                assert_eq!((wi2[0], wi2[1], wj2[0], wj2[1]), (0.0, 0.0, 0.0, 0.0));
+                assert!((kick2.energy_lost - kick.energy_lost).abs() < 1e-14);
+                assert_eq!(kick2.sliding, kick.sliding);
             }
             let normal_loss = 0.5 * (1.0 - eps * eps) * g_n * g_n / k_n;
             assert!((normal_loss + kick.energy_lost - reference.energy_lost).abs() < 1e-13);

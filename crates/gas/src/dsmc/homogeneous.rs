@@ -10,7 +10,8 @@ mod spin;
 
 use super::domain::Traffic;
 use super::kernel::{
-    self, add_counts, Collider, Moments, Record, SpeciesTally, Spun, Tagged, Window,
+    self, add_counts, Collider, Moments, OneSpecies, Record, SpeciesTag, SpeciesTally, Spun,
+    Tagged, Window,
 };
 use super::reduce;
 use super::rough::Spin;
@@ -37,7 +38,23 @@ enum Store<const D: usize> {
     Mixed(Vec<Tagged<D>>, Vec<Tagged<D>>),
     /// Rough particles: velocity, species and angular velocity.
     Rough(Vec<Spun<D>>, Vec<Spun<D>>),
+    /// Rough particles of one species: velocity and angular velocity.
+    RoughUniform(Vec<Spun<D, OneSpecies>>, Vec<Spun<D, OneSpecies>>),
 }
+
+/// `$body` with `$now` and `$spare` bound to the records and the spare buffer of the
+/// store, whichever their kind (the body is compiled for each).
+macro_rules! each_store {
+    ($store:expr, ($now:pat, $spare:pat) => $body:expr) => {
+        match $store {
+            Store::Uniform($now, $spare) => $body,
+            Store::Mixed($now, $spare) => $body,
+            Store::Rough($now, $spare) => $body,
+            Store::RoughUniform($now, $spare) => $body,
+        }
+    };
+}
+use each_store;
 
 /// Everything but the records.
 struct Core<const D: usize> {
@@ -132,27 +149,28 @@ impl<const D: usize> HomogeneousRecord<D> for Tagged<D> {
     }
 }
 
-/// Rough records travel as velocity, species, angular velocity (D + 4 values).
-impl<const D: usize> HomogeneousRecord<D> for Spun<D> {
+/// Rough records travel as velocity, species, angular velocity (D + 4 values, the
+/// species 0 for a gas of one species).
+impl<const D: usize, S: SpeciesTag> HomogeneousRecord<D> for Spun<D, S> {
     const VALUES: usize = D + 4;
     fn from_parts(velocity: Vector<D>, species: u32) -> Self {
         Spun {
             velocity,
-            species,
+            species: S::of(species),
             angular: [0.0; 3],
         }
     }
 
     fn encode(&self, out: &mut Vec<f64>) {
         out.extend_from_slice(&self.velocity);
-        out.push(self.species as f64);
+        out.push(self.species.index() as f64);
         out.extend_from_slice(&self.angular);
     }
 
     fn decode(row: &[f64]) -> Self {
         Spun {
             velocity: std::array::from_fn(|k| row[k]),
-            species: row[D] as u32,
+            species: S::of(row[D] as u32),
             angular: [row[D + 1], row[D + 2], row[D + 3]],
         }
     }
@@ -255,29 +273,15 @@ impl<const D: usize> HomogeneousDsmc<D> {
             spin: None,
         };
         let mut store = make_store(&core.species, system.velocities, &index);
-        let (bound, moments) = match &store {
-            Store::Uniform(now, _) => (
-                kernel::speed_bound(now, &reference),
-                Moments::of(now, &core.species),
-            ),
-            Store::Mixed(now, _) => (
-                kernel::speed_bound(now, &reference),
-                Moments::of(now, &core.species),
-            ),
-            Store::Rough(now, _) => (
-                kernel::speed_bound(now, &reference),
-                Moments::of(now, &core.species),
-            ),
-        };
+        let (bound, moments) = each_store!(&store, (now, _) => (
+            kernel::speed_bound(now, &reference),
+            Moments::of(now, &core.species),
+        ));
         core.speed_bound = bound;
         core.temperature = moments.spread / (n * D) as f64;
         if let (Some((first, end)), true) = (share, ranks > 1) {
             // Every rank built the whole gas (the same numbers); keep this rank's blocks.
-            match &mut store {
-                Store::Uniform(now, _) => keep(now, first, end),
-                Store::Mixed(now, _) => keep(now, first, end),
-                Store::Rough(now, _) => keep(now, first, end),
-            }
+            each_store!(&mut store, (now, _) => keep(now, first, end))
         }
         let mut engine = HomogeneousDsmc {
             core,
@@ -335,11 +339,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         // only ever grows to the largest one seen): a smaller one would accept with
         // probabilities above 1.
         if matches!(options, Scheme::Exact) {
-            let largest = match &engine.store {
-                Store::Uniform(now, _) => kernel::speed_bound(now, &reference_velocity),
-                Store::Mixed(now, _) => kernel::speed_bound(now, &reference_velocity),
-                Store::Rough(now, _) => kernel::speed_bound(now, &reference_velocity),
-            };
+            let largest = each_store!(&engine.store, (now, _) => kernel::speed_bound(now, &reference_velocity));
             if speed_bound < largest {
                 return Err(Error::out_of_range(
                     "speed_bound",
@@ -448,11 +448,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
 
     fn run(&mut self, end: f64, target: u64, pause: u64) {
         let core = &mut self.core;
-        match &mut self.store {
-            Store::Uniform(now, spare) => run_records(core, now, spare, end, target, pause),
-            Store::Mixed(now, spare) => run_records(core, now, spare, end, target, pause),
-            Store::Rough(now, spare) => run_records(core, now, spare, end, target, pause),
-        }
+        each_store!(&mut self.store, (now, spare) => run_records(core, now, spare, end, target, pause))
     }
 }
 
@@ -713,11 +709,7 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
         s.velocities.clear();
         s.radii.clear();
         s.masses.clear();
-        match &self.store {
-            Store::Uniform(now, _) => fill(s, &gathered(now, core), &core.species),
-            Store::Mixed(now, _) => fill(s, &gathered(now, core), &core.species),
-            Store::Rough(now, _) => fill(s, &gathered(now, core), &core.species),
-        }
+        each_store!(&self.store, (now, _) => fill(s, &gathered(now, core), &core.species));
         s.positions.clear();
         s.positions.resize(s.velocities.len(), [0.0; D]);
         &self.system
@@ -744,11 +736,7 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
             }
             Scheme::Exact => 0,
         };
-        let particles = match &self.store {
-            Store::Uniform(now, _) => now.len(),
-            Store::Mixed(now, _) => now.len(),
-            Store::Rough(now, _) => now.len(),
-        };
+        let particles = each_store!(&self.store, (now, _) => now.len());
         core.traffic
             .reports(core.comm.as_ref(), particles, blocks as u64)
     }
@@ -759,17 +747,9 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
         let core = &mut self.core;
         let (species, total, volume) = (&core.species, core.total, core.volume);
         let (comm, traffic) = (core.comm.as_ref(), &mut core.traffic);
-        Some(match &self.store {
-            Store::Uniform(now, _) => {
-                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
-            }
-            Store::Mixed(now, _) => {
-                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
-            }
-            Store::Rough(now, _) => {
-                reduce::velocity_statistics(now, species, total, volume, comm, traffic)
-            }
-        })
+        Some(each_store!(&self.store, (now, _) => {
+            reduce::velocity_statistics(now, species, total, volume, comm, traffic)
+        }))
     }
 
     /// Bytes held by the engine: records, the re-mixing buffer, the classes of the exact
@@ -777,11 +757,10 @@ impl<const D: usize> Engine<D> for HomogeneousDsmc<D> {
     /// and the species tables.
     fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        let records = match &self.store {
-            Store::Uniform(a, b) => (a.capacity() + b.capacity()) * size_of::<Vector<D>>(),
-            Store::Mixed(a, b) => (a.capacity() + b.capacity()) * size_of::<Tagged<D>>(),
-            Store::Rough(a, b) => (a.capacity() + b.capacity()) * size_of::<Spun<D>>(),
-        };
+        fn bytes<T>(a: &Vec<T>, b: &Vec<T>) -> usize {
+            (a.capacity() + b.capacity()) * std::mem::size_of::<T>()
+        }
+        let records = each_store!(&self.store, (a, b) => bytes(a, b));
         let s = &self.system;
         let output = (s.positions.capacity() + s.velocities.capacity()) * size_of::<Vector<D>>()
             + (s.radii.capacity() + s.masses.capacity()) * size_of::<f64>();

@@ -93,17 +93,53 @@ macro_rules! tagged_record {
 
 tagged_record!(Tagged);
 
-/// The record of a homogeneous gas of rough particles: velocity, species, angular
-/// velocity (disks about z).
+/// The species of a rough record: a tag (mixtures) or nothing ([`OneSpecies`]: a gas of
+/// one species, whose records are 8 bytes smaller and need no lookup by species).
+pub(crate) trait SpeciesTag: Copy + Send + Sync + PartialEq + std::fmt::Debug {
+    const MIXED: bool;
+    fn of(species: u32) -> Self;
+    fn index(&self) -> usize;
+}
+
+impl SpeciesTag for u32 {
+    const MIXED: bool = true;
+    #[inline(always)]
+    fn of(species: u32) -> Self {
+        species
+    }
+    #[inline(always)]
+    fn index(&self) -> usize {
+        *self as usize
+    }
+}
+
+/// The species of a record of a gas of one species: always the first.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Spun<const D: usize> {
+pub(crate) struct OneSpecies;
+
+impl SpeciesTag for OneSpecies {
+    const MIXED: bool = false;
+    #[inline(always)]
+    fn of(_species: u32) -> Self {
+        OneSpecies
+    }
+    #[inline(always)]
+    fn index(&self) -> usize {
+        0
+    }
+}
+
+/// The record of a homogeneous gas of rough particles: velocity, species (a tag for
+/// mixtures, nothing for one species) and angular velocity (disks about z).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Spun<const D: usize, S = u32> {
     pub velocity: Vector<D>,
-    pub species: u32,
+    pub species: S,
     pub angular: [f64; 3],
 }
 
-impl<const D: usize> Record<D> for Spun<D> {
-    const MIXED: bool = true;
+impl<const D: usize, S: SpeciesTag> Record<D> for Spun<D, S> {
+    const MIXED: bool = S::MIXED;
     const ROUGH: bool = true;
     #[inline]
     fn velocity(&self) -> &Vector<D> {
@@ -115,7 +151,7 @@ impl<const D: usize> Record<D> for Spun<D> {
     }
     #[inline]
     fn species(&self) -> usize {
-        self.species as usize
+        self.species.index()
     }
     #[inline(always)]
     fn spin_parts(&mut self) -> Option<(&mut Vector<D>, &mut [f64; 3])> {
@@ -226,13 +262,11 @@ pub(crate) struct Collider<'a> {
     pub rough: Option<Rough<'a>>,
 }
 
-/// The tangential half of the collisions of rough particles: the rule of each pair of
-/// species (row-major; one entry for one rule of all pairs) and each species'
-/// reciprocals of mass and inertia.
+/// The tangential half of the collisions of rough particles: the kick's constants of
+/// each pair of species (row-major; one entry for one species).
 #[derive(Clone, Copy)]
 pub(crate) struct Rough<'a> {
-    pub rules: &'a [restitution::rough::Tangential],
-    pub inverses: &'a [crate::rotation::Inverses],
+    pub contacts: &'a [crate::rotation::Contact],
 }
 
 /// A window of the exact process: from `start` to `end` (may be infinite), at most
@@ -357,18 +391,22 @@ impl Collider<'_> {
         tally: &mut impl Tally,
     ) -> Option<f64> {
         let (i, j) = rng.pair(group.len() as u32);
-        let (mut a, mut b) = (group[i], group[j]);
-        let g: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - b.velocity()[k]);
+        // Only what the test needs of a candidate: the whole records (larger for rough
+        // particles) are copied for a collision only.
+        let g: Vector<D> = std::array::from_fn(|k| group[i].velocity()[k] - group[j].velocity()[k]);
         let g2 = dot(&g, &g);
         let u = rng.uniform() * 2.0 * bound;
         let ratio = if R::MIXED && self.species.len() > 1 {
-            self.species.pair(a.species(), b.species()).ratio
+            self.species
+                .pair(group[i].species(), group[j].species())
+                .ratio
         } else {
             1.0
         };
         if ratio * ratio * g2 <= u * u {
             return None;
         }
+        let (mut a, mut b) = (group[i], group[j]);
         let fastest = self.collide(&mut a, &mut b, &g, g2, reference, rng, tally);
         (group[i], group[j]) = (a, b);
         Some(fastest)
@@ -413,7 +451,8 @@ impl Collider<'_> {
         if let Some(virial) = tally.virial() {
             virial.add(kick * pair.reduced, pair.sigma, &e);
         }
-        if R::MIXED {
+        // One species: its collisions are the gas's (`super::species::by_species`).
+        if R::MIXED && self.species.len() > 1 {
             tally.pair(a.species(), b.species());
         }
         if R::ROUGH {
@@ -432,7 +471,7 @@ impl Collider<'_> {
     /// `normal` along `e` (`crate::rotation::tangential_kick`), at contact distance
     /// `sigma`.
     #[allow(clippy::too_many_arguments)]
-    #[inline]
+    #[inline(always)]
     fn rough_kick<const D: usize, R: Record<D>>(
         &self,
         rough: &Rough,
@@ -443,34 +482,16 @@ impl Collider<'_> {
         sigma: f64,
         tally: &mut impl Tally,
     ) {
-        let (sa, sb) = (a.species(), b.species());
+        let contact = match rough.contacts {
+            [one] => one,
+            all => &all[a.species() * self.species.len() + b.species()],
+        };
         let (Some((va, wa)), Some((vb, wb))) = (a.spin_parts(), b.spin_parts()) else {
             return;
         };
         let relative: Vector<D> = std::array::from_fn(|k| va[k] - vb[k]);
-        let s = self.species;
-        let rule = match rough.rules {
-            [one] => one,
-            rules => &rules[sa * s.len() + sb],
-        };
-        let kick = crate::rotation::tangential_kick(
-            rule,
-            e,
-            &relative,
-            normal,
-            crate::rotation::Spinning {
-                velocity: va,
-                angular: wa,
-                radius: s.radii[sa],
-                inverses: rough.inverses[sa],
-            },
-            crate::rotation::Spinning {
-                velocity: vb,
-                angular: wb,
-                radius: s.radii[sb],
-                inverses: rough.inverses[sb],
-            },
-        );
+        let kick =
+            crate::rotation::tangential_kick(contact, e, &relative, normal, (va, wa), (vb, wb));
         tally.counters().energy_lost += kick.energy_lost;
         if kick.sliding {
             tally.slid();

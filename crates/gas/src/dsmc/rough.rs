@@ -1,24 +1,22 @@
 //! What the DSMC engines keep of rough particles besides the spins in their records: the
-//! law's tangential rule per pair of species, each species' inertia factor (one per
+//! tangential kick's constants per pair of species, each species' inertia factor (one per
 //! species: the records carry their species only) and the contacts that slid. Shared by
 //! the homogeneous engine (`homogeneous/spin.rs`) and the spatial one (`spatial/rough.rs`).
 
 use super::kernel;
 use super::species::Species;
 use crate::error::{Error, Result};
-use crate::rotation::{Inverses, Rotation};
-use restitution::rough::Tangential;
+use crate::rotation::{Contact, Rotation};
+use restitution::rough::{Body, Tangential};
 use restitution::Restitution;
 
-/// Rough particles: the law's tangential rule (none: the spins rotate freely), each
-/// species' inertia factor, and the contacts that slid.
+/// Rough particles: the law's tangential kick per pair of species (none: the spins
+/// rotate freely), each species' inertia factor, and the contacts that slid.
 pub(crate) struct Spin {
-    /// The rule of each pair of species (row-major; one entry: one rule for all; empty:
-    /// a smooth law, the spins rotate freely).
-    pub tangential: Vec<Tangential>,
     pub inertia: Vec<f64>,
-    /// Each species' reciprocals of mass and inertia (the kick's, computed once).
-    pub inverses: Vec<Inverses>,
+    /// The kick's constants of each pair of species (row-major; one entry for one
+    /// species), computed once; empty for a smooth law.
+    pub contacts: Vec<Contact>,
     pub sliding: u64,
 }
 
@@ -26,22 +24,38 @@ impl Spin {
     /// The spins' companion for `law` among `species` with each species' `inertia`
     /// factor, `sliding` contacts slid so far.
     pub fn new(law: &dyn Restitution, species: &Species, inertia: Vec<f64>, sliding: u64) -> Self {
-        let inverses = (0..species.len())
-            .map(|s| Inverses::of(species.masses[s], species.radii[s], inertia[s]))
-            .collect();
+        let tangential = rules_per_pair(law, species);
+        let body = |s: usize| Body {
+            mass: species.masses[s],
+            radius: species.radii[s],
+            inertia: inertia[s],
+        };
+        let kinds = species.len();
+        let contacts = match tangential.as_slice() {
+            [] => Vec::new(),
+            [one] if kinds == 1 => vec![Contact::new(one, body(0), body(0))],
+            rules => (0..kinds * kinds)
+                .map(|k| {
+                    let rule = if rules.len() == 1 {
+                        &rules[0]
+                    } else {
+                        &rules[k]
+                    };
+                    Contact::new(rule, body(k / kinds), body(k % kinds))
+                })
+                .collect(),
+        };
         Spin {
-            tangential: rules_per_pair(law, species),
             inertia,
-            inverses,
+            contacts,
             sliding,
         }
     }
 
     /// What the kernel's tangential kick needs; None for a smooth law (no kick).
     pub fn kernel(&self) -> Option<kernel::Rough<'_>> {
-        (!self.tangential.is_empty()).then_some(kernel::Rough {
-            rules: &self.tangential,
-            inverses: &self.inverses,
+        (!self.contacts.is_empty()).then_some(kernel::Rough {
+            contacts: &self.contacts,
         })
     }
 

@@ -7,8 +7,9 @@
 
 use super::{EventDriven, Particle};
 use crate::error::{Error, Result};
-use crate::rotation::{tangential_kick, Inverses, Rotation, Spinning};
+use crate::rotation::{tangential_kick, Contact, Rotation};
 use crate::system::Vector;
+use restitution::rough::Body;
 
 impl<const D: usize> EventDriven<D> {
     /// Gives the spheres `rotation` (checked: one entry per sphere, inertia factors in
@@ -53,23 +54,23 @@ impl<const D: usize> EventDriven<D> {
         let mut relative: Vector<D> = std::array::from_fn(|k| a.velocity[k] - b.velocity[k]);
         relative[0] -= jump;
         let (mut wa, mut wb) = (rotation.angular[i], rotation.angular[j]);
-        let kick = tangential_kick(
+        let body = |p: &Particle<D>, q: f64| Body {
+            mass: p.mass,
+            radius: p.radius,
+            inertia: q,
+        };
+        let contact = Contact::new(
             rule,
+            body(&a, rotation.inertia[i]),
+            body(&b, rotation.inertia[j]),
+        );
+        let kick = tangential_kick(
+            &contact,
             n,
             &relative,
             normal_impulse.abs(),
-            Spinning {
-                velocity: &mut a.velocity,
-                angular: &mut wa,
-                radius: a.radius,
-                inverses: Inverses::of(a.mass, a.radius, rotation.inertia[i]),
-            },
-            Spinning {
-                velocity: &mut b.velocity,
-                angular: &mut wb,
-                radius: b.radius,
-                inverses: Inverses::of(b.mass, b.radius, rotation.inertia[j]),
-            },
+            (&mut a.velocity, &mut wa),
+            (&mut b.velocity, &mut wb),
         );
         self.particles[i].velocity = a.velocity;
         self.particles[j].velocity = b.velocity;

@@ -429,8 +429,9 @@ impl Collider<'_> {
             time = next;
             candidates += 1;
             let (i, j) = classes.pick(n, rng);
-            let (mut a, mut b) = (group[i], group[j]);
-            let mut g: Vector<D> = std::array::from_fn(|k| a.velocity()[k] - b.velocity()[k]);
+            // The whole records (larger for rough particles) are copied for a collision only.
+            let mut g: Vector<D> =
+                std::array::from_fn(|k| group[i].velocity()[k] - group[j].velocity()[k]);
             let shift = frame.rate * (time - frame.anchor);
             if SHEARED {
                 g[0] -= shift * g[1];
@@ -443,13 +444,16 @@ impl Collider<'_> {
                 u *= inflation;
             }
             let ratio = if mixed {
-                self.species.pair(a.species(), b.species()).ratio
+                self.species
+                    .pair(group[i].species(), group[j].species())
+                    .ratio
             } else {
                 1.0
             };
             if ratio * ratio * g2 <= u * u {
                 continue;
             }
+            let (mut a, mut b) = (group[i], group[j]);
             if SHEARED {
                 for r in [&mut a, &mut b] {
                     let v = r.velocity_mut();

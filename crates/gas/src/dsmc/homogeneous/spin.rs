@@ -3,8 +3,8 @@
 //! (`kernel::Collider::rough_kick`); the rotation is given and taken in the order of
 //! [`Engine::system`], every rank its share (collective).
 
-use super::{HomogeneousDsmc, Store};
-use crate::dsmc::kernel::{Spun, Tagged};
+use super::{each_store, HomogeneousDsmc, Store};
+use crate::dsmc::kernel::{Record, SpeciesTag, Spun, Tagged};
 use crate::dsmc::rough::{self, Spin};
 use crate::engine::Engine;
 use crate::error::Result;
@@ -46,30 +46,16 @@ impl<const D: usize> HomogeneousDsmc<D> {
         sliding: u64,
     ) {
         let offset = self.rank_offset();
-        let spun = |velocity: Vector<D>, species: u32, i: usize| Spun {
-            velocity,
-            species,
-            angular: angular[offset + i],
+        let old = std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new()));
+        let parts: Vec<(Vector<D>, u32)> = each_store!(old, (now, _) => now
+            .into_iter()
+            .map(|r| (*r.velocity(), r.species() as u32))
+            .collect());
+        self.store = if self.core.species.len() == 1 {
+            Store::RoughUniform(spun(parts, &angular[offset..]), Vec::new())
+        } else {
+            Store::Rough(spun(parts, &angular[offset..]), Vec::new())
         };
-        let records: Vec<Spun<D>> =
-            match std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new())) {
-                Store::Uniform(now, _) => now
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, v)| spun(v, 0, i))
-                    .collect(),
-                Store::Mixed(now, _) => now
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, r)| spun(r.velocity, r.species, i))
-                    .collect(),
-                Store::Rough(now, _) => now
-                    .into_iter()
-                    .enumerate()
-                    .map(|(i, r)| spun(r.velocity, r.species, i))
-                    .collect(),
-            };
-        self.store = Store::Rough(records, Vec::new());
         self.core.spin = Some(Spin::new(
             self.core.law.as_ref(),
             &self.core.species,
@@ -84,23 +70,29 @@ impl<const D: usize> HomogeneousDsmc<D> {
     fn take_rotation(&mut self) {
         // (Smooth records stay as they are: replacing them by the placeholder's empty
         // store once dropped the gas of a smooth engine asked to take away no rotation.)
+        let smooth = |parts: Vec<(Vector<D>, u32)>, kinds: usize| {
+            if kinds == 1 {
+                Store::Uniform(parts.into_iter().map(|(v, _)| v).collect(), Vec::new())
+            } else {
+                Store::Mixed(
+                    parts
+                        .into_iter()
+                        .map(|(velocity, species)| Tagged { velocity, species })
+                        .collect(),
+                    Vec::new(),
+                )
+            }
+        };
+        let kinds = self.core.species.len();
         self.store =
             match std::mem::replace(&mut self.store, Store::Uniform(Vec::new(), Vec::new())) {
                 Store::Rough(now, _) => {
                     self.core.classes = None;
-                    if self.core.species.len() == 1 {
-                        Store::Uniform(now.into_iter().map(|r| r.velocity).collect(), Vec::new())
-                    } else {
-                        Store::Mixed(
-                            now.into_iter()
-                                .map(|r| Tagged {
-                                    velocity: r.velocity,
-                                    species: r.species,
-                                })
-                                .collect(),
-                            Vec::new(),
-                        )
-                    }
+                    smooth(now.iter().map(|r| (r.velocity, r.species)).collect(), kinds)
+                }
+                Store::RoughUniform(now, _) => {
+                    self.core.classes = None;
+                    smooth(now.iter().map(|r| (r.velocity, 0)).collect(), kinds)
                 }
                 smooth => smooth,
             };
@@ -113,11 +105,7 @@ impl<const D: usize> HomogeneousDsmc<D> {
         if comm.size() == 1 {
             return 0;
         }
-        let mine = match &self.store {
-            Store::Uniform(now, _) => now.len(),
-            Store::Mixed(now, _) => now.len(),
-            Store::Rough(now, _) => now.len(),
-        };
+        let mine = each_store!(&self.store, (now, _) => now.len());
         let all = comm.all_gather(vec![mine as f64]);
         all[..comm.rank()].iter().map(|v| v[0] as usize).sum()
     }
@@ -126,13 +114,36 @@ impl<const D: usize> HomogeneousDsmc<D> {
     /// smooth ones.
     pub(super) fn rotation_now(&mut self) -> Option<&Rotation> {
         self.core.spin.as_ref()?;
-        let Store::Rough(now, _) = &self.store else {
-            return None;
+        let (kinds, angular): (Vec<usize>, Vec<[f64; 3]>) = match &self.store {
+            Store::Rough(now, _) => super::gathered(now, &mut self.core)
+                .iter()
+                .map(|r| (r.species as usize, r.angular))
+                .unzip(),
+            Store::RoughUniform(now, _) => super::gathered(now, &mut self.core)
+                .iter()
+                .map(|r| (0, r.angular))
+                .unzip(),
+            _ => return None,
         };
-        let all = super::gathered(now, &mut self.core);
         let spin = self.core.spin.as_ref()?;
-        let kinds = all.iter().map(|r| r.species as usize);
-        self.rotation = Some(spin.rotation(kinds, all.iter().map(|r| r.angular).collect()));
+        self.rotation = Some(spin.rotation(kinds.into_iter(), angular));
         self.rotation.as_ref()
     }
+}
+
+/// Rough records of the velocities and species `parts` with the angular velocities
+/// `angular` (in one order).
+fn spun<const D: usize, S: SpeciesTag>(
+    parts: Vec<(Vector<D>, u32)>,
+    angular: &[[f64; 3]],
+) -> Vec<Spun<D, S>> {
+    parts
+        .into_iter()
+        .zip(angular)
+        .map(|((velocity, species), &angular)| Spun {
+            velocity,
+            species: S::of(species),
+            angular,
+        })
+        .collect()
 }
