@@ -52,6 +52,21 @@ impl CliError {
         }
     }
 
+    /// A failure that is not the input's (exit 1).
+    pub fn failure(message: impl fmt::Display) -> Self {
+        CliError {
+            message: message.to_string(),
+            exit_code: EXIT_FAILURE,
+            quiet: false,
+        }
+    }
+
+    /// The same error with another exit code.
+    pub fn with_code(mut self, code: u8) -> Self {
+        self.exit_code = code;
+        self
+    }
+
     /// The exit code for this error.
     pub fn exit_code(&self) -> ExitCode {
         ExitCode::from(self.exit_code)

@@ -15,6 +15,7 @@ mod progress;
 mod reproduce;
 mod rods;
 mod run;
+mod study;
 
 use clap::error::ErrorKind;
 use clap::{Args, Parser, Subcommand};
@@ -42,6 +43,9 @@ enum Command {
     Demo,
     /// A granular-gas run described by a TOML file (event-driven MD).
     Run(RunArgs),
+    /// A study: the runs of a run file over a grid of parameters and seeds, with their
+    /// means and standard errors (ensemble.csv, study.json).
+    Study(StudyArgs),
     /// Giese's vibrating rods: the collision equation, p(eps^2), the rod-chain MD.
     #[command(subcommand)]
     Rods(RodsCommand),
@@ -205,6 +209,32 @@ pub struct RunArgs {
         requires = "checkpoint_every"
     )]
     pub stop_after_samples: Option<String>,
+}
+
+/// Arguments of `haff study`.
+#[derive(Debug, Args)]
+pub struct StudyArgs {
+    /// The study file (base run file, seeds, [vary], [[zip]]; see docs/studies.md).
+    pub file: std::path::PathBuf,
+    /// Output directory [default: the study file's name without extension].
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
+    /// Runs at a time (local threads), 1 ..= 4096 [default: 1].
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub jobs: Option<String>,
+    /// Threads per run, 1 ..= 4096 [default: 1].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    pub threads: Option<String>,
+    /// Check-point every K samples [default: the run file's, else every sample].
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub checkpoint_every: Option<String>,
+    /// Replace another study's runs and aggregates in the output directory.
+    #[arg(long)]
+    pub force: bool,
+    /// Leave out the points whose runs do not validate (reported, exit 2 at the end)
+    /// instead of refusing the study before it starts.
+    #[arg(long)]
+    pub keep_going: bool,
 }
 
 #[derive(Debug, Subcommand)]
@@ -589,6 +619,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Observers(args)) => bench::observers(&args),
         Command::Demo => demo::run(),
         Command::Run(args) => run::run(&args),
+        Command::Study(args) => study::study(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),
         Command::Rods(RodsCommand::Collide(args)) => rods::collide(&args),
         Command::Rods(RodsCommand::Table(args)) => rods::table(&args),

@@ -43,6 +43,7 @@ pub mod schedule;
 pub mod simulation;
 pub mod space;
 pub mod species;
+pub mod study;
 pub mod validate;
 pub mod vtk;
 pub mod walls;
