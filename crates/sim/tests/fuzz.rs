@@ -628,6 +628,50 @@ fn cases_from_env(default: u32) -> u32 {
         .unwrap_or(default)
 }
 
+/// Study files (`sim::study`): the seed study, its keys (`base`, `seeds`, `[vary]`,
+/// `[[zip]]`) and their values mutated; reading and checking every point must refuse
+/// properly or succeed, never panic.
+const STUDY: &str = "seeds = 3\n[vary]\n\"collision.restitution\" = [0.5, 0.9]\n\
+                     [[zip]]\n\"run.samples\" = [3, 4]\n\"run.collisions_per_particle\" = [2, 3]\n\
+                     [base.system]\nparticles = 50\npacking_fraction = 0.05\nseed = 4\n\
+                     [base.collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+                     [base.run]\ncollisions_per_particle = 2\nsamples = 3\n";
+
+fn check_study(text: &str) -> Result<(), String> {
+    let refused = |e: Error| refused_properly(&e);
+    let study = match sim::study::Study::from_toml(text, Path::new("study.toml")) {
+        Ok(study) => study,
+        Err(e) => return refused(e),
+    };
+    if study.runs() > 10_000 {
+        return Ok(());
+    }
+    study.check_runs().or_else(refused)?;
+    for (_, message) in study.invalid_points() {
+        if message.contains('\n') {
+            return Err(format!("not one line: {message:?}"));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn mutated_study_files_never_panic() {
+    let mut runner = TestRunner::new(Config {
+        cases: 200,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = prop::collection::vec(mutation(), 1..4);
+    runner
+        .run(&strategy, |mutations| {
+            let text = mutate(STUDY, &mutations);
+            no_panic(|| check_study(&text))
+                .map_err(|e| TestCaseError::fail(format!("{e}\n--- input:\n{text}")))
+        })
+        .unwrap();
+}
+
 #[test]
 fn mutated_run_files_never_panic() {
     run_files(300);
