@@ -15,6 +15,13 @@ Quick start::
     sim.run()
     sim.timeseries["temperature"]
 
+Many runs over a grid of parameters and seeds, on threads, processes or a dask cluster::
+
+    result = haff.study({"system": {...}, "collision": {...}, "run": {...}},
+                        vary={"collision.restitution": [0.6, 0.8]}, seeds=8,
+                        output_dir="eps-study")
+    result.ensemble          # mean and standard error over the seeds (pandas)
+
 Bad input raises :class:`haff.ConfigError` (a ``ValueError``) whose message names the
 key or argument and what is allowed.
 """
@@ -22,11 +29,13 @@ key or argument and what is allowed.
 from ._haff import ConfigError, __version__
 from ._cor import beta, coefficients, dashpot_eps, eps, eps_v, pade
 from ._simulation import Simulation
+from ._study import StudyResult, study
 from . import rods, theory
 
 __all__ = [
     "ConfigError",
     "Simulation",
+    "StudyResult",
     "beta",
     "coefficients",
     "dashpot_eps",
@@ -34,6 +43,7 @@ __all__ = [
     "eps_v",
     "pade",
     "rods",
+    "study",
     "theory",
     "__version__",
 ]

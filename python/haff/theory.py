@@ -10,7 +10,8 @@ import numpy as np
 
 from . import _haff
 
-__all__ = ["collision_frequency", "haff_time", "haff_temperature", "a2"]
+__all__ = ["collision_frequency", "haff_time", "haff_temperature", "a2", "sonine",
+           "cooling_per_collision"]
 
 
 def collision_frequency(dimension: int, packing_fraction: float, temperature: float = 1.0,
@@ -38,3 +39,25 @@ def a2(dimension: int, restitution: float) -> float:
     """a2 of the homogeneous cooling state, first Sonine approximation linearized in a2
     (van Noije & Ernst 1998)."""
     return _haff.theory_a2(int(dimension), float(restitution))
+
+
+def sonine(dimension: int, restitution: float, order: int = 3, linear: bool = True):
+    """[a2, ..., aK] of the homogeneous cooling state from the Sonine hierarchy truncated at
+    order K = ``order`` (2 to 10): linearized in the a_k (K = 2: van Noije & Ernst, equal
+    to :func:`a2`; K = 3: the second Sonine approximation of Brilliantov & Pöschel, EPL 74,
+    424 (2006)), or with all its quadratic terms (``linear=False``; None where it has no
+    solution, below eps of about 0.3). 2D and 3D."""
+    result = _haff.theory_sonine(int(dimension), float(restitution), int(order), bool(linear))
+    return None if result is None else list(result)
+
+
+def cooling_per_collision(restitution: float, a2: float = 0.0) -> float:
+    """-d ln T / d(collisions per particle) of a 3D gas of constant restitution eps in the
+    homogeneous cooling state: (1 - eps^2)/3 * (1 + 3 a2/16) / (1 - a2/16), first order in
+    a2. A collision of a Maxwellian gas loses (1 - eps^2) T on average (the
+    collision-weighted <(g.n)^2> is 4T/m); with the Sonine correction the cooling rate
+    grows by (1 + 3 a2/16) and the collision frequency by (1 - a2/16) (Brilliantov &
+    Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; the latter derived in
+    docs/studies.md)."""
+    eps = float(restitution)
+    return (1.0 - eps * eps) / 3.0 * (1.0 + 3.0 * a2 / 16.0) / (1.0 - a2 / 16.0)

@@ -2,7 +2,8 @@
 //!
 //! The extension module `haff._haff` behind the Python package `haff` (python/haff): the
 //! coefficient of restitution ([`cor`]), the series and Padé engine ([`algebra`]), Giese's
-//! rods ([`rods`]) and granular-gas runs on the library run driver ([`simulation`]). Every
+//! rods ([`rods`]), granular-gas runs on the library run driver ([`simulation`]) and studies
+//! of many runs ([`study`]). Every
 //! function calls the same library code as the `haff` command, with the same checks of its
 //! input: a bad argument raises `haff.ConfigError` (a `ValueError`) naming it, never a
 //! panic. Long loops run with the GIL released.
@@ -16,6 +17,7 @@ mod algebra;
 mod cor;
 mod rods;
 mod simulation;
+mod study;
 mod theory;
 
 create_exception!(
@@ -71,6 +73,7 @@ fn _haff(m: &Bound<'_, PyModule>) -> PyResult<()> {
     algebra::register(m)?;
     rods::register(m)?;
     simulation::register(m)?;
+    study::register(m)?;
     theory::register(m)?;
     Ok(())
 }

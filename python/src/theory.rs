@@ -1,5 +1,6 @@
 //! Kinetic theory of the homogeneous cooling state (`gas::theory`): the Enskog collision
-//! frequency, Haff's time and the Sonine coefficient a2, for any dimension.
+//! frequency, Haff's time, the Sonine coefficient a2 (any dimension) and the Sonine
+//! hierarchy (2D, 3D).
 
 use crate::out_of_range;
 use gas::system::ball_volume;
@@ -10,6 +11,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(theory_collision_frequency, m)?)?;
     m.add_function(wrap_pyfunction!(theory_haff_time, m)?)?;
     m.add_function(wrap_pyfunction!(theory_a2, m)?)?;
+    m.add_function(wrap_pyfunction!(theory_sonine, m)?)?;
     Ok(())
 }
 
@@ -88,4 +90,34 @@ fn theory_a2(dimension: i64, restitution: f64) -> PyResult<f64> {
         return Err(out_of_range("restitution", restitution, "0 <= eps <= 1"));
     }
     in_dimension!(dimension, D => theory::van_noije_ernst_a2::<D>(restitution))
+}
+
+/// a_2 ... a_K of the homogeneous cooling state from the Sonine hierarchy truncated at order
+/// K = `order` (2 ..= 10; `gas::theory::SonineHierarchy`, Brilliantov & Pöschel 2006),
+/// linearized in the a_k (`linear`: at K = 2 van Noije & Ernst, at K = 3 the second Sonine
+/// approximation) or with all its terms (None where Newton's method does not converge).
+#[pyfunction]
+#[pyo3(signature = (dimension, restitution, order = 3, linear = true))]
+fn theory_sonine(
+    dimension: i64,
+    restitution: f64,
+    order: usize,
+    linear: bool,
+) -> PyResult<Option<Vec<f64>>> {
+    if !(dimension == 2 || dimension == 3) {
+        return Err(out_of_range("dimension", dimension, "2 or 3"));
+    }
+    if !(0.0..=1.0).contains(&restitution) {
+        return Err(out_of_range("restitution", restitution, "0 <= eps <= 1"));
+    }
+    if !(2..=10).contains(&order) {
+        return Err(out_of_range("order", order, "2 <= order <= 10"));
+    }
+    let hierarchy = theory::SonineHierarchy::new(dimension as usize, order, restitution)
+        .map_err(|e| crate::config_error("restitution", e))?;
+    Ok(if linear {
+        Some(hierarchy.linearized())
+    } else {
+        hierarchy.coefficients()
+    })
 }

@@ -225,7 +225,7 @@ pub struct StudyArgs {
     /// Threads per run, 1 ..= 4096 [default: 1].
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     pub threads: Option<String>,
-    /// Check-point every K samples [default: the run file's, else every sample].
+    /// Check-point every K samples [default: at the first sample after each minute].
     #[arg(long, value_name = "K", allow_hyphen_values = true)]
     pub checkpoint_every: Option<String>,
     /// Replace another study's runs and aggregates in the output directory.

@@ -1,6 +1,8 @@
 //! Nothing silently wrong (issue 12): check-points that are edited, truncated, foreign or
 //! of another version are refused (exit 2, one line), even when whoever edited them fixed
-//! the checksum; output directories are never shared by two runs.
+//! the checksum; output directories are never shared by two runs. Studies (issue 37): a
+//! `haff study` killed with SIGKILL continues to the bytes of one never interrupted; its
+//! exit codes.
 
 mod common;
 
@@ -228,5 +230,167 @@ fn a_stopped_run_says_so() {
     run_ok(&["--resume", out.to_str().unwrap()]);
     let summary: Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
     assert_eq!(summary["complete"], true);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A study of three runs long enough (about 0.2 s each) to be killed part-way.
+const STUDY_BASE: &str = "[system]\nparticles = 1000\npacking_fraction = 0.05\nseed = 5\n\
+                          [collision]\nlaw = \"constant\"\nrestitution = 0.98\n\
+                          [run]\ncollisions_per_particle = 400\nsamples = 40\n";
+
+fn study_files(dir: &Path, vary: &str, seeds: u64) -> PathBuf {
+    std::fs::write(dir.join("gas.toml"), STUDY_BASE).unwrap();
+    let study = dir.join("study.toml");
+    std::fs::write(
+        &study,
+        format!("base = \"gas.toml\"\nseeds = {seeds}\n[vary]\n{vary}\n"),
+    )
+    .unwrap();
+    study
+}
+
+/// Every file of a study's runs but their summaries (which hold wall-clock times), and its
+/// ensemble, as (relative path, bytes).
+fn study_bytes(out: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files = vec![(
+        "ensemble.csv".to_string(),
+        std::fs::read(out.join("ensemble.csv")).unwrap(),
+    )];
+    let mut points: Vec<_> = std::fs::read_dir(out.join("runs"))
+        .unwrap()
+        .flatten()
+        .collect();
+    points.sort_by_key(|e| e.file_name());
+    for point in points {
+        let mut seeds: Vec<_> = std::fs::read_dir(point.path()).unwrap().flatten().collect();
+        seeds.sort_by_key(|e| e.file_name());
+        for seed in seeds {
+            let mut names: Vec<_> = std::fs::read_dir(seed.path()).unwrap().flatten().collect();
+            names.sort_by_key(|e| e.file_name());
+            for file in names {
+                let name = file.file_name().to_string_lossy().to_string();
+                if name != "summary.json" {
+                    let path = file.path();
+                    let key = path.strip_prefix(out).unwrap().display().to_string();
+                    files.push((key, std::fs::read(&path).unwrap()));
+                }
+            }
+        }
+    }
+    files
+}
+
+/// A study killed with SIGKILL (no chance to clean up) while its second run is part-way
+/// and restarted with the same command gives the run files and ensemble of a study never
+/// interrupted, byte for byte; the finished run is kept, the interrupted one resumed from
+/// its check-point. Oracle: the uninterrupted study.
+#[test]
+fn a_study_killed_with_sigkill_continues_to_the_same_bytes() {
+    let dir = scratch("study-kill");
+    let study = study_files(&dir, "\"collision.restitution\" = [0.98]", 3);
+    let s = study.to_str().unwrap();
+    let whole = dir.join("whole");
+    let output = haff(&["study", s, "--out", whole.to_str().unwrap()]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+
+    let killed = dir.join("killed");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_haff"))
+        .args(["study", s, "--out", killed.to_str().unwrap()])
+        .args(["--jobs", "1", "--checkpoint-every", "1"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Killed as soon as the second run (seed 6) has a check-point.
+    let second = killed.join("runs/000/6");
+    let clock = std::time::Instant::now();
+    while !second.join("checkpoint.bin").exists() {
+        assert!(
+            clock.elapsed().as_secs() < 60,
+            "the second run never check-pointed"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let manifest: Value = serde_json::from_str(&read(&second, "haff-run.json")).unwrap();
+    let interrupted = manifest["state"] == "running";
+
+    let output = haff(&["study", s, "--out", killed.to_str().unwrap()]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: Value = serde_json::from_str(&read(&killed, "study.json")).unwrap();
+    let runs = report["runs"].as_array().unwrap();
+    assert_eq!(runs[0]["kept"], true, "{runs:?}");
+    if interrupted {
+        assert_eq!(runs[1]["resumed"], true, "{runs:?}");
+    }
+    assert_eq!(runs[2]["kept"], false, "{runs:?}");
+    let (a, b) = (study_bytes(&whole), study_bytes(&killed));
+    assert_eq!(a.len(), b.len());
+    for ((name, x), (other, y)) in a.iter().zip(&b) {
+        assert_eq!(name, other);
+        assert!(x == y, "{name} differs after the restart");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Exit codes of `haff study`: 2 for bad input, naming the key (and the point), before any
+/// run starts; with --keep-going the valid points run, the invalid one is reported and the
+/// exit code is still 2; another study's directory needs --force.
+#[test]
+fn a_study_refuses_bad_input_naming_the_point_and_key() {
+    let dir = scratch("study-input");
+    let short = STUDY_BASE.replace("400", "4").replace("40\n", "4\n");
+    let bad = study_files(&dir, "\"collision.restitution\" = [0.7, 1.5, 0.9]", 1);
+    std::fs::write(dir.join("gas.toml"), &short).unwrap();
+    let (b, out) = (bad.to_str().unwrap(), dir.join("out"));
+    let o = out.to_str().unwrap();
+    assert_rejected(&["study", b, "--out", o], "point 1");
+    assert_rejected(&["study", b, "--out", o], "collision.restitution");
+    assert!(!out.exists(), "a refused study wrote files");
+    assert_rejected(&["study", b, "--out", o, "--jobs", "0"], "--jobs");
+
+    let output = haff(&["study", b, "--out", o, "--keep-going"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("point 1") && !stderr.contains("panicked"),
+        "{stderr}"
+    );
+    let report: Value = serde_json::from_str(&read(&out, "study.json")).unwrap();
+    assert_eq!(report["invalid_points"][0]["point"], 1);
+    assert_eq!(report["runs_complete"], 2);
+    let ensemble = read(&out, "ensemble.csv");
+    let points: std::collections::BTreeSet<&str> = ensemble
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(points.into_iter().collect::<Vec<_>>(), ["0", "2"]);
+    assert!(out.join("figures/temperature.png").exists());
+
+    let good = dir.join("good.toml");
+    std::fs::write(
+        &good,
+        "base = \"gas.toml\"\n[vary]\n\"collision.restitution\" = [0.5]\n",
+    )
+    .unwrap();
+    let g = good.to_str().unwrap();
+    assert_rejected(&["study", g, "--out", o], "--force");
+    let output = haff(&["study", g, "--out", o, "--force"]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    std::fs::write(&good, "base = \"gas.toml\"\nseeds = 0\n").unwrap();
+    assert_rejected(&["study", g, "--out", o], "seeds");
     std::fs::remove_dir_all(&dir).ok();
 }

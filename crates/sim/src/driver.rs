@@ -98,10 +98,15 @@ pub struct Until {
 /// Check-points during a run: after every `every`-th sample, the file `file` of `format`
 /// with the `preamble` records (what the caller keeps besides the driver and its
 /// observers: the run description, ...), written by the process where `write` is true.
+/// With `after_seconds` > 0 such a sample saves only when that much wall-clock time has
+/// passed since the last check-point (or the start of this call): a study's default, which
+/// bounds the work a kill loses without writing a large state at every sample of a short
+/// run. (Single process only: ranks would disagree on the clock.)
 pub struct Saving<'a> {
     pub file: &'a Path,
     pub format: Format,
     pub every: usize,
+    pub after_seconds: f64,
     pub write: bool,
     pub preamble: &'a dyn Fn() -> Result<RecordsOut>,
 }
@@ -272,6 +277,7 @@ impl<const D: usize> Driver<D> {
         saving: Option<&Saving<'_>>,
         started: Instant,
     ) -> Result<()> {
+        let mut last_saved = started;
         while self.next < self.schedule.targets.len() {
             let target = self.schedule.targets[self.next];
             if self.advance(target.value, until.point, progress)? {
@@ -285,7 +291,10 @@ impl<const D: usize> Driver<D> {
                 self.taken += 1;
                 let taken = self.taken;
                 if let Some(saving) = saving {
-                    if taken.is_multiple_of(saving.every) {
+                    if taken.is_multiple_of(saving.every)
+                        && last_saved.elapsed().as_secs_f64() >= saving.after_seconds
+                    {
+                        last_saved = Instant::now();
                         let preamble = (saving.preamble)()?;
                         self.write_checkpoint(saving.file, saving.format, preamble, saving.write)?;
                     }

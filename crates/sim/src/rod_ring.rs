@@ -282,6 +282,7 @@ impl RingRun {
             file,
             format: FORMAT,
             every,
+            after_seconds: 0.0,
             write: true,
             preamble: &preamble,
         });

@@ -83,6 +83,8 @@ pub struct Simulation {
     grown: Option<InitialState>,
     /// Check-points every this many samples into `checkpoint_dir`.
     checkpoint_every: Option<usize>,
+    /// Wall-clock seconds between check-points at the least (0: none).
+    checkpoint_after_seconds: f64,
     checkpoint_dir: Option<PathBuf>,
     /// The directory files are written to during the run ([`Simulation::set_output_dir`]).
     output_dir: Option<PathBuf>,
@@ -176,6 +178,7 @@ impl Simulation {
             run,
             grown: grown.map(|r| InitialState::of(&r)),
             checkpoint_every: None,
+            checkpoint_after_seconds: 0.0,
             checkpoint_dir: None,
             output_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
@@ -256,6 +259,7 @@ impl Simulation {
             run,
             grown,
             checkpoint_every: every,
+            checkpoint_after_seconds: 0.0,
             checkpoint_dir: None,
             output_dir: None,
             wall_seconds: clock.elapsed().as_secs_f64(),
@@ -346,6 +350,12 @@ impl Simulation {
     pub fn set_checkpoints(&mut self, dir: &Path, every: Option<usize>) {
         self.checkpoint_dir = Some(dir.to_path_buf());
         self.checkpoint_every = every;
+    }
+
+    /// Check-points at those samples only when `seconds` of wall-clock time have passed
+    /// since the last one (0: at every one; a study's default is 60). Single process only.
+    pub fn set_checkpoint_spacing(&mut self, seconds: f64) {
+        self.checkpoint_after_seconds = seconds;
     }
 
     /// The check-point interval in samples (kept from a resumed check-point).
@@ -510,6 +520,7 @@ impl Simulation {
         let clock = Instant::now();
         let root = self.is_root();
         let (plan, every, grown) = (&self.plan, self.checkpoint_every, self.grown);
+        let after_seconds = self.checkpoint_after_seconds;
         let preamble = || Self::preamble(plan, every, grown.as_ref());
         let file = self
             .checkpoint_dir
@@ -519,6 +530,7 @@ impl Simulation {
             file,
             format: checkpoint::RUN,
             every,
+            after_seconds,
             write: root,
             preamble: &preamble,
         });

@@ -21,9 +21,12 @@
 
 mod aggregate;
 mod execute;
+mod figures;
 
 pub use aggregate::{aggregate, Aggregates, ENSEMBLE_HEADER};
-pub use execute::{execute, open_study_dir, run_one, RunOutcome, StudyProgress, STUDY_MANIFEST};
+pub use execute::{
+    execute, open_study_dir, run_one, RunOutcome, StudyProgress, CHECKPOINT_SECONDS, STUDY_MANIFEST,
+};
 
 use crate::description::RunDescription;
 use crate::error::{Error, Result};

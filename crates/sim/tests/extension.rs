@@ -283,6 +283,7 @@ fn an_engine_and_an_observer_from_outside_run_check_point_and_resume_bit_for_bit
         file: &file,
         format: FORMAT,
         every: 3,
+        after_seconds: 0.0,
         write: true,
         preamble: &preamble,
     };

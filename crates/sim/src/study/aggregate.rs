@@ -2,9 +2,11 @@
 //! another process, or run by workers elsewhere, aggregates the same): `ensemble.csv`
 //! (every column of `timeseries.csv` averaged over the replicas of each point at each
 //! sample, with its standard error) and `study.json` (the study, every run's state and
-//! wall time, and the summaries' scalar results with mean and standard error per point).
+//! wall time, and the summaries' scalar results with mean and standard error per point)
+//! and a figure per quantity ([`figures`]).
 
 use super::execute::RunOutcome;
+use super::figures::{self, Final};
 use super::{run_dir, Study};
 use crate::error::{Error, Result};
 use crate::output::{number, write_csv_file, write_json_file};
@@ -133,6 +135,7 @@ pub fn aggregate(
     header.extend(keys.iter().cloned());
     header.extend(ENSEMBLE_HEADER.iter().map(|c| c.to_string()));
     let mut rows = Vec::new();
+    let mut finals = Vec::new();
     let mut points = Vec::new();
     for point in &study.points {
         let complete: Vec<&RunOutcome> = outcomes
@@ -171,6 +174,13 @@ pub fn aggregate(
                         continue;
                     }
                     let (mean, error) = mean_and_error(&column(c));
+                    finals.push(Final {
+                        point: point.index,
+                        sample: s,
+                        quantity: quantity.clone(),
+                        mean,
+                        error,
+                    });
                     let mut row = vec![point.index.to_string()];
                     row.extend(values.iter().cloned());
                     row.extend([
@@ -226,6 +236,7 @@ pub fn aggregate(
     let refs: Vec<&str> = header.iter().map(String::as_str).collect();
     write_csv_file(&dir.join("ensemble.csv"), &refs, rows.clone())?;
     write_json_file(&dir.join("study.json"), &study_json)?;
+    figures::write(study, dir, &finals)?;
     Ok(Aggregates {
         header,
         rows,

@@ -12,6 +12,12 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
+/// By default a run of a study check-points at the first sample after each minute of
+/// wall-clock time: a kill loses at most that much of each run in flight, and a short run
+/// writes no state at all (a check-point of 1e5 particles at every sample would cost as
+/// much as the run).
+pub const CHECKPOINT_SECONDS: f64 = 60.0;
+
 /// The study's manifest in its directory.
 pub const STUDY_MANIFEST: &str = "haff-study.json";
 
@@ -113,8 +119,8 @@ fn remove_study(dir: &Path) -> std::io::Result<()> {
 
 /// Runs replica `replica` of point `point` of `study` in its directory under `dir` on
 /// `threads` threads: kept if complete, resumed from its check-point if interrupted,
-/// started otherwise. Check-points every `checkpoint_every` samples (None: the run
-/// file's interval, else every sample).
+/// started otherwise. Check-points every `checkpoint_every` samples (None: at the first
+/// sample after each [`CHECKPOINT_SECONDS`]).
 pub fn run_one(
     study: &Study,
     dir: &Path,
@@ -136,45 +142,53 @@ pub fn run_one(
         kept: false,
         error: None,
     };
-    let result = (|| -> Result<(f64, bool, bool)> {
-        let description = study.run_description(&study.points[point], replica)?;
-        let hash = run_hash(&description);
-        let manifest = read_run_manifest(&path);
-        let same = manifest.as_ref().is_some_and(|m| m.run_hash == hash);
-        if same
-            && manifest
-                .as_ref()
-                .is_some_and(|m| m.state == RunState::Complete)
-        {
-            return Ok((recorded_wall_seconds(&path), false, true));
-        }
-        let checkpoint = path.join(crate::checkpoint::FILE_NAME);
-        let (mut simulation, mut out, resumed) = if same && checkpoint.exists() {
-            let simulation = Simulation::resume(&path)?;
-            (
-                simulation,
-                OutputDir::for_resume(&path, "run", &hash)?,
-                true,
-            )
-        } else {
-            std::fs::create_dir_all(&path).map_err(|e| Error::write(&path, e))?;
-            let out = OutputDir::claim(&path, "run", &hash, true)?;
-            (Simulation::new(&description)?, out, false)
-        };
-        let every = checkpoint_every
-            .or(simulation.checkpoint_interval())
-            .unwrap_or(1);
-        simulation.set_checkpoints(&path, Some(every));
-        simulation.set_output_dir(&path);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| Error::input("threads", e))?;
-        pool.install(|| simulation.run(&mut (), None))?;
-        simulation.write(&path)?;
-        out.set_state(RunState::Complete)?;
-        Ok((simulation.wall_seconds(), resumed, false))
-    })();
+    // Everything of the run, its set-up too, on a pool of its own: nothing touches
+    // rayon's global pool, which a process forked by a Python process pool inherits
+    // without its threads.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::input("threads", e));
+    let result = pool.and_then(|pool| {
+        pool.install(|| -> Result<(f64, bool, bool)> {
+            let description = study.run_description(&study.points[point], replica)?;
+            let hash = run_hash(&description);
+            let manifest = read_run_manifest(&path);
+            let same = manifest.as_ref().is_some_and(|m| m.run_hash == hash);
+            if same
+                && manifest
+                    .as_ref()
+                    .is_some_and(|m| m.state == RunState::Complete)
+            {
+                return Ok((recorded_wall_seconds(&path), false, true));
+            }
+            let checkpoint = path.join(crate::checkpoint::FILE_NAME);
+            let (mut simulation, mut out, resumed) = if same && checkpoint.exists() {
+                let simulation = Simulation::resume(&path)?;
+                (
+                    simulation,
+                    OutputDir::for_resume(&path, "run", &hash)?,
+                    true,
+                )
+            } else {
+                std::fs::create_dir_all(&path).map_err(|e| Error::write(&path, e))?;
+                let out = OutputDir::claim(&path, "run", &hash, true)?;
+                (Simulation::new(&description)?, out, false)
+            };
+            let every = checkpoint_every
+                .or(simulation.checkpoint_interval())
+                .unwrap_or(1);
+            simulation.set_checkpoints(&path, Some(every));
+            if checkpoint_every.is_none() {
+                simulation.set_checkpoint_spacing(CHECKPOINT_SECONDS);
+            }
+            simulation.set_output_dir(&path);
+            simulation.run(&mut (), None)?;
+            simulation.write(&path)?;
+            out.set_state(RunState::Complete)?;
+            Ok((simulation.wall_seconds(), resumed, false))
+        })
+    });
     match result {
         Ok((wall, resumed, kept)) => {
             outcome.state = "complete".into();
