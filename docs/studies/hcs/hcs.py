@@ -5,7 +5,8 @@ Noije & Ernst and the Sonine hierarchy.
     python hcs.py threads OUT     # haff.study on threads of this process (jobs=2)
     python hcs.py processes OUT   # a concurrent.futures.ProcessPoolExecutor
     python hcs.py dask OUT        # a dask.distributed LocalCluster
-    python hcs.py table OUT       # the table from OUT (any of the three, or `haff study`)
+    python hcs.py table OUT [PNG] # the table from OUT (any of the three, or `haff study`),
+                                  # and its figure
 
 The run file and the study are gas.toml and study.toml beside this script (the same study
 as `haff study study.toml --out OUT --jobs 2`).
@@ -79,11 +80,46 @@ def table(out: Path) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def figure(rows: pd.DataFrame, png: Path) -> None:
+    """a2 against eps with the theories; the cooling rate relative to the Maxwellian one."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    eps = np.linspace(0.25, 1.0, 76)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    left.errorbar(rows["eps"], rows["a2"], rows["a2_se"], fmt="o", color="k",
+                  label="DSMC, 8 seeds (haff study)")
+    left.plot(eps, [haff.theory.a2(3, e) for e in eps], "--", label="van Noije & Ernst")
+    left.plot(eps, [haff.theory.sonine(3, e, order=3)[0] for e in eps], ":",
+              label="second Sonine (linear)")
+    full = [haff.theory.sonine(3, e, order=6, linear=False) for e in eps]
+    left.plot(eps, [np.nan if f is None else f[0] for f in full], "-", lw=1,
+              label="Sonine hierarchy K = 6 (all terms)")
+    left.set(xlabel="restitution eps", ylabel="a2 of the HCS")
+    left.legend(fontsize=8)
+    maxwell = rows["cooling_maxwell"]
+    right.errorbar(rows["eps"], rows["cooling"] / maxwell, rows["cooling_se"] / maxwell,
+                   fmt="o", color="k", label="DSMC: -d ln T / d(collisions per particle)")
+    right.plot(rows["eps"], rows["cooling_sonine_measured_a2"] / maxwell, "x",
+               label="(1 + 3 a2/16)/(1 - a2/16), a2 measured")
+    right.plot(eps, [(1 + 3 * a / 16) / (1 - a / 16)
+                     for a in (haff.theory.a2(3, e) for e in eps)], "--",
+               label="the same, a2 of van Noije & Ernst")
+    right.set(xlabel="restitution eps", ylabel="cooling per collision / (1 - eps^2)/3")
+    right.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         raise SystemExit(__doc__)
     how, out = sys.argv[1], Path(sys.argv[2])
     if how != "table":
         run(how, out)
+    rows = table(out)
     with pd.option_context("display.width", 200, "display.precision", 5):
-        print(table(out).to_string(index=False))
+        print(rows.to_string(index=False))
+    if len(sys.argv) == 4:
+        figure(rows, Path(sys.argv[3]))
