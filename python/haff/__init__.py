@@ -30,6 +30,7 @@ from ._haff import ConfigError, __version__
 from ._cor import beta, coefficients, dashpot_eps, eps, eps_v, pade
 from ._simulation import Simulation
 from ._study import StudyResult, study
+from ._particles import read_configuration, write_configuration
 from . import rods, theory
 
 __all__ = [
@@ -42,8 +43,10 @@ __all__ = [
     "eps",
     "eps_v",
     "pade",
+    "read_configuration",
     "rods",
     "study",
     "theory",
+    "write_configuration",
     "__version__",
 ]

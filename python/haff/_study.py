@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import concurrent.futures
 import json
+import operator
 import os
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
@@ -46,8 +48,7 @@ def study_toml(base: Union[Mapping[str, Any], PathLike],
     else:
         raise ConfigError(f"base: a dict of the run file's sections or a run file's path, "
                           f"not {type(base).__name__}")
-    if isinstance(seeds, bool) or not isinstance(seeds, int):
-        raise ConfigError(f"seeds: {seeds!r} is not an integer; allowed: 1 ..= 100000")
+    seeds = _integer("seeds", seeds, 1, 100_000)
     lines = [base_line, f"seeds = {seeds}"]
 
     def table(name: str, axes: Mapping[str, Sequence[Any]], where: str) -> None:
@@ -61,9 +62,24 @@ def study_toml(base: Union[Mapping[str, Any], PathLike],
 
     if vary:
         table("[vary]", vary, "vary")
+    if zip is not None and (isinstance(zip, Mapping) or not isinstance(zip, (list, tuple))):
+        raise ConfigError("zip: a list of dicts, each of keys whose lists vary together")
     for k, axes in enumerate(zip or []):
         table("[[zip]]", axes, f"zip[{k}]")
     return "\n".join(lines) + "\n"
+
+
+def _integer(name: str, value: Any, low: int, high: int) -> int:
+    """An integer argument (Python's or numpy's) in low ..= high, else ConfigError."""
+    try:
+        if isinstance(value, bool):
+            raise TypeError
+        number = operator.index(value)
+    except TypeError:
+        raise ConfigError(f"{name}: {value!r} is not an integer; allowed: {low} ..= {high}")
+    if not low <= number <= high:
+        raise ConfigError(f"{name}: {number} is out of range; allowed: {low} ..= {high}")
+    return number
 
 
 def _run_one(text: str, origin: str, output_dir: str, point: int, replica: int,
@@ -74,7 +90,11 @@ def _run_one(text: str, origin: str, output_dir: str, point: int, replica: int,
 
 
 def _is_dask(executor: Any) -> bool:
-    return type(executor).__module__.split(".")[0] == "distributed"
+    try:
+        from distributed import Client
+    except ImportError:
+        return False
+    return isinstance(executor, Client)
 
 
 @dataclass
@@ -137,18 +157,27 @@ def study(base: Union[Mapping[str, Any], PathLike],
     Raises ``ConfigError`` for a bad study (naming the point and key) before any run starts.
     A run that fails does not stop the others; its outcome is in ``failed``.
     """
+    try:
+        import pandas  # noqa: F401  (the results' tables: checked before any run)
+    except ImportError:
+        raise ImportError("haff.study returns pandas tables: pip install pandas") from None
     text = study_toml(base, vary, seeds, zip)
-    for name, value, low in (("jobs", jobs, 1), ("threads", threads, 1)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            raise ConfigError(f"{name}: {value!r} is out of range; allowed: an integer >= {low}")
-    if checkpoint_every is not None and (isinstance(checkpoint_every, bool)
-                                         or not isinstance(checkpoint_every, int)
-                                         or checkpoint_every < 1):
-        raise ConfigError(f"checkpoint_every: {checkpoint_every!r} is out of range; "
-                          f"allowed: an integer >= 1 (samples) or None")
-    keys, points, runs, invalid = _haff.study_plan(text, _ORIGIN, keep_going)
+    jobs = _integer("jobs", jobs, 1, 4096)
+    threads = _integer("threads", threads, 1, 4096)
+    if checkpoint_every is not None:
+        checkpoint_every = _integer("checkpoint_every", checkpoint_every, 1, 1_000_000)
+    if executor is not None and not callable(getattr(executor, "submit", None)):
+        raise ConfigError(f"executor: a concurrent.futures.Executor or a dask Client, not "
+                          f"{type(executor).__name__}")
+    if not isinstance(output_dir, (str, os.PathLike)):
+        raise ConfigError(f"output_dir: a path, not {type(output_dir).__name__}")
+    keys, points, runs, invalid = _haff.study_plan(text, _ORIGIN, bool(keep_going))
     directory = Path(os.fspath(output_dir)).resolve()
-    _haff.study_open(text, _ORIGIN, str(directory), force)
+    try:
+        _haff.study_open(text, _ORIGIN, str(directory), bool(force))
+    except ConfigError as error:  # the command's wording, in this function's names
+        raise ConfigError(str(error).replace("--out", "output_dir")
+                          .replace("--force", "force=True")) from None
     report = _progress(progress, len(runs))
     own = executor is None
     if own:
@@ -165,20 +194,25 @@ def study(base: Union[Mapping[str, Any], PathLike],
             futures = [executor.submit(_run_one, *a) for a in args]
         index = {id(f): k for k, f in enumerate(futures)}
         done = 0
-        for future in as_completed(futures):
-            k = index[id(future)]
-            try:
-                outcomes[k] = future.result()
-            except Exception as error:  # a lost worker, a killed process: the run stays
-                p, r, s = runs[k]       # resumable; the others go on
-                outcomes[k] = {"point": p, "replica": r, "seed": s,
-                               "dir": f"runs/{p:03d}/{s}", "state": "failed",
-                               "wall_seconds": None, "resumed": False, "kept": False,
-                               "error": f"{type(error).__name__}: {error}"}
-            done += 1
-            if report is not None:
-                o = outcomes[k]
-                report(done, len(runs), f"{o['point']:03d}/{o['seed']} {o['state']}")
+        try:
+            for future in as_completed(futures):
+                k = index[id(future)]
+                try:
+                    outcomes[k] = future.result()
+                except Exception as error:  # a lost worker, a broken pool: the run stays
+                    p, r, s = runs[k]       # resumable; the others go on
+                    outcomes[k] = {"point": p, "replica": r, "seed": s,
+                                   "dir": f"runs/{p:03d}/{s}", "state": "failed",
+                                   "wall_seconds": None, "resumed": False, "kept": False,
+                                   "error": f"{type(error).__name__}: {error}"}
+                done += 1
+                if report is not None:
+                    o = outcomes[k]
+                    report(done, len(runs), f"{o['point']:03d}/{o['seed']} {o['state']}")
+        except BaseException:  # Ctrl-C: the runs not started are cancelled; those in
+            for f in futures:  # flight finish (or stay resumable from their check-points)
+                f.cancel()
+            raise
     finally:
         if own:
             executor.shutdown(wait=True, cancel_futures=True)
@@ -200,6 +234,8 @@ def _progress(progress, total):
     try:
         from tqdm.auto import tqdm
     except ImportError:
+        return None
+    if total == 0:
         return None
     bar = tqdm(total=total, unit="run")
 
@@ -241,7 +277,7 @@ def _dataset(directory: Path, keys: List[str], points: List[Dict[str, Any]],
         return None
     frames = [pd.read_csv(directory / o["dir"] / "timeseries.csv") for o in complete]
     samples = max(len(f) for f in frames)
-    columns = list(frames[0].columns)
+    columns = list(dict.fromkeys(c for f in frames for c in f.columns))
     data = {}
     for c in columns:
         block = np.full((len(frames), samples), np.nan)
@@ -253,5 +289,14 @@ def _dataset(directory: Path, keys: List[str], points: List[Dict[str, Any]],
               "point": ("run", [o["point"] for o in complete]),
               "seed": ("run", [o["seed"] for o in complete])}
     for key in keys:
-        coords[key] = ("run", [points[o["point"]].get(key) for o in complete])
-    return xr.Dataset(data, coords=coords)
+        values = [points[o["point"]].get(key) for o in complete]
+        if any(isinstance(v, (list, dict)) for v in values):  # a varied list or table:
+            column = np.empty(len(values), dtype=object)       # one object per run
+            column[:] = [json.dumps(v) for v in values]
+            values = column
+        coords[key] = ("run", values)
+    try:
+        return xr.Dataset(data, coords=coords)
+    except Exception as error:  # the tables on disk and in `ensemble` are complete
+        warnings.warn(f"haff.study: no xarray Dataset: {error}", RuntimeWarning)
+        return None

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _haff
+from ._haff import ConfigError
 
 __all__ = ["collision_frequency", "haff_time", "haff_temperature", "a2", "sonine",
            "cooling_per_collision"]
@@ -59,5 +60,10 @@ def cooling_per_collision(restitution: float, a2: float = 0.0) -> float:
     grows by (1 + 3 a2/16) and the collision frequency by (1 - a2/16) (Brilliantov &
     Pöschel, *Kinetic Theory of Granular Gases*, Ch. 7; the latter derived in
     docs/studies.md)."""
-    eps = float(restitution)
+    eps, a2 = float(restitution), float(a2)
+    if not 0.0 <= eps <= 1.0:
+        raise ConfigError(f"restitution: {eps} is out of range; allowed: 0 <= eps <= 1")
+    if not -1.0 <= a2 <= 1.0:
+        raise ConfigError(f"a2: {a2} is out of range; allowed: -1 <= a2 <= 1 (first order "
+                          f"in a small a2)")
     return (1.0 - eps * eps) / 3.0 * (1.0 + 3.0 * a2 / 16.0) / (1.0 - a2 / 16.0)

@@ -15,6 +15,7 @@ use restitution::ranges::Range;
 
 mod algebra;
 mod cor;
+mod particles;
 mod rods;
 mod simulation;
 mod study;
@@ -74,6 +75,7 @@ fn _haff(m: &Bound<'_, PyModule>) -> PyResult<()> {
     rods::register(m)?;
     simulation::register(m)?;
     study::register(m)?;
+    particles::register(m)?;
     theory::register(m)?;
     Ok(())
 }

@@ -99,9 +99,10 @@ fn theory_a2(dimension: i64, restitution: f64) -> PyResult<f64> {
 #[pyfunction]
 #[pyo3(signature = (dimension, restitution, order = 3, linear = true))]
 fn theory_sonine(
+    py: Python<'_>,
     dimension: i64,
     restitution: f64,
-    order: usize,
+    order: i64,
     linear: bool,
 ) -> PyResult<Option<Vec<f64>>> {
     if !(dimension == 2 || dimension == 3) {
@@ -113,11 +114,15 @@ fn theory_sonine(
     if !(2..=10).contains(&order) {
         return Err(out_of_range("order", order, "2 <= order <= 10"));
     }
-    let hierarchy = theory::SonineHierarchy::new(dimension as usize, order, restitution)
-        .map_err(|e| crate::config_error("restitution", e))?;
-    Ok(if linear {
-        Some(hierarchy.linearized())
-    } else {
-        hierarchy.coefficients()
-    })
+    // The collisional moments take seconds at high orders: without the GIL.
+    let result = py.detach(|| {
+        theory::SonineHierarchy::new(dimension as usize, order as usize, restitution).map(|h| {
+            if linear {
+                Some(h.linearized())
+            } else {
+                h.coefficients()
+            }
+        })
+    });
+    result.map_err(|e| crate::config_error("restitution", e))
 }

@@ -85,8 +85,9 @@ def test_the_dataset_holds_every_run(threads_study):
 
 
 def test_a_process_pool_gives_the_same_bytes(threads_study, tmp_path):
-    # The default start method (fork on Linux) after threads have run in this process.
-    with concurrent.futures.ProcessPoolExecutor(2) as pool:
+    # Forked processes after threads (and rayon pools) have run in this process.
+    fork = multiprocessing.get_context("fork")
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=fork) as pool:
         result = haff.study(BASE, VARY, seeds=SEEDS, output_dir=tmp_path / "pool",
                             executor=pool, progress=False)
     assert run_files(result.output_dir) == run_files(threads_study.output_dir)
@@ -144,6 +145,21 @@ def test_bad_studies_raise_naming_the_point_and_key(tmp_path):
         haff.study(tmp_path / "missing.toml", VARY, output_dir=tmp_path / "b")
     with pytest.raises(haff.ConfigError, match="system.no_such_key"):
         haff.study(BASE, {"system.no_such_key": [1]}, output_dir=tmp_path / "b")
+    for kwargs, name in (({"threads": 10**6}, "threads"), ({"jobs": 1.5}, "jobs"),
+                         ({"checkpoint_every": 0}, "checkpoint_every"),
+                         ({"seeds": True}, "seeds"), ({"executor": object()}, "executor"),
+                         ({"zip": {"a": [1]}}, "zip"), ({"output_dir": 3}, "output_dir")):
+        arguments = {"output_dir": tmp_path / "b", **kwargs}
+        with pytest.raises(haff.ConfigError, match=name):
+            haff.study(BASE, VARY, **arguments)
+    assert not (tmp_path / "b").exists()
+    # numpy integers are integers
+    done = haff.study(BASE, {"collision.restitution": [0.5]}, seeds=np.int64(1),
+                      jobs=np.int32(1), output_dir=tmp_path / "c", progress=False)
+    assert len(done.runs) == 1
+    # another study's directory: named in this function's words
+    with pytest.raises(haff.ConfigError, match="output_dir.*force=True"):
+        haff.study(BASE, {"collision.restitution": [0.6]}, output_dir=tmp_path / "c")
 
 
 def test_a_failing_point_does_not_stop_the_others(tmp_path):
@@ -165,7 +181,46 @@ def test_the_sonine_hierarchy_against_the_closed_forms():
             assert first == pytest.approx(haff.theory.a2(dimension, eps), rel=1e-10, abs=1e-14)
         assert haff.theory.sonine(dimension, 1.0) == pytest.approx([0.0, 0.0], abs=1e-14)
     assert haff.theory.cooling_per_collision(0.8) == pytest.approx(0.36 / 3, rel=1e-15)
+    for bad, name in (((1.5,), "restitution"), ((0.5, 20.0), "a2")):
+        with pytest.raises(haff.ConfigError, match=name):
+            haff.theory.cooling_per_collision(*bad)
+    with pytest.raises(haff.ConfigError, match="order"):
+        haff.theory.sonine(3, 0.5, order=-1)
     with pytest.raises(haff.ConfigError, match="order"):
         haff.theory.sonine(3, 0.5, order=1)
     with pytest.raises(haff.ConfigError, match="dimension"):
         haff.theory.sonine(1, 0.5)
+
+
+class _LosingExecutor(concurrent.futures.ThreadPoolExecutor):
+    """Threads, except that the run of point 1, replica 2 is lost (its future raises, as a
+    dask future does when its worker dies)."""
+
+    def submit(self, fn, *args, **kwargs):
+        if args[3:5] == (1, 2):
+            future = concurrent.futures.Future()
+            future.set_exception(RuntimeError("worker lost"))
+            return future
+        return super().submit(fn, *args, **kwargs)
+
+
+def test_a_lost_worker_fails_its_run_only_and_the_next_call_completes_it(threads_study,
+                                                                          tmp_path):
+    out = tmp_path / "lost"
+    with _LosingExecutor(2) as executor:
+        first = haff.study(BASE, VARY, seeds=SEEDS, output_dir=out, executor=executor,
+                           progress=False)
+    assert [(f["point"], f["seed"]) for f in first.failed] == [(1, 5)]
+    assert "worker lost" in first.failed[0]["error"]
+    assert (first.ensemble[first.ensemble["point"] == 1]["replicas"] == SEEDS - 1).all()
+    second = haff.study(BASE, VARY, seeds=SEEDS, output_dir=out, progress=False)
+    assert second.failed == []
+    assert list(second.runs["kept"]) == [True] * 5 + [False]
+    assert run_files(out) == run_files(threads_study.output_dir)
+
+
+def test_a_varied_list_is_a_coordinate_of_the_dataset(tmp_path):
+    pytest.importorskip("xarray")
+    result = haff.study(BASE, {"run.histogram_at": [[0.0, 10.0], [0.0, 5.0]]},
+                        output_dir=tmp_path / "lists", progress=False)
+    assert list(result.dataset["run.histogram_at"].values) == ["[0.0, 10.0]", "[0.0, 5.0]"]

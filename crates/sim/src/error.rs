@@ -13,6 +13,14 @@ pub enum Error {
     /// A run file that cannot be read or is not TOML.
     #[error("{}: {message}", path.display())]
     RunFile { path: PathBuf, message: String },
+    /// A particle file that cannot be read, or whose particles a run cannot start from:
+    /// `at` names the line or record (or `box`, `frame`), the message the field.
+    #[error("{}: {at}: {message}", path.display())]
+    ParticleFile {
+        path: PathBuf,
+        at: String,
+        message: String,
+    },
     /// A check-point that cannot be read or does not belong to a run of this kind.
     #[error("{}: {message}", path.display())]
     Checkpoint { path: PathBuf, message: String },

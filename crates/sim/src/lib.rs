@@ -33,6 +33,7 @@ pub mod observer;
 pub mod outdir;
 pub mod output;
 pub mod parallel;
+pub mod particles;
 pub mod plot;
 pub mod probe;
 pub mod profiles;

@@ -353,9 +353,14 @@ impl Simulation {
     }
 
     /// Check-points at those samples only when `seconds` of wall-clock time have passed
-    /// since the last one (0: at every one; a study's default is 60). Single process only.
+    /// since the last one (0, or not a finite number > 0: at every one; a study's default
+    /// is 60). Ignored on several ranks, whose clocks would disagree on when to save.
     pub fn set_checkpoint_spacing(&mut self, seconds: f64) {
-        self.checkpoint_after_seconds = seconds;
+        self.checkpoint_after_seconds = if seconds.is_finite() && seconds > 0.0 {
+            seconds
+        } else {
+            0.0
+        };
     }
 
     /// The check-point interval in samples (kept from a resumed check-point).
@@ -520,7 +525,11 @@ impl Simulation {
         let clock = Instant::now();
         let root = self.is_root();
         let (plan, every, grown) = (&self.plan, self.checkpoint_every, self.grown);
-        let after_seconds = self.checkpoint_after_seconds;
+        let after_seconds = if self.ranks() > 1 {
+            0.0
+        } else {
+            self.checkpoint_after_seconds
+        };
         let preamble = || Self::preamble(plan, every, grown.as_ref());
         let file = self
             .checkpoint_dir

@@ -186,3 +186,19 @@ fn the_directory_is_one_studys_and_failures_stay_local() {
         .to_string();
     assert!(e.contains("notes.txt"), "{e}");
 }
+
+/// By default a run of a study check-points once a minute of wall-clock time: a run of a
+/// few milliseconds writes none; `checkpoint_every` = 1 writes one at every sample (the
+/// last one kept). Oracle: the files present.
+#[test]
+fn a_short_run_of_a_study_writes_no_checkpoint_by_default() {
+    let dir = scratch("spacing");
+    let study = study_in(&dir, "\"collision.restitution\" = [0.8]", 2);
+    let out = dir.join("out");
+    study::open_study_dir(&out, &study, false).unwrap();
+    let by_default = study::run_one(&study, &out, 0, 0, 1, None);
+    let every = study::run_one(&study, &out, 0, 1, 1, Some(1));
+    assert!(by_default.error.is_none() && every.error.is_none());
+    assert!(!study::run_dir(&out, 0, 3).join("checkpoint.bin").exists());
+    assert!(study::run_dir(&out, 0, 4).join("checkpoint.bin").exists());
+}

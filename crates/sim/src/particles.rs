@@ -1,0 +1,242 @@
+//! Particle files in and out (issue 38): a [`Configuration`] — the box and every particle's
+//! position, and what the file has of velocities, diameters, masses, species and spins —
+//! read from and written to the formats the community's tools read: `csv` (haff's columns),
+//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`).
+//!
+//! Reading checks everything a run needs before it starts ([`Configuration::check`]):
+//! finite numbers, particles inside the box, no two spheres overlapping (the first pair
+//! named with its overlap), diameters and masses > 0. Every error names the file, the line
+//! or record, and the field ([`Error::ParticleFile`]).
+//!
+//! The box is periodic, its lower corner at the origin: a file whose box starts elsewhere
+//! (LAMMPS' `xlo`) has its positions shifted by the lower corner when read.
+
+mod csv;
+mod lammps;
+mod overlaps;
+mod xyz;
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+pub use overlaps::first_overlap;
+
+/// A vector of up to three components (the unused ones 0).
+pub type Vec3 = [f64; 3];
+
+/// The formats of particle files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// `x,y[,z],vx,vy[,vz]` and optional `diameter,mass,species,wx,wy,wz` columns, a header
+    /// line first; the box on a first comment line `# box = Lx Ly [Lz]`.
+    Csv,
+    /// A LAMMPS `dump custom` text file: `ITEM: TIMESTEP`, `NUMBER OF ATOMS`, `BOX BOUNDS`,
+    /// `ATOMS id x y z vx vy vz radius|diameter [mass type omegax omegay omegaz]`.
+    LammpsDump,
+    /// Extended XYZ: the count, a comment line with `Lattice="..."` (orthogonal) and
+    /// `Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1`, then the particles.
+    Xyz,
+}
+
+impl Format {
+    /// The names of the formats, as a run file spells them.
+    pub const NAMES: [&'static str; 3] = ["csv", "lammps-dump", "xyz"];
+
+    /// The format named `name` (one of [`Format::NAMES`]), or an error naming `key`.
+    pub fn parse(key: &str, name: &str) -> Result<Self> {
+        match name {
+            "csv" => Ok(Format::Csv),
+            "lammps-dump" => Ok(Format::LammpsDump),
+            "xyz" => Ok(Format::Xyz),
+            other => Err(Error::input(
+                key,
+                format!(
+                    "`{other}` is not a particle file format; allowed: {}",
+                    Format::NAMES.join(", ")
+                ),
+            )),
+        }
+    }
+}
+
+/// Particles as a file holds them: the box (periodic, from the origin), positions, and
+/// what the file has of the rest (None: the file has no such column).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Configuration {
+    /// 1, 2 or 3.
+    pub dimension: usize,
+    /// The box's sides, one per dimension.
+    pub sides: Vec<f64>,
+    pub positions: Vec<Vec3>,
+    pub velocities: Option<Vec<Vec3>>,
+    pub diameters: Option<Vec<f64>>,
+    pub masses: Option<Vec<f64>>,
+    /// Species indices from 0.
+    pub species: Option<Vec<usize>>,
+    /// Angular velocities (rough spheres; disks: the z component).
+    pub spins: Option<Vec<Vec3>>,
+    /// The time the file records (LAMMPS' timestep, XYZ's `Time=`), if any.
+    pub time: Option<f64>,
+}
+
+impl Configuration {
+    /// The number of particles.
+    pub fn len(&self) -> usize {
+        self.positions.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+
+    /// The diameter of particle `i` (1 where the file gives none).
+    pub fn diameter(&self, i: usize) -> f64 {
+        self.diameters.as_ref().map_or(1.0, |d| d[i])
+    }
+
+    /// Checks what a run needs of the configuration, naming `path` and the record (particle
+    /// index from 0) of the first fault: sides finite and > 0; positions, velocities and
+    /// spins finite; positions inside the box [0, L); diameters and masses finite and > 0;
+    /// no two spheres overlapping (with the diameters; `points`: skipped, for DSMC's point
+    /// particles).
+    pub fn check(&self, path: &Path, points: bool) -> Result<()> {
+        let fail = |at: String, message: String| Error::ParticleFile {
+            path: path.to_path_buf(),
+            at,
+            message,
+        };
+        if !(1..=3).contains(&self.dimension) || self.sides.len() != self.dimension {
+            return Err(fail(
+                "box".into(),
+                format!(
+                    "{} sides for dimension {}; allowed: one side per dimension, 1 ..= 3",
+                    self.sides.len(),
+                    self.dimension
+                ),
+            ));
+        }
+        if let Some(k) = self.sides.iter().position(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(fail(
+                "box".into(),
+                format!("side {k} = {} is not a finite number > 0", self.sides[k]),
+            ));
+        }
+        let n = self.len();
+        if n < 2 {
+            return Err(fail(
+                "particles".into(),
+                format!("{n} particles; allowed: at least 2"),
+            ));
+        }
+        let lengths = [
+            ("velocities", self.velocities.as_ref().map(Vec::len)),
+            ("diameters", self.diameters.as_ref().map(Vec::len)),
+            ("masses", self.masses.as_ref().map(Vec::len)),
+            ("species", self.species.as_ref().map(Vec::len)),
+            ("spins", self.spins.as_ref().map(Vec::len)),
+        ];
+        for (what, len) in lengths {
+            if let Some(len) = len.filter(|&l| l != n) {
+                return Err(fail(what.into(), format!("{len} values for {n} particles")));
+            }
+        }
+        let d = self.dimension;
+        for (i, p) in self.positions.iter().enumerate() {
+            for (k, (&x, &l)) in p.iter().zip(&self.sides).enumerate() {
+                if !(x.is_finite() && (0.0..l).contains(&x)) {
+                    return Err(fail(
+                        format!("record {i}"),
+                        format!(
+                            "position {} = {x} is outside the box [0, {l})",
+                            ["x", "y", "z"][k]
+                        ),
+                    ));
+                }
+            }
+        }
+        for (what, list) in [("velocity", &self.velocities), ("spin", &self.spins)] {
+            if let Some(list) = list {
+                if let Some(i) = list
+                    .iter()
+                    .position(|v| v[..d].iter().any(|x| !x.is_finite()))
+                {
+                    return Err(fail(
+                        format!("record {i}"),
+                        format!("{what} {:?} is not finite", &list[i][..d]),
+                    ));
+                }
+            }
+        }
+        for (what, list) in [("diameter", &self.diameters), ("mass", &self.masses)] {
+            if let Some(list) = list {
+                if let Some(i) = list.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
+                    return Err(fail(
+                        format!("record {i}"),
+                        format!("{what} = {} is not a finite number > 0", list[i]),
+                    ));
+                }
+            }
+        }
+        if !points {
+            if let Some((i, j, overlap)) = first_overlap(self) {
+                return Err(fail(
+                    format!("records {i} and {j}"),
+                    format!(
+                        "the spheres overlap by {overlap:e} (of the sum of their radii {}): \
+                         allowed: no overlap",
+                        0.5 * (self.diameter(i) + self.diameter(j))
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Reads frame `frame` (0 the first, -1 the last) of the particle file `path` of `format`
+/// in `dimension` dimensions, without checking it ([`Configuration::check`]).
+pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result<Configuration> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::ParticleFile {
+        path: path.to_path_buf(),
+        at: "file".into(),
+        message: e.to_string(),
+    })?;
+    let fail = |at: String, message: String| Error::ParticleFile {
+        path: path.to_path_buf(),
+        at,
+        message,
+    };
+    match format {
+        Format::Csv => csv::parse(&text, dimension).map_err(|(at, m)| fail(at, m)),
+        Format::LammpsDump => {
+            lammps::parse_dump(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
+        }
+        Format::Xyz => xyz::parse(&text, dimension, frame).map_err(|(at, m)| fail(at, m)),
+    }
+}
+
+/// Writes `configuration` to `path` in `format` (atomically, numbers in the shortest form
+/// that reads back to the same bits).
+pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Result<()> {
+    crate::output::write_file(path, |out| match format {
+        Format::Csv => csv::write(out, configuration),
+        Format::LammpsDump => lammps::write_dump(out, configuration, 0),
+        Format::Xyz => xyz::write(out, configuration),
+    })
+}
+
+/// Parses a number of a text format, naming the line and column when it is not one.
+pub(crate) fn number(text: &str, line: usize, column: &str) -> std::result::Result<f64, Fault> {
+    text.parse::<f64>().map_err(|_| {
+        (
+            format!("line {line}"),
+            format!("column `{column}`: `{text}` is not a number"),
+        )
+    })
+}
+
+/// Where (`line 12`, `record 3`) and what went wrong in a file.
+pub(crate) type Fault = (String, String);
+
+#[cfg(test)]
+mod tests;
