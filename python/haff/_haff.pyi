@@ -63,6 +63,22 @@ def study_aggregate(
     text: str, origin: str, dir: str, outcomes: list[str], invalid: list[tuple[int, str]]
 ) -> str: ...
 
+def read_configuration(
+    path: str, format: str, dimension: int = 3, frame: int = -1, check: bool = True
+) -> dict[str, Any]: ...
+def write_configuration(
+    path: str,
+    format: str,
+    box: list[float],
+    positions: npt.NDArray[np.float64],
+    velocities: Optional[npt.NDArray[np.float64]] = None,
+    diameters: Optional[npt.NDArray[np.float64]] = None,
+    masses: Optional[npt.NDArray[np.float64]] = None,
+    species: Optional[list[int]] = None,
+    spins: Optional[npt.NDArray[np.float64]] = None,
+    time: Optional[float] = None,
+) -> None: ...
+
 class _Simulation:
     @staticmethod
     def from_toml(text: str, origin: str) -> _Simulation: ...
