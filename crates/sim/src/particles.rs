@@ -235,6 +235,63 @@ pub(crate) fn number(text: &str, line: usize, column: &str) -> std::result::Resu
     })
 }
 
+/// Particle `i`'s columns as the LAMMPS dump and extended XYZ writers both order them,
+/// each after a space: position (3), velocity (3, if any), radius, mass (if any), spin (3,
+/// if any).
+pub(crate) fn push_columns(row: &mut String, c: &Configuration, i: usize) {
+    let mut push = |x: f64| {
+        row.push(' ');
+        row.push_str(&crate::output::number(x));
+    };
+    c.positions[i].iter().for_each(|&x| push(x));
+    if let Some(v) = &c.velocities {
+        v[i].iter().for_each(|&x| push(x));
+    }
+    push(0.5 * c.diameter(i));
+    if let Some(m) = &c.masses {
+        push(m[i]);
+    }
+    if let Some(w) = &c.spins {
+        w[i].iter().for_each(|&x| push(x));
+    }
+}
+
+/// The names of the columns [`push_columns`] writes, from `names` (position, velocity,
+/// radius, mass, spin) joined by `separator`.
+pub(crate) fn column_names(c: &Configuration, names: [&str; 5], separator: &str) -> String {
+    let given = [
+        true,
+        c.velocities.is_some(),
+        true,
+        c.masses.is_some(),
+        c.spins.is_some(),
+    ];
+    let present: Vec<&str> = names
+        .iter()
+        .zip(given)
+        .filter(|(_, g)| *g)
+        .map(|(n, _)| *n)
+        .collect();
+    present.join(separator)
+}
+
+/// The index of frame `frame` (from 0; negative from the end) among `count`, or a fault.
+pub(crate) fn frame_index(frame: i64, count: usize) -> std::result::Result<usize, Fault> {
+    let count = count as i64;
+    let index = if frame < 0 { count + frame } else { frame };
+    if (0..count).contains(&index) {
+        Ok(index as usize)
+    } else {
+        Err((
+            "frame".into(),
+            format!(
+                "frame {frame} of a file of {count} frames; allowed: -{count} ..= {}",
+                count - 1
+            ),
+        ))
+    }
+}
+
 /// Where (`line 12`, `record 3`) and what went wrong in a file.
 pub(crate) type Fault = (String, String);
 

@@ -28,19 +28,9 @@ pub(super) fn parse_dump(text: &str, dimension: usize, frame: i64) -> Result<Con
             "no `ITEM: TIMESTEP`: not a LAMMPS dump".into(),
         ));
     }
-    let count = starts.len() as i64;
-    let index = if frame < 0 { count + frame } else { frame };
-    if !(0..count).contains(&index) {
-        return Err((
-            "frame".into(),
-            format!(
-                "frame {frame} of a file of {count} frames; allowed: -{count} ..= {}",
-                count - 1
-            ),
-        ));
-    }
+    let index = super::frame_index(frame, starts.len())?;
     let lines: Vec<&str> = text.lines().collect();
-    let mut at = starts[index as usize];
+    let mut at = starts[index];
     let line_no = |i: usize| i + 1;
     let expect = |i: usize, item: &str| -> Result<(), Fault> {
         match lines.get(i) {
@@ -249,42 +239,21 @@ pub(super) fn write_dump(out: &mut dyn Write, c: &Configuration, timestep: u64) 
             writeln!(out, "-0.5 0.5")?;
         }
     }
-    let mut columns = String::from("id type x y z");
-    if c.velocities.is_some() {
-        columns += " vx vy vz";
-    }
-    columns += " radius";
-    if c.masses.is_some() {
-        columns += " mass";
-    }
-    if c.spins.is_some() {
-        columns += " omegax omegay omegaz";
-    }
-    writeln!(out, "ITEM: ATOMS {columns}")?;
+    let names = [
+        "x y z",
+        "vx vy vz",
+        "radius",
+        "mass",
+        "omegax omegay omegaz",
+    ];
+    let columns = super::column_names(c, names, " ");
+    writeln!(out, "ITEM: ATOMS id type {columns}")?;
     let mut row = String::new();
     for i in 0..c.len() {
         row.clear();
         let kind = c.species.as_ref().map_or(1, |s| s[i] + 1);
         row += &format!("{} {kind}", i + 1);
-        let vector = |row: &mut String, v: &Vec3| {
-            for x in v {
-                row.push(' ');
-                row.push_str(&output::number(*x));
-            }
-        };
-        vector(&mut row, &c.positions[i]);
-        if let Some(v) = &c.velocities {
-            vector(&mut row, &v[i]);
-        }
-        row.push(' ');
-        row.push_str(&output::number(0.5 * c.diameter(i)));
-        if let Some(m) = &c.masses {
-            row.push(' ');
-            row.push_str(&output::number(m[i]));
-        }
-        if let Some(w) = &c.spins {
-            vector(&mut row, &w[i]);
-        }
+        super::push_columns(&mut row, c, i);
         writeln!(out, "{row}")?;
     }
     Ok(())

@@ -96,18 +96,8 @@ pub(super) fn parse(text: &str, dimension: usize, frame: i64) -> Result<Configur
     if starts.is_empty() {
         return Err(("line 1".into(), "the file is empty".into()));
     }
-    let count = starts.len() as i64;
-    let index = if frame < 0 { count + frame } else { frame };
-    if !(0..count).contains(&index) {
-        return Err((
-            "frame".into(),
-            format!(
-                "frame {frame} of a file of {count} frames; allowed: -{count} ..= {}",
-                count - 1
-            ),
-        ));
-    }
-    let (first, n) = starts[index as usize];
+    let index = super::frame_index(frame, starts.len())?;
+    let (first, n) = starts[index];
     let comment_line = first + 2;
     let comment = lines.get(first + 1).copied().unwrap_or("");
     let info = pairs(comment);
@@ -299,17 +289,8 @@ pub(super) fn write(out: &mut dyn Write, c: &Configuration) -> io::Result<()> {
             "1".into()
         }
     };
-    let mut properties = String::from("type:I:1:pos:R:3");
-    if c.velocities.is_some() {
-        properties += ":velo:R:3";
-    }
-    properties += ":radius:R:1";
-    if c.masses.is_some() {
-        properties += ":mass:R:1";
-    }
-    if c.spins.is_some() {
-        properties += ":omega:R:3";
-    }
+    let names = ["pos:R:3", "velo:R:3", "radius:R:1", "mass:R:1", "omega:R:3"];
+    let properties = format!("type:I:1:{}", super::column_names(c, names, ":"));
     let pbc = ["T T T", "T F F", "T T F", "T T T"][d.min(3)];
     writeln!(out, "{}", c.len())?;
     let time = c
@@ -326,25 +307,7 @@ pub(super) fn write(out: &mut dyn Write, c: &Configuration) -> io::Result<()> {
     for i in 0..c.len() {
         row.clear();
         row += &(c.species.as_ref().map_or(0, |s| s[i]) + 1).to_string();
-        let vector = |row: &mut String, v: &Vec3| {
-            for x in v {
-                row.push(' ');
-                row.push_str(&output::number(*x));
-            }
-        };
-        vector(&mut row, &c.positions[i]);
-        if let Some(v) = &c.velocities {
-            vector(&mut row, &v[i]);
-        }
-        row.push(' ');
-        row.push_str(&output::number(0.5 * c.diameter(i)));
-        if let Some(m) = &c.masses {
-            row.push(' ');
-            row.push_str(&output::number(m[i]));
-        }
-        if let Some(w) = &c.spins {
-            vector(&mut row, &w[i]);
-        }
+        super::push_columns(&mut row, c, i);
         writeln!(out, "{row}")?;
     }
     Ok(())
