@@ -1,4 +1,5 @@
-//! A fuzzing harness that stays (issue 12): valid run files and check-points are mutated
+//! A fuzzing harness that stays (issue 12): valid run files, check-points, study files and
+//! particle files are mutated
 //! (keys, values, types, truncation, byte flips; check-points also with the checksum
 //! fixed after the edit) and fed to the run driver. For every input: no panic; a refusal is
 //! an input error (exit 2 in the CLI) with a one-line message; an accepted run produces
@@ -672,6 +673,95 @@ fn mutated_study_files_never_panic() {
         .unwrap();
 }
 
+/// Particle files (`sim::particles`, issue 38): a small configuration written in every
+/// format, its lines mutated (values replaced, lines deleted or inserted, the file cut,
+/// bytes flipped); reading (2D and 3D, first and last frame) and checking must succeed or
+/// refuse properly naming the file, never panic or hang.
+fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
+    use sim::particles::{self, Configuration, Format};
+    let n = 27;
+    let positions: Vec<[f64; 3]> = (0..n)
+        .map(|i| {
+            [
+                1.0 + 2.0 * (i % 3) as f64,
+                1.0 + 2.0 * ((i / 3) % 3) as f64,
+                1.0 + 2.0 * (i / 9) as f64,
+            ]
+        })
+        .collect();
+    let c = Configuration {
+        dimension: 3,
+        sides: vec![6.0; 3],
+        positions,
+        velocities: Some((0..n).map(|i| [i as f64, -0.5, 0.25]).collect()),
+        diameters: Some(vec![0.9; n]),
+        masses: Some(vec![1.5; n]),
+        species: Some((0..n).map(|i| i % 2).collect()),
+        spins: Some(vec![[0.1, 0.2, 0.3]; n]),
+        time: None,
+    };
+    let dir = std::env::temp_dir().join(format!("haff-fuzz-particles-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz]
+        .into_iter()
+        .map(|format| {
+            let path = dir.join("seed");
+            particles::write(&path, format, &c).unwrap();
+            (format, std::fs::read_to_string(&path).unwrap())
+        })
+        .collect();
+    std::fs::remove_dir_all(&dir).ok();
+    seeds
+}
+
+fn check_particle_file(
+    path: &Path,
+    format: sim::particles::Format,
+    text: &str,
+) -> Result<(), String> {
+    std::fs::write(path, text).map_err(|e| e.to_string())?;
+    for dimension in [2, 3] {
+        for frame in [0, -1] {
+            let read = sim::particles::read(path, format, dimension, frame)
+                .and_then(|c| c.check(path, false));
+            if let Err(e) = read {
+                refused_properly(&e)?;
+                let message = e.to_string();
+                if !message.starts_with(&path.display().to_string()) {
+                    return Err(format!("does not name the file: {message}"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn mutated_particle_files_never_panic() {
+    particle_files(300);
+}
+
+fn particle_files(cases: u32) {
+    let seeds = particle_seeds();
+    let path = std::env::temp_dir().join(format!("haff-fuzz-particle-{}", std::process::id()));
+    let mut runner = TestRunner::new(Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = (0..seeds.len(), prop::collection::vec(mutation(), 1..4));
+    runner
+        .run(&strategy, |(seed, mutations)| {
+            let (format, text) = &seeds[seed];
+            let text = mutate(text, &mutations);
+            watch(format!("particle file:\n{text}"));
+            no_panic(|| check_particle_file(&path, *format, &text))
+                .map_err(|e| TestCaseError::fail(format!("{e}\n--- input:\n{text}")))
+        })
+        .unwrap();
+    std::fs::remove_file(&path).ok();
+}
+
 #[test]
 fn mutated_run_files_never_panic() {
     run_files(300);
@@ -688,5 +778,9 @@ fn mutated_inputs_at_length() {
     let cases = cases_from_env(50_000);
     run_files(cases);
     check_points(cases);
-    eprintln!("{cases} mutated run files and {cases} damaged check-points: no panic");
+    particle_files(cases);
+    eprintln!(
+        "{cases} mutated run files, {cases} damaged check-points and {cases} mutated particle \
+         files: no panic"
+    );
 }

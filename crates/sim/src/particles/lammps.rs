@@ -109,16 +109,19 @@ pub(super) fn parse_dump(text: &str, dimension: usize, frame: i64) -> Result<Con
     let has_spin = spin.iter().all(Option::is_some);
     let (radius, diameter) = (column("radius"), column("diameter"));
     let (mass, kind, id) = (column("mass"), column("type"), column("id"));
-    let mut rows: Vec<(u64, usize)> = Vec::with_capacity(n);
+    // A count beyond the lines there are is refused below, line by line: reserve no more
+    // than the file can hold.
+    let n_reserved = n.min(lines.len());
+    let mut rows: Vec<(u64, usize)> = Vec::with_capacity(n_reserved);
     let mut c = Configuration {
         dimension,
         sides,
-        positions: Vec::with_capacity(n),
-        velocities: has_velocity.then(|| Vec::with_capacity(n)),
-        diameters: (radius.is_some() || diameter.is_some()).then(|| Vec::with_capacity(n)),
-        masses: mass.map(|_| Vec::with_capacity(n)),
-        species: kind.map(|_| Vec::with_capacity(n)),
-        spins: has_spin.then(|| Vec::with_capacity(n)),
+        positions: Vec::with_capacity(n_reserved),
+        velocities: has_velocity.then(|| Vec::with_capacity(n_reserved)),
+        diameters: (radius.is_some() || diameter.is_some()).then(|| Vec::with_capacity(n_reserved)),
+        masses: mass.map(|_| Vec::with_capacity(n_reserved)),
+        species: kind.map(|_| Vec::with_capacity(n_reserved)),
+        spins: has_spin.then(|| Vec::with_capacity(n_reserved)),
         time: None,
     };
     for r in 0..n {

@@ -91,7 +91,7 @@ pub(super) fn parse(text: &str, dimension: usize, frame: i64) -> Result<Configur
             )
         })?;
         starts.push((at, n));
-        at += n + 2;
+        at = at.saturating_add(n).saturating_add(2);
     }
     if starts.is_empty() {
         return Err(("line 1".into(), "the file is empty".into()));
@@ -173,15 +173,18 @@ pub(super) fn parse(text: &str, dimension: usize, frame: i64) -> Result<Configur
             "Properties has no `pos`".into(),
         ));
     }
+    // A count beyond the lines there are is refused below: reserve no more than that.
+    let n_reserved = n.min(lines.len());
     let mut c = Configuration {
         dimension,
         sides,
-        positions: Vec::with_capacity(n),
-        velocities: has(Role::Velocity).then(|| Vec::with_capacity(n)),
-        diameters: (has(Role::Radius) || has(Role::Diameter)).then(|| Vec::with_capacity(n)),
-        masses: has(Role::Mass).then(|| Vec::with_capacity(n)),
-        species: (has(Role::Species) || has(Role::Type)).then(|| Vec::with_capacity(n)),
-        spins: has(Role::Spin).then(|| Vec::with_capacity(n)),
+        positions: Vec::with_capacity(n_reserved),
+        velocities: has(Role::Velocity).then(|| Vec::with_capacity(n_reserved)),
+        diameters: (has(Role::Radius) || has(Role::Diameter))
+            .then(|| Vec::with_capacity(n_reserved)),
+        masses: has(Role::Mass).then(|| Vec::with_capacity(n_reserved)),
+        species: (has(Role::Species) || has(Role::Type)).then(|| Vec::with_capacity(n_reserved)),
+        spins: has(Role::Spin).then(|| Vec::with_capacity(n_reserved)),
         time: get("Time")
             .map(|t| number(t, comment_line, "Time"))
             .transpose()?,
