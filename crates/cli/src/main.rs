@@ -44,7 +44,7 @@ enum Command {
     /// A granular-gas run described by a TOML file (event-driven MD).
     Run(RunArgs),
     /// A study: the runs of a run file over a grid of parameters and seeds, with their
-    /// means and standard errors (ensemble.csv, study.json).
+    /// means and standard errors (ensemble.csv, study.json, figures/).
     Study(StudyArgs),
     /// Giese's vibrating rods: the collision equation, p(eps^2), the rod-chain MD.
     #[command(subcommand)]
