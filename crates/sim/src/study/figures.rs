@@ -1,8 +1,8 @@
 //! A study's figures (`DIR/figures/<quantity>.png`, in [`crate::plot`]'s style): each
 //! quantity of `timeseries.csv` at the last sample, its mean over the replicas with the
 //! standard error as an error bar, against the first varied key that takes several
-//! numbers (one curve per value of the other varied keys); against the point's index
-//! when no key does.
+//! numbers (one curve per value of the other varied keys, those zipped with it left out);
+//! against the point's index when no key does.
 
 use super::Study;
 use crate::error::{Error, Result};
@@ -53,11 +53,21 @@ pub(super) fn write(study: &Study, dir: &Path, rows: &[Final]) -> Result<()> {
         None => Some(point as f64),
     };
     // The label of a point's curve: the other varied keys' values.
+    // The axis key and the keys zipped with it vary along the axis: not in the labels.
+    let along: Vec<&String> = match &axis {
+        Some(key) => study
+            .file
+            .zip
+            .iter()
+            .find(|table| table.contains_key(key))
+            .map_or(vec![key], |table| table.keys().collect()),
+        None => Vec::new(),
+    };
     let curve_of = |point: usize| -> String {
         let values = &study.points[point].values;
         let parts: Vec<String> = values
             .iter()
-            .filter(|(k, _)| Some(*k) != axis.as_ref())
+            .filter(|(k, _)| !along.contains(k))
             .map(|(k, v)| format!("{k} = {v}"))
             .collect();
         if parts.is_empty() {
