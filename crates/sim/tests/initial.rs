@@ -169,13 +169,13 @@ fn velocities_drawn_have_the_temperature_and_no_momentum() {
     let mut run = simulation(&text).unwrap();
     let p = run.particles();
     let (mut momentum, mut energy) = ([0.0; 2], 0.0);
-    for i in 0..n {
-        let expected = 3.0 * std::f64::consts::PI * diameters[i] * diameters[i] / 4.0;
-        assert!((p.masses[i] / expected - 1.0).abs() < 1e-15);
-        for k in 0..2 {
+    for (i, (&d, &m)) in diameters.iter().zip(&p.masses).enumerate() {
+        let expected = 3.0 * std::f64::consts::PI * d * d / 4.0;
+        assert!((m / expected - 1.0).abs() < 1e-15);
+        for (k, total) in momentum.iter_mut().enumerate() {
             let v = p.velocities[2 * i + k];
-            momentum[k] += p.masses[i] * v;
-            energy += p.masses[i] * v * v;
+            *total += m * v;
+            energy += m * v * v;
         }
     }
     assert!(momentum.iter().all(|x| x.abs() < 1e-12), "{momentum:?}");
