@@ -1,7 +1,8 @@
 //! Particle files in and out (issue 38): a [`Configuration`] — the box and every particle's
 //! position, and what the file has of velocities, diameters, masses, species and spins —
 //! read from and written to the formats the community's tools read: `csv` (haff's columns),
-//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`).
+//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`),
+//! `lammps-data` (a data file of `atom_style sphere`), `h5md` (H5MD, with the feature `h5md`).
 //!
 //! Reading checks everything a run needs before it starts ([`Configuration::check`]):
 //! finite numbers, particles inside the box, no two spheres overlapping (the first pair
@@ -13,6 +14,7 @@
 
 mod csv;
 mod lammps;
+mod lammps_data;
 mod overlaps;
 mod xyz;
 
@@ -36,11 +38,14 @@ pub enum Format {
     /// Extended XYZ: the count, a comment line with `Lattice="..."` (orthogonal) and
     /// `Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1`, then the particles.
     Xyz,
+    /// A LAMMPS data file of `atom_style sphere` (`read_data`, `write_data`): header, `Atoms
+    /// # sphere` (id type diameter density x y z), `Velocities` (id v omega).
+    LammpsData,
 }
 
 impl Format {
     /// The names of the formats, as a run file spells them.
-    pub const NAMES: [&'static str; 3] = ["csv", "lammps-dump", "xyz"];
+    pub const NAMES: [&'static str; 4] = ["csv", "lammps-dump", "xyz", "lammps-data"];
 
     /// The format named `name` (one of [`Format::NAMES`]), or an error naming `key`.
     pub fn parse(key: &str, name: &str) -> Result<Self> {
@@ -48,6 +53,7 @@ impl Format {
             "csv" => Ok(Format::Csv),
             "lammps-dump" => Ok(Format::LammpsDump),
             "xyz" => Ok(Format::Xyz),
+            "lammps-data" => Ok(Format::LammpsData),
             other => Err(Error::input(
                 key,
                 format!(
@@ -212,6 +218,9 @@ pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result
             lammps::parse_dump(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
         }
         Format::Xyz => xyz::parse(&text, dimension, frame).map_err(|(at, m)| fail(at, m)),
+        Format::LammpsData => {
+            lammps_data::parse_data(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
+        }
     }
 }
 
@@ -222,6 +231,7 @@ pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Resu
         Format::Csv => csv::write(out, configuration),
         Format::LammpsDump => lammps::write_dump(out, configuration, 0),
         Format::Xyz => xyz::write(out, configuration),
+        Format::LammpsData => lammps_data::write_data(out, configuration),
     })
 }
 

@@ -702,7 +702,7 @@ fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
     };
     let dir = std::env::temp_dir().join(format!("haff-fuzz-particles-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz]
+    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz, Format::LammpsData]
         .into_iter()
         .map(|format| {
             let path = dir.join("seed");

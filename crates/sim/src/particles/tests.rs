@@ -7,7 +7,7 @@ use rand::{Rng, SeedableRng};
 
 /// `n` non-overlapping spheres in a box (placed on a jittered lattice), with every
 /// optional column.
-fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
+pub(super) fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let spacing = 1.7;
     let sides = vec![spacing * n_side as f64; dimension];
@@ -53,7 +53,7 @@ fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
     }
 }
 
-fn scratch(name: &str) -> std::path::PathBuf {
+pub(super) fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("haff-particles-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
