@@ -702,14 +702,19 @@ fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
     };
     let dir = std::env::temp_dir().join(format!("haff-fuzz-particles-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz, Format::LammpsData]
-        .into_iter()
-        .map(|format| {
-            let path = dir.join("seed");
-            particles::write(&path, format, &c).unwrap();
-            (format, std::fs::read_to_string(&path).unwrap())
-        })
-        .collect();
+    let seeds = [
+        Format::Csv,
+        Format::LammpsDump,
+        Format::Xyz,
+        Format::LammpsData,
+    ]
+    .into_iter()
+    .map(|format| {
+        let path = dir.join("seed");
+        particles::write(&path, format, &c).unwrap();
+        (format, std::fs::read_to_string(&path).unwrap())
+    })
+    .collect();
     std::fs::remove_dir_all(&dir).ok();
     seeds
 }
