@@ -248,7 +248,7 @@ fn read_h5md(path: &Path, _: usize, _: i64) -> Result<Configuration> {
 }
 
 /// The error of H5MD files in a haff built without the feature `h5md`.
-#[cfg(not(feature = "h5md"))]
+#[cfg_attr(feature = "h5md", allow(dead_code))]
 fn without_h5md(path: &Path) -> Error {
     Error::ParticleFile {
         path: path.to_path_buf(),
