@@ -1,7 +1,8 @@
 //! Particle files in and out (issue 38): a [`Configuration`] — the box and every particle's
 //! position, and what the file has of velocities, diameters, masses, species and spins —
 //! read from and written to the formats the community's tools read: `csv` (haff's columns),
-//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`).
+//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`),
+//! `lammps-data` (a data file of `atom_style sphere`), `h5md` (H5MD, with the feature `h5md`).
 //!
 //! Reading checks everything a run needs before it starts ([`Configuration::check`]):
 //! finite numbers, particles inside the box, no two spheres overlapping (the first pair
@@ -12,13 +13,18 @@
 //! (LAMMPS' `xlo`) has its positions shifted by the lower corner when read.
 
 mod csv;
+#[cfg(feature = "h5md")]
+mod h5md;
 mod lammps;
+mod lammps_data;
 mod overlaps;
 mod xyz;
 
 use crate::error::{Error, Result};
 use std::path::Path;
 
+#[cfg(feature = "h5md")]
+pub use h5md::Trajectory;
 pub use overlaps::first_overlap;
 
 /// A vector of up to three components (the unused ones 0).
@@ -36,11 +42,18 @@ pub enum Format {
     /// Extended XYZ: the count, a comment line with `Lattice="..."` (orthogonal) and
     /// `Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1`, then the particles.
     Xyz,
+    /// A LAMMPS data file of `atom_style sphere` (`read_data`, `write_data`): header, `Atoms
+    /// # sphere` (id type diameter density x y z), `Velocities` (id v omega).
+    LammpsData,
+    /// H5MD 1.1 (HDF5): `particles/all/{box,position,velocity,...}`; frames of a
+    /// trajectory ([`Trajectory`] with the feature `h5md`; without it an error says how to
+    /// build haff with it).
+    H5md,
 }
 
 impl Format {
     /// The names of the formats, as a run file spells them.
-    pub const NAMES: [&'static str; 3] = ["csv", "lammps-dump", "xyz"];
+    pub const NAMES: [&'static str; 5] = ["csv", "lammps-dump", "xyz", "lammps-data", "h5md"];
 
     /// The name a run file spells.
     pub fn name(self) -> &'static str {
@@ -68,6 +81,8 @@ impl Format {
             "csv" => Ok(Format::Csv),
             "lammps-dump" => Ok(Format::LammpsDump),
             "xyz" => Ok(Format::Xyz),
+            "lammps-data" => Ok(Format::LammpsData),
+            "h5md" => Ok(Format::H5md),
             other => Err(Error::input(
                 key,
                 format!(
@@ -216,6 +231,9 @@ impl Configuration {
 /// Reads frame `frame` (0 the first, -1 the last) of the particle file `path` of `format`
 /// in `dimension` dimensions, without checking it ([`Configuration::check`]).
 pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result<Configuration> {
+    if format == Format::H5md {
+        return read_h5md(path, dimension, frame);
+    }
     let text = std::fs::read_to_string(path).map_err(|e| Error::ParticleFile {
         path: path.to_path_buf(),
         at: "file".into(),
@@ -232,16 +250,52 @@ pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result
             lammps::parse_dump(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
         }
         Format::Xyz => xyz::parse(&text, dimension, frame).map_err(|(at, m)| fail(at, m)),
+        Format::LammpsData => {
+            lammps_data::parse_data(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
+        }
+        Format::H5md => unreachable!("read above"),
+    }
+}
+
+#[cfg(feature = "h5md")]
+fn read_h5md(path: &Path, dimension: usize, frame: i64) -> Result<Configuration> {
+    h5md::read(path, dimension, frame)
+}
+
+#[cfg(not(feature = "h5md"))]
+fn read_h5md(path: &Path, _: usize, _: i64) -> Result<Configuration> {
+    Err(without_h5md(path))
+}
+
+/// The error of H5MD files in a haff built without the feature `h5md`.
+#[cfg_attr(feature = "h5md", allow(dead_code))]
+fn without_h5md(path: &Path) -> Error {
+    Error::ParticleFile {
+        path: path.to_path_buf(),
+        at: "format `h5md`".into(),
+        message: "this haff was built without H5MD support; build it with the cargo feature \
+                  `h5md` (the HDF5 library: apt-get install libhdf5-dev pkg-config; then \
+                  cargo build --release --features h5md, or for Python \
+                  MATURIN_PEP517_ARGS=\"--features h5md\" pip install ./python)"
+            .into(),
     }
 }
 
 /// Writes `configuration` to `path` in `format` (atomically, numbers in the shortest form
 /// that reads back to the same bits).
 pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Result<()> {
+    if format == Format::H5md {
+        #[cfg(feature = "h5md")]
+        return h5md::write(path, configuration);
+        #[cfg(not(feature = "h5md"))]
+        return Err(without_h5md(path));
+    }
     crate::output::write_file(path, |out| match format {
         Format::Csv => csv::write(out, configuration),
         Format::LammpsDump => lammps::write_dump(out, configuration, 0),
         Format::Xyz => xyz::write(out, configuration),
+        Format::LammpsData => lammps_data::write_data(out, configuration),
+        Format::H5md => unreachable!("written above"),
     })
 }
 

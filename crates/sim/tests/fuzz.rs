@@ -756,14 +756,19 @@ fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
     };
     let dir = std::env::temp_dir().join(format!("haff-fuzz-particles-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz]
-        .into_iter()
-        .map(|format| {
-            let path = dir.join("seed");
-            particles::write(&path, format, &c).unwrap();
-            (format, std::fs::read_to_string(&path).unwrap())
-        })
-        .collect();
+    let seeds = [
+        Format::Csv,
+        Format::LammpsDump,
+        Format::Xyz,
+        Format::LammpsData,
+    ]
+    .into_iter()
+    .map(|format| {
+        let path = dir.join("seed");
+        particles::write(&path, format, &c).unwrap();
+        (format, std::fs::read_to_string(&path).unwrap())
+    })
+    .collect();
     std::fs::remove_dir_all(&dir).ok();
     seeds
 }
@@ -814,6 +819,66 @@ fn particle_files(cases: u32) {
         })
         .unwrap();
     std::fs::remove_file(&path).ok();
+}
+
+/// H5MD files (binary; the feature `h5md`): a written file cut short or with bytes
+/// overwritten (anywhere: superblock, metadata, data); reading must succeed or refuse
+/// properly naming the file, never panic.
+#[cfg(feature = "h5md")]
+#[test]
+fn damaged_h5md_files_never_panic() {
+    use sim::particles::Format;
+    let (_, seed) = &particle_seeds()[0];
+    let dir = std::env::temp_dir().join(format!("haff-fuzz-h5md-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let source = dir.join("seed.csv");
+    std::fs::write(&source, seed).unwrap();
+    let c = sim::particles::read(&source, Format::Csv, 3, -1).unwrap();
+    let good = dir.join("seed.h5");
+    sim::particles::write(&good, Format::H5md, &c).unwrap();
+    let bytes = std::fs::read(&good).unwrap();
+    let path = dir.join("damaged.h5");
+    let mut runner = TestRunner::new(Config {
+        cases: 200,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let strategy = (
+        any::<bool>(),
+        prop::collection::vec((any::<usize>(), any::<u8>()), 1..6),
+    );
+    runner
+        .run(&strategy, |(cut, edits)| {
+            let mut damaged = bytes.clone();
+            if cut {
+                damaged.truncate(edits[0].0 % bytes.len());
+            } else {
+                for (at, to) in &edits {
+                    let n = damaged.len();
+                    damaged[at % n] = *to;
+                }
+            }
+            std::fs::write(&path, &damaged).unwrap();
+            watch(format!("h5md file, cut {cut}, edits {edits:?}"));
+            no_panic(|| {
+                for dimension in [2, 3] {
+                    for frame in [0, -1] {
+                        let read = sim::particles::read(&path, Format::H5md, dimension, frame)
+                            .and_then(|c| c.check(&path, false));
+                        if let Err(e) = read {
+                            refused_properly(&e)?;
+                            if !e.to_string().starts_with(&path.display().to_string()) {
+                                return Err(format!("does not name the file: {e}"));
+                            }
+                        }
+                    }
+                }
+                Ok(())
+            })
+            .map_err(|e| TestCaseError::fail(format!("{e}\n--- cut {cut}, edits {edits:?}")))
+        })
+        .unwrap();
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

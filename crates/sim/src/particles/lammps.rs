@@ -212,7 +212,7 @@ pub(super) fn parse_dump(text: &str, dimension: usize, frame: i64) -> Result<Con
 }
 
 /// The configuration with its particles in `order`.
-fn permuted(c: Configuration, order: &[usize]) -> Configuration {
+pub(super) fn permuted(c: Configuration, order: &[usize]) -> Configuration {
     fn pick<T: Copy>(list: Option<Vec<T>>, order: &[usize]) -> Option<Vec<T>> {
         list.map(|l| order.iter().map(|&i| l[i]).collect())
     }

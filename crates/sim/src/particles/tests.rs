@@ -7,7 +7,7 @@ use rand::{Rng, SeedableRng};
 
 /// `n` non-overlapping spheres in a box (placed on a jittered lattice), with every
 /// optional column.
-fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
+pub(super) fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let spacing = 1.7;
     let sides = vec![spacing * n_side as f64; dimension];
@@ -53,7 +53,7 @@ fn sample(dimension: usize, n_side: usize, seed: u64) -> Configuration {
     }
 }
 
-fn scratch(name: &str) -> std::path::PathBuf {
+pub(super) fn scratch(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("haff-particles-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -269,4 +269,25 @@ fn lammps_dumps_are_read_as_lammps_writes_them() {
     assert_eq!(last.positions, [[5.0, 2.5, 1.25], [0.0; 3]]);
     assert!(last.velocities.is_none());
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Without the feature `h5md`, H5MD files are refused naming the file and saying how to
+/// build haff with it (the message is tested in both builds; the refusal in the build
+/// without).
+#[test]
+fn h5md_without_the_feature_says_how_to_build_it() {
+    let path = Path::new("gas.h5");
+    let e = without_h5md(path).to_string();
+    assert!(
+        e.starts_with("gas.h5: format `h5md`: ")
+            && e.contains("--features h5md")
+            && e.contains("libhdf5-dev"),
+        "{e}"
+    );
+    assert_eq!(Format::parse("format", "h5md").unwrap(), Format::H5md);
+    if cfg!(not(feature = "h5md")) {
+        let c = sample(3, 3, 1);
+        assert_eq!(write(path, Format::H5md, &c).unwrap_err().to_string(), e);
+        assert_eq!(read(path, Format::H5md, 3, -1).unwrap_err().to_string(), e);
+    }
 }
