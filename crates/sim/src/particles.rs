@@ -61,16 +61,20 @@ impl Format {
             Format::Csv => "csv",
             Format::LammpsDump => "lammps-dump",
             Format::Xyz => "xyz",
+            Format::LammpsData => "lammps-data",
+            Format::H5md => "h5md",
         }
     }
 
     /// The format a file's extension names, if it names one: `.csv`; `.dump`, `.lammpstrj`;
-    /// `.xyz`, `.extxyz`.
+    /// `.xyz`, `.extxyz`; `.data`, `.lmp`; `.h5md`, `.h5`.
     pub fn of_extension(path: &Path) -> Option<Self> {
         match path.extension()?.to_str()? {
             "csv" => Some(Format::Csv),
             "dump" | "lammpstrj" => Some(Format::LammpsDump),
             "xyz" | "extxyz" => Some(Format::Xyz),
+            "data" | "lmp" => Some(Format::LammpsData),
+            "h5md" | "h5" => Some(Format::H5md),
             _ => None,
         }
     }
