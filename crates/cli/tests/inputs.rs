@@ -317,3 +317,34 @@ fn naive_trajectory_at_the_top_of_the_range() {
     assert_eq!(rows.len(), 201);
     assert!(rows.iter().flatten().all(|x| x.is_finite()));
 }
+
+/// Particles from a file (`system.initial`): a file a run cannot start from is refused with
+/// exit 2 naming the file and the records, the keys the file replaces naming the key.
+#[test]
+fn bad_initial_particle_files_are_refused() {
+    let dir = std::env::temp_dir().join(format!("haff-initial-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("overlap.csv");
+    std::fs::write(
+        &file,
+        "# box = 10 10\nx,y,vx,vy\n1,1,0.5,0\n1.5,1,-0.5,0\n5,5,0,1\n",
+    )
+    .unwrap();
+    let clean = dir.join("clean.csv");
+    std::fs::write(
+        &clean,
+        "# box = 10 10\nx,y,vx,vy\n1,1,0.5,0\n3,1,-0.5,0\n5,5,0,1\n",
+    )
+    .unwrap();
+    let run = |file: &std::path::Path, extra: &str| {
+        format!(
+            "[system]\ndimension = 2\ninitial = {{ file = {:?} }}\n{extra}\n\
+             [collision]\nlaw = \"constant\"\nrestitution = 0.9\n\
+             [run]\ncollisions_per_particle = 1\n",
+            file.display().to_string()
+        )
+    };
+    assert_run_rejected(&run(&file, ""), "records 0 and 1");
+    assert_run_rejected(&run(&clean, "particles = 3"), "system.particles");
+    assert_run_rejected(&run(&clean, "temperature = 2.0"), "system.temperature");
+}
