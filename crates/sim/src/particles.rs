@@ -1,7 +1,8 @@
 //! Particle files in and out (issue 38): a [`Configuration`] — the box and every particle's
 //! position, and what the file has of velocities, diameters, masses, species and spins —
 //! read from and written to the formats the community's tools read: `csv` (haff's columns),
-//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`).
+//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`), `vtk`
+//! (the `.vtu` of haff's snapshots).
 //!
 //! Reading checks everything a run needs before it starts ([`Configuration::check`]):
 //! finite numbers, particles inside the box, no two spheres overlapping (the first pair
@@ -14,6 +15,7 @@
 mod csv;
 mod lammps;
 mod overlaps;
+mod vtu;
 mod xyz;
 
 use crate::error::{Error, Result};
@@ -36,11 +38,15 @@ pub enum Format {
     /// Extended XYZ: the count, a comment line with `Lattice="..."` (orthogonal) and
     /// `Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1`, then the particles.
     Xyz,
+    /// The VTK XML unstructured grid of haff's snapshots (`snapshot_NNNNNN.vtu`): points,
+    /// point data `radius`, `mass`, `velocity`, `species`, `angular_velocity`, and the box
+    /// as field data `box` (a `.vtu` without it is read only with the sides given).
+    Vtk,
 }
 
 impl Format {
     /// The names of the formats, as a run file spells them.
-    pub const NAMES: [&'static str; 3] = ["csv", "lammps-dump", "xyz"];
+    pub const NAMES: [&'static str; 4] = ["csv", "lammps-dump", "xyz", "vtk"];
 
     /// The format named `name` (one of [`Format::NAMES`]), or an error naming `key`.
     pub fn parse(key: &str, name: &str) -> Result<Self> {
@@ -48,6 +54,7 @@ impl Format {
             "csv" => Ok(Format::Csv),
             "lammps-dump" => Ok(Format::LammpsDump),
             "xyz" => Ok(Format::Xyz),
+            "vtk" => Ok(Format::Vtk),
             other => Err(Error::input(
                 key,
                 format!(
@@ -196,6 +203,18 @@ impl Configuration {
 /// Reads frame `frame` (0 the first, -1 the last) of the particle file `path` of `format`
 /// in `dimension` dimensions, without checking it ([`Configuration::check`]).
 pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result<Configuration> {
+    read_with_box(path, format, dimension, frame, None)
+}
+
+/// [`read`], with the box's `sides` for a file that holds none (a `.vtu` not written by
+/// haff); a box the file holds must agree with them.
+pub fn read_with_box(
+    path: &Path,
+    format: Format,
+    dimension: usize,
+    frame: i64,
+    sides: Option<&[f64]>,
+) -> Result<Configuration> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::ParticleFile {
         path: path.to_path_buf(),
         at: "file".into(),
@@ -206,23 +225,64 @@ pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result
         at,
         message,
     };
-    match format {
-        Format::Csv => csv::parse(&text, dimension).map_err(|(at, m)| fail(at, m)),
-        Format::LammpsDump => {
-            lammps::parse_dump(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
-        }
-        Format::Xyz => xyz::parse(&text, dimension, frame).map_err(|(at, m)| fail(at, m)),
+    let mut c = match format {
+        Format::Csv => csv::parse(&text, dimension),
+        Format::LammpsDump => lammps::parse_dump(&text, dimension, frame),
+        Format::Xyz => xyz::parse(&text, dimension, frame),
+        Format::Vtk => vtu::parse(&text, dimension, frame),
     }
+    .map_err(|(at, m)| fail(at, m))?;
+    match sides {
+        Some(given) if c.sides.is_empty() => c.sides = given.to_vec(),
+        Some(given) if c.sides != given => {
+            return Err(fail(
+                "box".into(),
+                format!(
+                    "the file's box {:?} differs from the sides given {given:?}",
+                    c.sides
+                ),
+            ))
+        }
+        None if c.sides.is_empty() => {
+            return Err(fail(
+                "box".into(),
+                "the file holds no box: give its sides".into(),
+            ))
+        }
+        _ => {}
+    }
+    Ok(c)
 }
 
 /// Writes `configuration` to `path` in `format` (atomically, numbers in the shortest form
-/// that reads back to the same bits).
+/// that reads back to the same bits; `vtk`: binary f64 arrays, the time not kept).
 pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Result<()> {
-    crate::output::write_file(path, |out| match format {
-        Format::Csv => csv::write(out, configuration),
-        Format::LammpsDump => lammps::write_dump(out, configuration, 0),
-        Format::Xyz => xyz::write(out, configuration),
-    })
+    let text = |write: fn(&mut dyn std::io::Write, &Configuration) -> std::io::Result<()>| {
+        crate::output::write_file(path, |out| write(out, configuration))
+    };
+    match format {
+        Format::Csv => text(csv::write),
+        Format::LammpsDump => text(|out, c| lammps::write_dump(out, c, 0)),
+        Format::Xyz => text(xyz::write),
+        Format::Vtk => vtu::write(path, configuration),
+    }
+}
+
+/// One LAMMPS `dump custom` frame of `c` at `timestep` (a frame of a snapshot trajectory).
+pub(crate) fn write_lammps_frame(
+    out: &mut dyn std::io::Write,
+    c: &Configuration,
+    timestep: u64,
+) -> std::io::Result<()> {
+    lammps::write_dump(out, c, timestep)
+}
+
+/// One extended XYZ frame of `c` (a frame of a snapshot trajectory).
+pub(crate) fn write_xyz_frame(
+    out: &mut dyn std::io::Write,
+    c: &Configuration,
+) -> std::io::Result<()> {
+    xyz::write(out, c)
 }
 
 /// Parses a number of a text format, naming the line and column when it is not one.

@@ -107,7 +107,7 @@ const SEEDS: [&str; 19] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 51] = [
+const KEYS: [&str; 54] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -159,10 +159,13 @@ const KEYS: [&str; 51] = [
     "rotational_temperature",
     "tangential_restitution",
     "friction",
+    "snapshots",
+    "every",
+    "format",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 41] = [
+const VALUES: [&str; 48] = [
     "0",
     "1",
     "-1",
@@ -205,6 +208,14 @@ const VALUES: [&str; 41] = [
     "{ axis = \"y\", bins = 8 }",
     "{ axis = \"z\", bins = 0 }",
     "[0.0, -1.0]",
+    // output.snapshots and its formats (issue 38), good and bad.
+    "\"vtk\"",
+    "\"lammps-dump\"",
+    "\"h5md\"",
+    "[\"vtk\", \"xyz\"]",
+    "[\"xyz\", \"xyz\"]",
+    "{ every = 1, format = [\"lammps-dump\", \"xyz\"] }",
+    "{ every = 2, format = [] }",
 ];
 
 /// One mutation of a run file's text.
@@ -702,7 +713,7 @@ fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
     };
     let dir = std::env::temp_dir().join(format!("haff-fuzz-particles-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz]
+    let seeds = [Format::Csv, Format::LammpsDump, Format::Xyz, Format::Vtk]
         .into_iter()
         .map(|format| {
             let path = dir.join("seed");
