@@ -150,18 +150,19 @@ def test_ovito_opens_the_trajectories(out):
 
 def test_haff_reads_the_trajectories_back(out):
     """`haff.read_configuration` (any frame, -1 the last) finds the frames parsed here; a
-    package with the `vtk` format reads the `.vtu` to the same bits."""
+    package with the `vtk` format reads the `.vtu` to the same bits. Unchecked: spheres of
+    an event-driven run touch to rounding (overlaps of 1e-16 that the check refuses)."""
     haff = pytest.importorskip("haff")
     frames = xyz_frames(out / "snapshots.xyz")
     for k, frame in enumerate(frames):
         for name, format in (("snapshots.xyz", "xyz"), ("snapshots.lammpstrj", "lammps-dump")):
-            c = haff.read_configuration(out / name, format, frame=k)
+            c = haff.read_configuration(out / name, format, frame=k, check=False)
             np.testing.assert_array_equal(c["positions"], frame["pos"], err_msg=f"{name} {k}")
             np.testing.assert_array_equal(c["box"], BOX)
-    last = haff.read_configuration(out / "snapshots.xyz", "xyz")
+    last = haff.read_configuration(out / "snapshots.xyz", "xyz", check=False)
     assert last["time"] == frames[-1]["time"]
     try:
-        vtu = haff.read_configuration(out / "snapshot_000004.vtu", "vtk")
+        vtu = haff.read_configuration(out / "snapshot_000004.vtu", "vtk", check=False)
     except haff.ConfigError as e:
         pytest.skip(f"the installed package predates the vtk format: {e}")
     np.testing.assert_array_equal(vtu["positions"], frames[-1]["pos"])
