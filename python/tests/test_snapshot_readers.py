@@ -167,3 +167,43 @@ def test_haff_reads_the_trajectories_back(out):
         pytest.skip(f"the installed package predates the vtk format: {e}")
     np.testing.assert_array_equal(vtu["positions"], frames[-1]["pos"])
     np.testing.assert_array_equal(vtu["box"], BOX)
+
+
+def test_python_runs_write_the_same_trajectories(out, tmp_path):
+    """haff.Simulation with the format list of the run file writes the command's files byte
+    for byte; snapshot_files() names the `.vtu` (with "vtk"), else the trajectory."""
+    haff = pytest.importorskip("haff")
+    config = pytest.importorskip("tomllib").loads(RUN)
+    sim = haff.Simulation(config, output_dir=tmp_path / "py")
+    sim.run(progress=False)
+    sim.write()
+    for name in ("snapshots.xyz", "snapshots.lammpstrj", "snapshot_000004.vtu", "snapshots.pvd"):
+        assert (tmp_path / "py" / name).read_bytes() == (out / name).read_bytes(), name
+    assert [p.name for _, p in sim.snapshot_files()] == [
+        f"snapshot_{k:06d}.vtu" for k in SNAPSHOTS]
+    config["output"]["snapshots"]["format"] = "xyz"
+    sim = haff.Simulation(config, output_dir=tmp_path / "xyz")
+    sim.run(progress=False)
+    assert [p.name for _, p in sim.snapshot_files()] == ["snapshots.xyz"] * len(SNAPSHOTS)
+    assert (tmp_path / "xyz" / "snapshots.xyz").read_bytes() == \
+        (out / "snapshots.xyz").read_bytes()
+
+
+def test_a_vtu_without_its_box_needs_the_box(out, tmp_path):
+    """A `.vtu` whose box field data is taken out reads only with `box` given (then the
+    same bits); a box that differs from the file's is refused."""
+    haff = pytest.importorskip("haff")
+    text = (out / "snapshot_000002.vtu").read_text()
+    bare = tmp_path / "bare.vtu"
+    bare.write_text(re.sub(r"<FieldData>.*?</FieldData>", "", text))
+    try:
+        with pytest.raises(haff.ConfigError, match=r"bare\.vtu: box: .*give its sides"):
+            haff.read_configuration(bare, "vtk", check=False)
+        c = haff.read_configuration(bare, "vtk", check=False, box=BOX)
+    except TypeError as e:
+        pytest.skip(f"the installed package predates read_configuration(box=...): {e}")
+    whole = haff.read_configuration(out / "snapshot_000002.vtu", "vtk", check=False)
+    for key in whole:
+        np.testing.assert_array_equal(c[key], whole[key], err_msg=key)
+    with pytest.raises(haff.ConfigError, match="box.*differs"):
+        haff.read_configuration(out / "snapshot_000002.vtu", "vtk", check=False, box=[1, 2, 3])

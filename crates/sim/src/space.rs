@@ -460,7 +460,9 @@ impl SpaceObserver {
         }
         if let (Some(s), true) = (&o.snapshots, snapshot_due) {
             let name = snapshots::record_name(&s.format, sample);
-            let dir = (self.directory.clone())
+            let dir = self
+                .directory
+                .clone()
                 .ok_or_else(|| Error::input("output.snapshots", NO_DIRECTORY))?;
             if self.writer {
                 let species: Vec<u32> = system
