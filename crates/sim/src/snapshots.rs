@@ -7,7 +7,8 @@
 //! A trajectory grows by appending; its length after every frame is kept in the records of
 //! check-points, and each frame is written from that length on (the file cut there first):
 //! a run resumed from a check-point continues its trajectories exactly as the run that was
-//! not interrupted, whatever frames it had written after the check-point.
+//! not interrupted, whatever frames it had written after the check-point. Resumed into
+//! another directory, it starts them there with the frames from the check-point on.
 
 use crate::description::{SnapshotFormat, SnapshotFormats};
 use crate::error::{Error, Result};
@@ -107,13 +108,20 @@ fn configuration_of<const D: usize>(snapshot: &Snapshot<'_, D>) -> Configuration
 
 /// Writes a frame into `path` from byte `from` on (the file cut there first) and returns
 /// the file's length after it. A file shorter than `from` was changed since the frames
-/// before were written: refused, naming it.
+/// before were written: refused, naming it. A missing file is started afresh (a run
+/// resumed into another directory: its trajectories there begin at the check-point, as
+/// its `.vtu` files do).
 fn append(
     path: &Path,
     from: u64,
     frame: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<u64> {
     let fail = |e| Error::write(path, e);
+    let from = if path.try_exists().map_err(fail)? {
+        from
+    } else {
+        0
+    };
     let mut file = std::fs::OpenOptions::new()
         .write(true)
         .create(true)

@@ -104,7 +104,8 @@ fn one_trajectory_alone() {
 /// A run stopped at a check-point, with bytes written after it (as a run killed after its
 /// check-point writes frames the check-point does not know of), then resumed: the same
 /// trajectories, byte for byte, as a run that went through (both check-pointing every
-/// sample); a trajectory cut shorter than the check-point says is refused.
+/// sample); resumed into another directory, the trajectories there hold the frames from the
+/// check-point on; a trajectory cut shorter than the check-point says is refused.
 #[test]
 fn resumed_runs_continue_the_trajectories_exactly() {
     let text = text(3, "[\"lammps-dump\", \"xyz\", \"vtk\"]");
@@ -141,6 +142,26 @@ fn resumed_runs_continue_the_trajectories_exactly() {
             "{file}"
         );
     }
+    // Resumed into another directory: the trajectories there start at the check-point,
+    // the bytes of the run that went through from the check-point's length on.
+    let (elsewhere, before) = (scratch("elsewhere"), scratch("before"));
+    let mut first = Simulation::from_toml(&text, "t.toml".as_ref()).unwrap();
+    first.set_checkpoints(&before, Some(1));
+    first.set_output_dir(&before);
+    first.run(&mut (), Some(4)).unwrap();
+    let mut rest = Simulation::resume(&before).unwrap();
+    rest.set_output_dir(&elsewhere);
+    rest.run(&mut (), None).unwrap();
+    for name in ["snapshots.xyz", "snapshots.lammpstrj"] {
+        let (part, all) = (
+            std::fs::read(before.join(name)).unwrap(),
+            std::fs::read(whole.join(name)).unwrap(),
+        );
+        assert!(
+            std::fs::read(elsewhere.join(name)).unwrap() == all[part.len()..],
+            "{name}"
+        );
+    }
     // Cut the trajectory below the check-point's length: refused, naming the key.
     let mut first = Simulation::from_toml(&text, "t.toml".as_ref()).unwrap();
     first.set_checkpoints(&parts, Some(1));
@@ -156,8 +177,9 @@ fn resumed_runs_continue_the_trajectories_exactly() {
             && e.to_string().contains("snapshots.xyz"),
         "{e}"
     );
-    std::fs::remove_dir_all(&whole).ok();
-    std::fs::remove_dir_all(&parts).ok();
+    for dir in [whole, parts, elsewhere, before] {
+        std::fs::remove_dir_all(dir).ok();
+    }
 }
 
 /// One format is written back as a plain string (the `parameters` of summary.json and the
