@@ -12,19 +12,30 @@
 
 use crate::description::{SnapshotFormat, SnapshotFormats};
 use crate::error::{Error, Result};
-use crate::particles::Configuration;
+use crate::particles::{self, Configuration};
 use crate::vtk::{write_particles, ParticleData};
 use gas::system::System;
 use std::io::{Seek, SeekFrom, Write};
 use std::path::Path;
 
-/// The trajectory file of `format`, None for one file per snapshot (`vtk`).
-pub fn trajectory_name(format: SnapshotFormat) -> Option<&'static str> {
+/// Writes one frame of a trajectory: the configuration and the sample's number.
+type FrameWriter = fn(&mut dyn Write, &Configuration, u64) -> std::io::Result<()>;
+
+/// The trajectory file of `format` and its frame writer; None for one file per snapshot
+/// (`vtk`).
+fn trajectory(format: SnapshotFormat) -> Option<(&'static str, FrameWriter)> {
     match format {
         SnapshotFormat::Vtk => None,
-        SnapshotFormat::LammpsDump => Some("snapshots.lammpstrj"),
-        SnapshotFormat::Xyz => Some("snapshots.xyz"),
+        SnapshotFormat::LammpsDump => Some(("snapshots.lammpstrj", particles::write_lammps_frame)),
+        SnapshotFormat::Xyz => Some(("snapshots.xyz", |out, c, _| {
+            particles::write_xyz_frame(out, c)
+        })),
     }
+}
+
+/// The trajectory file of `format`, None for one file per snapshot (`vtk`).
+pub fn trajectory_name(format: SnapshotFormat) -> Option<&'static str> {
+    trajectory(format).map(|(name, _)| name)
 }
 
 /// The `.vtu` of snapshot `sample` (the sample's number, from 0).
@@ -59,12 +70,9 @@ pub fn write<const D: usize>(
 ) -> Result<()> {
     let mut configuration = None;
     for &format in formats.list() {
-        let Some(name) = trajectory_name(format) else {
-            write_particles(
-                &dir.join(vtu_name(snapshot.sample)),
-                snapshot.system,
-                &snapshot.data,
-            )?;
+        let Some((name, frame)) = trajectory(format) else {
+            let path = dir.join(vtu_name(snapshot.sample));
+            write_particles(&path, snapshot.system, &snapshot.data)?;
             continue;
         };
         let c = configuration.get_or_insert_with(|| configuration_of(snapshot));
@@ -75,14 +83,8 @@ pub fn write<const D: usize>(
                 trajectories.len() - 1
             }
         };
-        let path = dir.join(name);
-        let from = trajectories[at].1;
-        trajectories[at].1 = append(&path, from, |out| match format {
-            SnapshotFormat::LammpsDump => {
-                crate::particles::write_lammps_frame(out, c, snapshot.sample as u64)
-            }
-            _ => crate::particles::write_xyz_frame(out, c),
-        })?;
+        let (path, from) = (dir.join(name), trajectories[at].1);
+        trajectories[at].1 = append(&path, from, |out| frame(out, c, snapshot.sample as u64))?;
     }
     Ok(())
 }
