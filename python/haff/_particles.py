@@ -48,15 +48,29 @@ def write_configuration(path: PathLike, format: str, configuration: Mapping[str,
     ``positions`` and any of ``velocities``, ``diameters``, ``masses``, ``species``,
     ``spins``, ``time``) in ``format``, after the checks of :func:`read_configuration`.
     Numbers are written in the shortest form that reads back to the same float64."""
+    arrays = _arrays(configuration)
+    time = configuration.get("time")
+    _haff.write_configuration(os.fspath(path), str(format), *arrays,
+                              None if time is None else float(time))
+
+
+def _arrays(configuration: Mapping[str, Any], box_required: bool = True) -> tuple:
+    """The arguments of the bindings for a configuration dict: box (empty if absent and
+    not required), positions, velocities, diameters, masses, species, spins, as contiguous
+    float64 arrays (species a list of ints)."""
     unknown = set(configuration) - {"box", "positions", *OPTIONAL}
     if unknown:
         raise ConfigError(f"configuration: unknown keys {sorted(unknown)}; allowed: box, "
                           f"positions, {', '.join(OPTIONAL)}")
-    for key in ("box", "positions"):
+    for key in ("box", "positions") if box_required else ("positions",):
         if key not in configuration:
             raise ConfigError(f"configuration: `{key}` is required")
-    box = [float(x) for x in np.atleast_1d(np.asarray(configuration["box"], float))]
-    d = len(box)
+    box = configuration.get("box")
+    box = [] if box is None else [float(x) for x in np.atleast_1d(np.asarray(box, float))]
+    positions = np.ascontiguousarray(configuration["positions"], dtype=float)
+    if positions.ndim != 2:
+        raise ConfigError(f"positions: an (N, D) array, not of shape {positions.shape}")
+    d = len(box) or positions.shape[1]
 
     def matrix(key, width):
         value = configuration.get(key)
@@ -76,8 +90,5 @@ def write_configuration(path: PathLike, format: str, configuration: Mapping[str,
         species = [int(s) for s in np.asarray(species).ravel()]
         if any(s < 0 for s in species):
             raise ConfigError("species: indices from 0")
-    time = configuration.get("time")
-    _haff.write_configuration(os.fspath(path), str(format), box, matrix("positions", d),
-                              matrix("velocities", d), vector("diameters"), vector("masses"),
-                              species, matrix("spins", 3),
-                              None if time is None else float(time))
+    return (box, matrix("positions", d), matrix("velocities", d), vector("diameters"),
+            vector("masses"), species, matrix("spins", 3))

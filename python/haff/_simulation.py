@@ -68,7 +68,9 @@ def config_to_toml(config: Mapping[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _build(config: Config) -> "_haff._Simulation":
+def _build(config: Config, initial: Optional[Mapping[str, Any]] = None) -> "_haff._Simulation":
+    if initial is not None:
+        return _build_with_initial(config, initial)
     if isinstance(config, Mapping):
         return _haff._Simulation.from_toml(config_to_toml(config), "<dict>")
     if isinstance(config, os.PathLike):
@@ -81,6 +83,25 @@ def _build(config: Config) -> "_haff._Simulation":
         raise ConfigError(f"{config}: no such run file (or give TOML text or a dict)")
     raise ConfigError(
         f"config: a dict, a path to a TOML file or TOML text, not {type(config).__name__}")
+
+
+def _build_with_initial(config: Config, initial: Mapping[str, Any]) -> "_haff._Simulation":
+    """A run whose particles are the arrays of `initial` (see :class:`Simulation`)."""
+    from ._particles import _arrays
+    if not isinstance(initial, Mapping):
+        raise ConfigError(
+            f"initial: a dict of arrays (positions, ...), not {type(initial).__name__}")
+    if isinstance(config, Mapping):
+        text, origin = config_to_toml(config), "<dict>"
+    elif isinstance(config, os.PathLike) or (isinstance(config, str) and os.path.isfile(config)):
+        with open(config, encoding="utf-8") as f:
+            text, origin = f.read(), os.fspath(config)
+    elif isinstance(config, str):
+        text, origin = config, "<toml text>"
+    else:
+        raise ConfigError(
+            f"config: a dict, a path to a TOML file or TOML text, not {type(config).__name__}")
+    return _haff._Simulation.with_initial(text, origin, *_arrays(initial, box_required=False))
 
 
 class Simulation:
@@ -99,6 +120,21 @@ class Simulation:
         :meth:`write` writes there by default.
     force : bool
         Replace another run's outputs in `output_dir` (``haff run --force``).
+    initial : dict of arrays, optional
+        The particles to start from instead of a placement, as
+        :func:`haff.read_configuration` returns them: ``positions`` (N, D) and any of
+        ``box`` (D sides; else ``system.box``), ``velocities`` (N, D; else drawn at
+        ``system.temperature``), ``diameters`` (N,), ``masses`` (N,), ``species`` (N,),
+        ``spins`` (N, 3); a ``time`` is ignored (the run starts at 0). Checked as a particle file (``system.initial``): overlapping
+        spheres, particles outside the box and non-finite values raise
+        :class:`haff.ConfigError` naming the record; ``system.particles``,
+        ``packing_fraction`` and ``species`` are refused (the arrays make them).
+
+        Example::
+
+            c = haff.read_configuration("packing.xyz", "xyz")
+            sim = haff.Simulation({"system": {"dimension": 3}, "collision": {...},
+                                   "run": {...}}, initial=c)
 
     The same description and seed give the same numbers as ``haff run``, bit for bit.
     Runs go on with the GIL released; Ctrl-C interrupts them between pieces (about
@@ -106,8 +142,8 @@ class Simulation:
     """
 
     def __init__(self, config: Config, output_dir: Optional[PathLike] = None,
-                 force: bool = False):
-        self._sim = _build(config)
+                 force: bool = False, initial: Optional[Mapping[str, Any]] = None):
+        self._sim = _build(config, initial)
         if output_dir is not None:
             self.set_output_dir(output_dir, force=force)
 

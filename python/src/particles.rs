@@ -112,16 +112,11 @@ fn scalars(key: &str, array: PyReadonlyArray1<f64>, n: usize) -> PyResult<Vec<f6
     Ok(view.to_vec())
 }
 
-/// Writes a configuration (the dict of `read_configuration`) after checking it, as
-/// `format`.
-#[pyfunction]
-#[pyo3(signature = (path, format, r#box, positions, velocities = None, diameters = None,
-                    masses = None, species = None, spins = None, time = None))]
+/// A configuration of the arrays Python gives (as `read_configuration` returns them),
+/// their shapes checked against `box` (an empty box: the dimension of `dimension`, the
+/// box left to `system.box`).
 #[allow(clippy::too_many_arguments)] // the configuration's arrays, each optional
-fn write_configuration(
-    py: Python<'_>,
-    path: PathBuf,
-    format: &str,
+pub(crate) fn configuration(
     r#box: Vec<f64>,
     positions: PyReadonlyArray2<f64>,
     velocities: Option<PyReadonlyArray2<f64>>,
@@ -130,9 +125,11 @@ fn write_configuration(
     species: Option<Vec<usize>>,
     spins: Option<PyReadonlyArray2<f64>>,
     time: Option<f64>,
-) -> PyResult<()> {
-    let format = format_of(format)?;
-    let d = r#box.len();
+) -> PyResult<Configuration> {
+    let d = match r#box.len() {
+        0 => positions.as_array().shape()[1],
+        d => d,
+    };
     if !(1..=3).contains(&d) {
         return Err(config_error(
             "box",
@@ -140,7 +137,7 @@ fn write_configuration(
         ));
     }
     let n = positions.as_array().shape()[0];
-    let c = Configuration {
+    Ok(Configuration {
         dimension: d,
         sides: r#box,
         positions: vectors("positions", positions, n, d)?,
@@ -163,7 +160,32 @@ fn write_configuration(
             .transpose()?,
         spins: spins.map(|w| vectors("spins", w, n, 3)).transpose()?,
         time,
-    };
+    })
+}
+
+/// Writes a configuration (the dict of `read_configuration`) after checking it, as
+/// `format`.
+#[pyfunction]
+#[pyo3(signature = (path, format, r#box, positions, velocities = None, diameters = None,
+                    masses = None, species = None, spins = None, time = None))]
+#[allow(clippy::too_many_arguments)] // the configuration's arrays, each optional
+fn write_configuration(
+    py: Python<'_>,
+    path: PathBuf,
+    format: &str,
+    r#box: Vec<f64>,
+    positions: PyReadonlyArray2<f64>,
+    velocities: Option<PyReadonlyArray2<f64>>,
+    diameters: Option<PyReadonlyArray1<f64>>,
+    masses: Option<PyReadonlyArray1<f64>>,
+    species: Option<Vec<usize>>,
+    spins: Option<PyReadonlyArray2<f64>>,
+    time: Option<f64>,
+) -> PyResult<()> {
+    let format = format_of(format)?;
+    let c = configuration(
+        r#box, positions, velocities, diameters, masses, species, spins, time,
+    )?;
     py.detach(|| {
         c.check(&path, false)?;
         particles::write(&path, format, &c)

@@ -118,6 +118,35 @@ impl PySimulation {
         Ok(PySimulation::new(inner))
     }
 
+    /// A run from TOML text whose particles are given as arrays (`system.initial`; see
+    /// `particles::configuration`): checked as a particle file's, errors naming
+    /// `initial.<array>` or the record.
+    #[staticmethod]
+    #[pyo3(signature = (text, origin, r#box, positions, velocities = None, diameters = None,
+                        masses = None, species = None, spins = None))]
+    #[allow(clippy::too_many_arguments)] // the configuration's arrays, each optional
+    fn with_initial(
+        py: Python<'_>,
+        text: &str,
+        origin: PathBuf,
+        r#box: Vec<f64>,
+        positions: numpy::PyReadonlyArray2<f64>,
+        velocities: Option<numpy::PyReadonlyArray2<f64>>,
+        diameters: Option<numpy::PyReadonlyArray1<f64>>,
+        masses: Option<numpy::PyReadonlyArray1<f64>>,
+        species: Option<Vec<usize>>,
+        spins: Option<numpy::PyReadonlyArray2<f64>>,
+    ) -> PyResult<Self> {
+        let description = sim::RunDescription::from_toml(text, &origin).map_err(sim_error)?;
+        let particles = crate::particles::configuration(
+            r#box, positions, velocities, diameters, masses, species, spins, None,
+        )?;
+        let inner = py
+            .detach(|| Simulation::with_initial(&description, particles))
+            .map_err(sim_error)?;
+        Ok(PySimulation::new(inner))
+    }
+
     /// A run from a TOML file; errors name the file.
     #[staticmethod]
     fn from_path(path: PathBuf) -> PyResult<Self> {

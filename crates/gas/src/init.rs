@@ -593,6 +593,42 @@ fn lattice<const D: usize>(n: usize, sides: Vector<D>, diameter: f64) -> Result<
         .collect())
 }
 
+/// Velocities of particles of `masses` from the Maxwellian at `temperature`, for particles
+/// placed by someone else (a file): each component Gaussian of variance T/m_i (its own
+/// stream of `seed`), the total momentum removed (the mass-weighted mean subtracted), then
+/// all scaled by one factor so that sum m_i v_i^2 / (N D) = temperature exactly, as the
+/// placements of this module do for one mass ([`maxwellian`]).
+pub fn thermal_velocities<const D: usize>(
+    masses: &[f64],
+    temperature: f64,
+    seed: u64,
+) -> Vec<Vector<D>> {
+    let mut stream = crate::rng::Stream::new(seed, crate::rng::Purpose::Velocities, 0, 0);
+    let mut v: Vec<Vector<D>> = masses
+        .iter()
+        .map(|&m| {
+            let scale = (temperature / m).sqrt();
+            std::array::from_fn(|_| scale * stream.normal())
+        })
+        .collect();
+    let total: f64 = masses.iter().sum();
+    let mean: Vector<D> =
+        std::array::from_fn(|k| v.iter().zip(masses).map(|(x, &m)| m * x[k]).sum::<f64>() / total);
+    for x in &mut v {
+        for k in 0..D {
+            x[k] -= mean[k];
+        }
+    }
+    let energy: f64 = v.iter().zip(masses).map(|(x, &m)| m * dot(x, x)).sum();
+    let scale = (temperature * (masses.len() * D) as f64 / energy).sqrt();
+    for x in &mut v {
+        for c in x.iter_mut() {
+            *c *= scale;
+        }
+    }
+    v
+}
+
 /// Gaussian velocities with zero mean, rescaled so that m <v^2> / D = temperature exactly.
 fn maxwellian<const D: usize>(
     n: usize,

@@ -31,6 +31,8 @@ pub(crate) enum Purpose {
     Walls = 7,
     /// The angular velocities of rough particles at the start.
     Spins = 8,
+    /// The velocities of particles placed by a file without them.
+    Velocities = 9,
 }
 
 /// A counted PCG-64 stream.

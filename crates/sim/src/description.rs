@@ -345,6 +345,8 @@ pub struct SnapshotsOutput {
 pub struct SystemSection {
     #[serde(default = "three")]
     pub dimension: u32,
+    /// The number of particles (with `initial`: the file's, filled in by validation).
+    #[serde(default)]
     pub particles: usize,
     /// The spheres' volume over the (cubic) box's; or `box`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -372,6 +374,49 @@ pub struct SystemSection {
     /// (default: `temperature`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rotational_temperature: Option<f64>,
+    /// The particles from a file or from another run instead of a placement: their number,
+    /// box, diameters, masses and velocities (the normal form holds them resolved:
+    /// `crate::validate` fills in `particles`, `box`, the species and the temperature).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial: Option<InitialSection>,
+    /// Whether the run file gave `temperature` (not serialized: a file's velocities and a
+    /// temperature to draw them at are refused together).
+    #[serde(skip)]
+    pub temperature_given: bool,
+}
+
+/// `system.initial`: where the particles come from.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSection {
+    /// A particle file (`sim::particles`), relative to the working directory.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// Its format (`csv`, `lammps-dump`, `xyz`, ...; by default from the file's extension).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub format: Option<String>,
+    /// The frame of a file of several (0 the first, -1 the last: the default).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame: Option<i64>,
+    /// The output directory of another haff run: its last check-point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub run: Option<String>,
+    /// The total momentum of the file's velocities: reported and kept (`keep`, the
+    /// default) or removed (`remove`: the mass-weighted mean velocity subtracted).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub momentum: Option<MomentumPolicy>,
+    /// The particles' mass density, for files without masses: m = density x the ball's
+    /// volume (pi/6 d^3, pi/4 d^2 in 2D, d in 1D).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+}
+
+/// `system.initial.momentum`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MomentumPolicy {
+    Keep,
+    Remove,
 }
 
 /// One entry of `system.species`.
@@ -668,12 +713,22 @@ fn log() -> Spacing {
 impl RunDescription {
     /// Parses TOML text (see [`parse_toml`]).
     pub fn from_toml(text: &str, origin: &Path) -> Result<Self> {
-        parse_toml(text, origin)
+        let mut description: Self = parse_toml(text, origin)?;
+        description.system.temperature_given = text
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|t| t.get("system")?.as_table()?.get("temperature").cloned())
+            .is_some();
+        Ok(description)
     }
 
     /// Reads and parses a TOML run file.
     pub fn from_path(path: &Path) -> Result<Self> {
-        read_toml(path)
+        let text = std::fs::read_to_string(path).map_err(|e| Error::RunFile {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml(&text, path)
     }
 
     /// The packing fraction of the physical spheres: `system.packing_fraction`, or that of

@@ -278,6 +278,22 @@ fn thermal_rotation<const D: usize>(
 ) -> Result<gas::rotation::Rotation> {
     let system = engine.system().clone();
     let inertia = particle_inertia(plan, rough, &system)?;
+    if let Some(spins) = plan
+        .initial
+        .as_ref()
+        .and_then(|i| i.configuration.spins.as_ref())
+    {
+        // The file's spins (disks: about z only).
+        let angular = spins
+            .iter()
+            .map(|w| if D == 2 { [0.0, 0.0, w[2]] } else { *w })
+            .collect();
+        return Ok(gas::rotation::Rotation {
+            inertia,
+            angular,
+            sliding: 0,
+        });
+    }
     Ok(gas::rotation::Rotation::thermal(
         &system,
         inertia,

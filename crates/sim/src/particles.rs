@@ -48,6 +48,28 @@ impl Format {
     /// The names of the formats, as a run file spells them.
     pub const NAMES: [&'static str; 4] = ["csv", "lammps-dump", "xyz", "vtk"];
 
+    /// The name a run file spells.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Csv => "csv",
+            Format::LammpsDump => "lammps-dump",
+            Format::Xyz => "xyz",
+            Format::Vtk => "vtk",
+        }
+    }
+
+    /// The format a file's extension names, if it names one: `.csv`; `.dump`, `.lammpstrj`;
+    /// `.xyz`, `.extxyz`; `.vtu`.
+    pub fn of_extension(path: &Path) -> Option<Self> {
+        match path.extension()?.to_str()? {
+            "csv" => Some(Format::Csv),
+            "dump" | "lammpstrj" => Some(Format::LammpsDump),
+            "xyz" | "extxyz" => Some(Format::Xyz),
+            "vtu" => Some(Format::Vtk),
+            _ => None,
+        }
+    }
+
     /// The format named `name` (one of [`Format::NAMES`]), or an error naming `key`.
     pub fn parse(key: &str, name: &str) -> Result<Self> {
         match name {

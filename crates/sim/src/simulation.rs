@@ -81,6 +81,8 @@ pub struct Simulation {
     run: Dimensioned,
     /// How its dense start was grown, if it was.
     grown: Option<InitialState>,
+    /// Where its particles came from (`system.initial`), if from a file, a run or code.
+    initial_particles: Option<crate::validate::InitialReport>,
     /// Check-points every this many samples into `checkpoint_dir`.
     checkpoint_every: Option<usize>,
     /// Wall-clock seconds between check-points at the least (0: none).
@@ -164,10 +166,33 @@ impl Simulation {
     /// same description; see [`parallel`]).
     pub fn new_on(description: &RunDescription, comm: Arc<dyn Communicator>) -> Result<Self> {
         let clock = Instant::now();
-        let plan = validate(description)?;
+        Self::start(validate(description)?, comm, clock)
+    }
+
+    /// A run at time 0 from particles given in code (Python's arrays): `system.initial`
+    /// is set to `{}` if absent (a file or run there is refused), and the particles are
+    /// checked and resolved as a file's ([`crate::validate::validate_with`]). A
+    /// configuration without a box takes `system.box`.
+    pub fn with_initial(
+        description: &RunDescription,
+        particles: crate::particles::Configuration,
+    ) -> Result<Self> {
+        let clock = Instant::now();
+        let mut description = description.clone();
+        description
+            .system
+            .initial
+            .get_or_insert_with(Default::default);
+        let plan = crate::validate::validate_with(&description, particles)?;
+        Self::start(plan, parallel::world(), clock)
+    }
+
+    /// The run of a checked plan at time 0.
+    fn start(plan: Plan, comm: Arc<dyn Communicator>, clock: Instant) -> Result<Self> {
         parallel::check_ranks(&plan, comm.size())?;
         let law = law::of_plan(&plan)?;
         let grown;
+        let initial_particles = plan.initial.as_ref().map(|i| i.report.clone());
         let run = in_dimension!(plan.description.system.dimension, D => {
             let (engine, report) = engines::start::<D>(&plan, law, &comm)?;
             grown = report;
@@ -177,6 +202,7 @@ impl Simulation {
             plan,
             run,
             grown: grown.map(|r| InitialState::of(&r)),
+            initial_particles,
             checkpoint_every: None,
             checkpoint_after_seconds: 0.0,
             checkpoint_dir: None,
@@ -237,7 +263,10 @@ impl Simulation {
         let description: RunDescription = records.take("description").map_err(fail)?;
         let every: Option<usize> = records.take("every").map_err(fail)?;
         let grown: Option<InitialState> = records.take_optional("initial_state").map_err(fail)?;
-        let plan = validate(&description).map_err(|e| sections.error(e))?;
+        let initial_particles: Option<crate::validate::InitialReport> =
+            records.take_optional("initial_particles").map_err(fail)?;
+        let plan = crate::validate::validate_from(&description, crate::validate::Source::Saved)
+            .map_err(|e| sections.error(e))?;
         parallel::check_ranks(&plan, comm.size())?;
         if description != plan.description {
             return Err(sections.error("the run description is not in its normal form"));
@@ -258,6 +287,7 @@ impl Simulation {
             plan,
             run,
             grown,
+            initial_particles,
             checkpoint_every: every,
             checkpoint_after_seconds: 0.0,
             checkpoint_dir: None,
@@ -274,12 +304,16 @@ impl Simulation {
         plan: &Plan,
         every: Option<usize>,
         grown: Option<&InitialState>,
+        initial_particles: Option<&crate::validate::InitialReport>,
     ) -> Result<RecordsOut> {
         let mut records = RecordsOut::new();
         records.push("description", &plan.description)?;
         records.push("every", &every)?;
         if let Some(grown) = grown {
             records.push("initial_state", grown)?;
+        }
+        if let Some(report) = initial_particles {
+            records.push("initial_particles", report)?;
         }
         Ok(records)
     }
@@ -299,7 +333,12 @@ impl Simulation {
         } else {
             path.to_path_buf()
         };
-        let preamble = Self::preamble(&self.plan, self.checkpoint_every, self.grown.as_ref())?;
+        let preamble = Self::preamble(
+            &self.plan,
+            self.checkpoint_every,
+            self.grown.as_ref(),
+            self.initial_particles.as_ref(),
+        )?;
         let root = self.is_root();
         each!(&mut self.run, r => r.write_checkpoint(&file, checkpoint::RUN, preamble, root))
     }
@@ -449,6 +488,38 @@ impl Simulation {
         })
     }
 
+    /// The particles now as a particle file holds them ([`crate::particles`]): the box,
+    /// positions, velocities (under `[shear]` relative to the flow), diameters, masses,
+    /// species (the index of the plan's species), the spins of rough particles, the time.
+    pub fn configuration(&mut self) -> crate::particles::Configuration {
+        let kinds = self.plan.kinds();
+        let time = self.time();
+        each!(&mut self.run, r => {
+            let engine = r.engine_mut();
+            let spins = engine.rotation().map(|w| w.angular.clone());
+            let system = engine.system();
+            let lift = |v: &[f64]| -> [f64; 3] { std::array::from_fn(|k| v.get(k).copied().unwrap_or(0.0)) };
+            crate::particles::Configuration {
+                dimension: system.sides.len(),
+                sides: system.sides.to_vec(),
+                positions: system.positions.iter().map(|x| lift(x)).collect(),
+                velocities: Some(system.velocities.iter().map(|x| lift(x)).collect()),
+                diameters: Some(system.radii.iter().map(|r| 2.0 * r).collect()),
+                masses: Some(system.masses.clone()),
+                species: Some(
+                    system
+                        .radii
+                        .iter()
+                        .zip(&system.masses)
+                        .map(|(&r, &m)| kinds.iter().position(|&k| k == (r, m)).unwrap_or(0))
+                        .collect(),
+                ),
+                spins,
+                time: Some(time),
+            }
+        })
+    }
+
     /// The granular temperature now, T = <m c^2> / D ([`gas::observe::temperature`]).
     pub fn temperature(&mut self) -> f64 {
         each!(&mut self.run, r => gas::observe::temperature(r.engine_mut().system()))
@@ -525,12 +596,13 @@ impl Simulation {
         let clock = Instant::now();
         let root = self.is_root();
         let (plan, every, grown) = (&self.plan, self.checkpoint_every, self.grown);
+        let initial_particles = self.initial_particles.as_ref();
         let after_seconds = if self.ranks() > 1 {
             0.0
         } else {
             self.checkpoint_after_seconds
         };
-        let preamble = || Self::preamble(plan, every, grown.as_ref());
+        let preamble = || Self::preamble(plan, every, grown.as_ref(), initial_particles);
         let file = self
             .checkpoint_dir
             .as_ref()
@@ -594,6 +666,9 @@ impl Simulation {
         }
         if let Some(grown) = &self.grown {
             summary["initial_state"] = serde_json::json!(grown);
+        }
+        if let Some(report) = &self.initial_particles {
+            summary["initial_particles"] = serde_json::json!(report);
         }
         if let Some(walls) = each!(&self.run, r => r.observer::<crate::walls::WallSeries>()) {
             summary["walls"] = crate::walls::summary(walls);

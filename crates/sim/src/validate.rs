@@ -12,6 +12,7 @@
 
 mod driving;
 mod field;
+mod initial;
 mod law;
 pub(crate) mod material;
 mod rough;
@@ -22,6 +23,8 @@ mod walls;
 
 pub use crate::engines::EngineSpec;
 pub use field::GravitySpec;
+pub(crate) use initial::Source;
+pub use initial::{Initial, InitialReport};
 pub use law::{LawSpec, StochasticTable};
 pub(crate) use material::material;
 pub use rough::RoughSpec;
@@ -105,13 +108,33 @@ pub struct Plan {
     pub msd: bool,
     /// Rough particles (`collision.tangential_restitution` > -1).
     pub rough: Option<RoughSpec>,
+    /// The particles of `system.initial` (a file's, another run's, given in code), checked;
+    /// None for a placement, and for a check-point's plan (its state holds them).
+    pub initial: Option<std::sync::Arc<Initial>>,
     /// What a user should know before the run starts (its estimated work, when large).
     pub notes: Vec<String>,
 }
 
-/// Checks every key of `description` and returns the plan of the run.
+/// Checks every key of `description` and returns the plan of the run (reading the
+/// particles of `system.initial`, if any).
 pub fn validate(description: &RunDescription) -> Result<Plan> {
+    validate_from(description, Source::Description)
+}
+
+/// [`validate`] for a description with `system.initial = {}` and its particles given in
+/// code (Python's arrays), checked as a file's.
+pub fn validate_with(
+    description: &RunDescription,
+    particles: crate::particles::Configuration,
+) -> Result<Plan> {
+    validate_from(description, Source::Given(particles))
+}
+
+/// The plan of `description`, its `system.initial` read from `source`.
+pub(crate) fn validate_from(description: &RunDescription, source: Source) -> Result<Plan> {
     let resolved = material::resolve_named_material(description)?;
+    let space = engines::abilities_of(&resolved);
+    let (resolved, initial) = initial::resolve(&resolved, source, &space)?;
     let description = &resolved;
     let species = system::check_system(description)?;
     let abilities = engines::abilities_of(description);
@@ -152,6 +175,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         pressure_tensor,
         msd,
         rough,
+        initial,
         notes: Vec::new(),
     };
     if plan.driving.is_some()
@@ -161,6 +185,7 @@ pub fn validate(description: &RunDescription) -> Result<Plan> {
         plan.driving_interval = Some(crate::species::default_driving_interval(&plan));
     }
     engines::check_work(&mut plan)?;
+    initial::finish(&mut plan)?;
     Ok(plan)
 }
 

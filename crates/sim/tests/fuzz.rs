@@ -107,7 +107,7 @@ const SEEDS: [&str; 19] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 54] = [
+const KEYS: [&str; 60] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -159,13 +159,19 @@ const KEYS: [&str; 54] = [
     "rotational_temperature",
     "tangential_restitution",
     "friction",
+    "initial",
+    "file",
+    "format",
+    "frame",
+    "run",
+    "momentum",
+    "density",
     "snapshots",
     "every",
-    "format",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 48] = [
+const VALUES: [&str; 52] = [
     "0",
     "1",
     "-1",
@@ -208,9 +214,13 @@ const VALUES: [&str; 48] = [
     "{ axis = \"y\", bins = 8 }",
     "{ axis = \"z\", bins = 0 }",
     "[0.0, -1.0]",
+    "{ run = \"/nonexistent/haff\" }",
+    "{ file = \"missing.csv\" }",
+    "{ file = \"fuzz.toml\", format = \"xyz\", frame = 3 }",
+    "\"remove\"",
+    "\"lammps-dump\"",
     // output.snapshots and its formats (issue 38), good and bad.
     "\"vtk\"",
-    "\"lammps-dump\"",
     "\"h5md\"",
     "[\"vtk\", \"xyz\"]",
     "[\"xyz\", \"xyz\"]",
@@ -449,16 +459,58 @@ fn run_files(cases: u32) {
         failure_persistence: None,
         ..Config::default()
     });
-    let strategy = (0..SEEDS.len(), prop::collection::vec(mutation(), 1..4));
+    let seeds = run_seeds();
+    let strategy = (0..seeds.len(), prop::collection::vec(mutation(), 1..4));
     runner
         .run(&strategy, |(seed, mutations)| {
-            let text = mutate(SEEDS[seed], &mutations);
+            let text = mutate(&seeds[seed], &mutations);
             watch(format!("run file:\n{text}"));
             report_progress("run files");
             no_panic(|| check_run_file(&text))
                 .map_err(|e| TestCaseError::fail(format!("{e}\n--- input:\n{text}")))
         })
         .unwrap();
+}
+
+/// The seed run files: [`SEEDS`] and runs from a particle file (`system.initial`, a 2D
+/// lattice of 36 spheres written once per process in every text format).
+fn run_seeds() -> Vec<String> {
+    static FILES: OnceLock<Vec<String>> = OnceLock::new();
+    let from_files = FILES.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("haff-fuzz-initial-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let c = sim::particles::Configuration {
+            dimension: 2,
+            sides: vec![12.0, 12.0],
+            positions: (0..36).map(|i| [1.0 + 2.0 * (i % 6) as f64, 1.0 + 2.0 * (i / 6) as f64, 0.0]).collect(),
+            velocities: Some((0..36).map(|i| [(i as f64).sin(), (i as f64).cos(), 0.0]).collect()),
+            diameters: Some(vec![1.2; 36]),
+            masses: None,
+            species: None,
+            spins: None,
+            time: None,
+        };
+        [("csv", "lattice.csv"), ("lammps-dump", "lattice.dump"), ("xyz", "lattice.xyz")]
+            .iter()
+            .map(|(format, name)| {
+                let path = dir.join(name);
+                let format = sim::particles::Format::parse("format", format).unwrap();
+                sim::particles::write(&path, format, &c).unwrap();
+                format!(
+                    "[system]\ndimension = 2\ninitial = {{ file = {:?}, format = \"{}\", momentum = \"remove\" }}\n\
+                     [collision]\nlaw = \"constant\"\nrestitution = 0.8\n\
+                     [run]\ncollisions_per_particle = 3\nsamples = 3\n",
+                    path.display().to_string(),
+                    format.name()
+                )
+            })
+            .collect()
+    });
+    SEEDS
+        .iter()
+        .map(|s| s.to_string())
+        .chain(from_files.iter().cloned())
+        .collect()
 }
 
 /// A valid check-point of each seed file (written once per process).

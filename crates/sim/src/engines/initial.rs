@@ -13,6 +13,23 @@ use gas::System;
 /// a melted lattice, or grown: `gas::init`), or (point particles) points placed
 /// independently; and the report of a growth.
 pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<GrowthReport>)> {
+    if let Some(initial) = &plan.initial {
+        let system = of_configuration::<D>(&initial.configuration);
+        if plan.description.system.sides.is_some() {
+            return Ok((system, None));
+        }
+        // An engine without space: the cube of the file's packing fraction.
+        let side = match plan.species.len() {
+            1 => monodisperse_side::<D>(
+                system.len(),
+                plan.species[0].diameter,
+                plan.description.packing_fraction(),
+                1.0,
+            ),
+            _ => mixture_side::<D>(&system, plan.description.packing_fraction(), 1.0),
+        };
+        return Ok((stretched(system, [side; D]), None));
+    }
     let s = &plan.description.system;
     let weight = plan.particle_weight;
     let Species { diameter, mass, .. } = plan.species[0];
@@ -71,6 +88,31 @@ pub(super) fn system<const D: usize>(plan: &Plan) -> Result<(System<D>, Option<G
             e,
         )
     })
+}
+
+/// The system of a checked configuration of `D` dimensions with every column filled in
+/// (`crate::validate::Initial`): the file's order of particles, radii half the diameters.
+fn of_configuration<const D: usize>(c: &crate::particles::Configuration) -> System<D> {
+    let cut = |v: &[f64; 3]| -> [f64; D] { std::array::from_fn(|k| v[k]) };
+    System {
+        sides: std::array::from_fn(|k| c.sides[k]),
+        positions: c.positions.iter().map(cut).collect(),
+        velocities: c
+            .velocities
+            .as_ref()
+            .expect("filled in by validation")
+            .iter()
+            .map(cut)
+            .collect(),
+        radii: c
+            .diameters
+            .as_ref()
+            .expect("filled in by validation")
+            .iter()
+            .map(|d| 0.5 * d)
+            .collect(),
+        masses: c.masses.clone().expect("filled in by validation"),
+    }
 }
 
 /// The box side of `n` simulated spheres of one kind standing for `n` x `weight` physical

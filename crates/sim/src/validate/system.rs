@@ -15,6 +15,12 @@ pub(super) fn check_system(description: &RunDescription) -> Result<Vec<Species>>
             "1, 2 or 3",
         ));
     }
+    if s.particles == 0 && s.initial.is_none() {
+        return Err(Error::input(
+            "system.particles",
+            "missing: give system.particles (or system.initial, particles from a file)",
+        ));
+    }
     if s.particles < 2 || s.particles > 100_000_000 {
         return Err(Error::out_of_range(
             "system.particles",
@@ -141,6 +147,12 @@ fn check_packing(description: &RunDescription) -> Result<()> {
     let s = &description.system;
     let max_phi = gas::init::packing_limit(s.dimension as usize);
     let phi = description.packing_fraction();
+    // Particles of a file are checked for overlaps instead: a packing may be denser than
+    // the placements reach.
+    let max_phi = match s.initial {
+        Some(_) => 1.0,
+        None => max_phi,
+    };
     if phi >= MIN_PACKING && phi <= max_phi {
         return Ok(());
     }
