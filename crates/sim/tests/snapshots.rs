@@ -204,11 +204,11 @@ fn the_format_key_reads_a_name_or_a_list() {
         serde_json::to_value(&d).unwrap()["output"]["snapshots"],
         serde_json::json!({"every": 2, "format": "vtk"})
     );
-    // And back: the TOML of the description reads as the same description.
+    // And back: the TOML of the description reads as the same `[output]`.
     let d =
         RunDescription::from_toml(&text(2, "[\"lammps-dump\", \"vtk\"]"), "t".as_ref()).unwrap();
     let again = RunDescription::from_toml(&toml::to_string(&d).unwrap(), "t".as_ref()).unwrap();
-    assert_eq!(again, d);
+    assert_eq!(again.output, d.output);
 }
 
 #[test]
