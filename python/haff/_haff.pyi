@@ -64,7 +64,12 @@ def study_aggregate(
 ) -> str: ...
 
 def read_configuration(
-    path: str, format: str, dimension: int = 3, frame: int = -1, check: bool = True
+    path: str,
+    format: str,
+    dimension: int = 3,
+    frame: int = -1,
+    check: bool = True,
+    sides: Optional[list[float]] = None,
 ) -> dict[str, Any]: ...
 def write_configuration(
     path: str,

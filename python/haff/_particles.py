@@ -5,7 +5,7 @@ OVITO, LAMMPS, ASE or haff. Formats: ``csv`` (haff's columns), ``lammps-dump`` (
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, Mapping, Union
+from typing import Any, Dict, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -19,7 +19,8 @@ OPTIONAL = ("velocities", "diameters", "masses", "species", "spins", "time")
 
 
 def read_configuration(path: PathLike, format: str, dimension: int = 3, frame: int = -1,
-                       check: bool = True) -> Dict[str, Any]:
+                       check: bool = True, box: Optional[Sequence[float]] = None
+                       ) -> Dict[str, Any]:
     """Reads frame ``frame`` (0 the first, -1 the last) of a particle file.
 
     Returns a dict of numpy arrays: ``box`` (D sides; the box runs from the origin),
@@ -28,14 +29,18 @@ def read_configuration(path: PathLike, format: str, dimension: int = 3, frame: i
     With ``check`` (default) a configuration a run cannot start from — overlapping
     spheres, particles outside the box, non-finite values — raises ``haff.ConfigError``
     naming the file, the record and the field, as a bad line of the file does.
+    ``format``: ``csv``, ``lammps-dump``, ``xyz`` or ``vtk`` (haff's snapshot ``.vtu``).
+    ``box``: the sides of the box for a file that holds none (a ``.vtu`` not written by
+    haff); a file's own box must agree with it.
 
     Example::
 
         c = haff.read_configuration("dump.lammpstrj", "lammps-dump")
         c["positions"].shape   # (N, 3)
     """
+    sides = None if box is None else [float(x) for x in box]
     return _haff.read_configuration(os.fspath(path), str(format), int(dimension), int(frame),
-                                    bool(check))
+                                    bool(check), sides)
 
 
 def write_configuration(path: PathLike, format: str, configuration: Mapping[str, Any]) -> None:

@@ -19,7 +19,8 @@ Config = Union[Mapping[str, Any], str, "os.PathLike[str]"]
 PathLike = Union[str, "os.PathLike[str]"]
 
 #: The observers of ``[output]`` that write files during the run, and what they write.
-_FILE_OUTPUTS = (("fields", "fields_NNNNNN.vti"), ("snapshots", "snapshot_NNNNNN.vtu"))
+_FILE_OUTPUTS = (("fields", "fields_NNNNNN.vti"),
+                 ("snapshots", "snapshot_NNNNNN.vtu or trajectory"))
 
 
 def _toml_value(value: Any, key: str) -> str:
@@ -367,7 +368,10 @@ class Simulation:
         """(time, path) of the snapshots written so far (``output.snapshots``), VTK
         unstructured grids (``snapshot_NNNNNN.vtu``: the particles as points with the point
         data radius, mass, velocity, species, collisions (event-driven) and
-        bath_temperature (stochastic law)), as :meth:`field_files`."""
+        bath_temperature (stochastic law), the box as field data), as :meth:`field_files`.
+        Without ``"vtk"`` among the formats, the trajectory holding each snapshot
+        (``snapshots.lammpstrj`` or ``snapshots.xyz``, a frame per snapshot, in order:
+        ``haff.read_configuration(path, format, frame=k)``)."""
         return self._files(self._sim.snapshot_files())
 
     @property

@@ -21,9 +21,10 @@ fn format_of(name: &str) -> PyResult<Format> {
 /// Reads frame `frame` of a particle file; with `check`, refuses what a run cannot start
 /// from (overlaps, particles outside the box, non-finite values), naming the record.
 /// Returns `{"box", "positions", ["velocities", "diameters", "masses", "species",
-/// "spins", "time"]}` ((N, D) and (N,) arrays; spins (N, 3)).
+/// "spins", "time"]}` ((N, D) and (N,) arrays; spins (N, 3)). `sides`: the box of a file
+/// that holds none (a `.vtu` not written by haff).
 #[pyfunction]
-#[pyo3(signature = (path, format, dimension = 3, frame = -1, check = true))]
+#[pyo3(signature = (path, format, dimension = 3, frame = -1, check = true, sides = None))]
 fn read_configuration<'py>(
     py: Python<'py>,
     path: PathBuf,
@@ -31,6 +32,7 @@ fn read_configuration<'py>(
     dimension: usize,
     frame: i64,
     check: bool,
+    sides: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let format = format_of(format)?;
     if !(1..=3).contains(&dimension) {
@@ -38,7 +40,7 @@ fn read_configuration<'py>(
     }
     let c = py
         .detach(|| {
-            let c = particles::read(&path, format, dimension, frame)?;
+            let c = particles::read_with_box(&path, format, dimension, frame, sides.as_deref())?;
             if check {
                 c.check(&path, false)?;
             }

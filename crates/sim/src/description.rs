@@ -52,6 +52,9 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+mod snapshot_format;
+pub use snapshot_format::{SnapshotFormat, SnapshotFormats};
+
 /// A whole run file.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -278,6 +281,8 @@ pub enum DrivingKind {
 /// structure = true                         # structure.csv: S(k) and g(r)
 /// fields = { every = 10, grid = 64 }       # fields_NNNNNN.vti + fields.pvd
 /// snapshots = { every = 10, format = "vtk" }  # snapshot_NNNNNN.vtu + snapshots.pvd
+/// # format = "lammps-dump": snapshots.lammpstrj, "xyz": snapshots.xyz (one frame per
+/// # snapshot), or a list: format = ["vtk", "xyz"]
 /// ```
 #[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -325,25 +330,13 @@ pub struct FieldsOutput {
     pub grid: usize,
 }
 
-/// `output.snapshots`: the particles every `every` samples.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+/// `output.snapshots`: the particles every `every` samples, in one or more formats.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SnapshotsOutput {
     pub every: usize,
-    #[serde(default = "vtk")]
-    pub format: SnapshotFormat,
-}
-
-/// `output.snapshots.format`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SnapshotFormat {
-    /// VTK XML: one `.vtu` per snapshot and a `.pvd` time series (ParaView).
-    Vtk,
-}
-
-fn vtk() -> SnapshotFormat {
-    SnapshotFormat::Vtk
+    #[serde(default)]
+    pub format: SnapshotFormats,
 }
 
 /// `[system]`: the particles and their initial state.

@@ -42,6 +42,7 @@ pub mod rod_ring;
 pub mod rough;
 pub mod schedule;
 pub mod simulation;
+pub mod snapshots;
 pub mod space;
 pub mod species;
 pub mod study;

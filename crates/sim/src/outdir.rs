@@ -250,7 +250,15 @@ fn is_space_output(name: &str) -> bool {
             })
         })
     };
-    ["modes.csv", "structure.csv", "fields.pvd", "snapshots.pvd"].contains(&name)
+    [
+        "modes.csv",
+        "structure.csv",
+        "fields.pvd",
+        "snapshots.pvd",
+        "snapshots.lammpstrj",
+        "snapshots.xyz",
+    ]
+    .contains(&name)
         || numbered("fields_", &[".vti", ".png"])
         || numbered("snapshot_", &[".vtu"])
 }
@@ -287,6 +295,8 @@ mod tests {
             "fields_000010.vti",
             "fields_000010.png",
             "snapshot_000000.vtu",
+            "snapshots.lammpstrj",
+            "snapshots.xyz",
         ] {
             assert!(is_space_output(ours), "{ours}");
         }

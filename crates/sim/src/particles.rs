@@ -1,8 +1,9 @@
 //! Particle files in and out (issue 38): a [`Configuration`] — the box and every particle's
 //! position, and what the file has of velocities, diameters, masses, species and spins —
 //! read from and written to the formats the community's tools read: `csv` (haff's columns),
-//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`),
-//! `lammps-data` (a data file of `atom_style sphere`), `h5md` (H5MD, with the feature `h5md`).
+//! `lammps-dump` (a `dump custom` frame), `xyz` (extended XYZ with a `Lattice`), `vtk`
+//! (the `.vtu` of haff's snapshots), `lammps-data` (a data file of `atom_style sphere`),
+//! `h5md` (H5MD, with the feature `h5md`).
 //!
 //! Reading checks everything a run needs before it starts ([`Configuration::check`]):
 //! finite numbers, particles inside the box, no two spheres overlapping (the first pair
@@ -18,6 +19,7 @@ mod h5md;
 mod lammps;
 mod lammps_data;
 mod overlaps;
+mod vtu;
 mod xyz;
 
 use crate::error::{Error, Result};
@@ -42,6 +44,10 @@ pub enum Format {
     /// Extended XYZ: the count, a comment line with `Lattice="..."` (orthogonal) and
     /// `Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1`, then the particles.
     Xyz,
+    /// The VTK XML unstructured grid of haff's snapshots (`snapshot_NNNNNN.vtu`): points,
+    /// point data `radius`, `mass`, `velocity`, `species`, `angular_velocity`, and the box
+    /// as field data `box` (a `.vtu` without it is read only with the sides given).
+    Vtk,
     /// A LAMMPS data file of `atom_style sphere` (`read_data`, `write_data`): header, `Atoms
     /// # sphere` (id type diameter density x y z), `Velocities` (id v omega).
     LammpsData,
@@ -53,7 +59,8 @@ pub enum Format {
 
 impl Format {
     /// The names of the formats, as a run file spells them.
-    pub const NAMES: [&'static str; 5] = ["csv", "lammps-dump", "xyz", "lammps-data", "h5md"];
+    pub const NAMES: [&'static str; 6] =
+        ["csv", "lammps-dump", "xyz", "vtk", "lammps-data", "h5md"];
 
     /// The name a run file spells.
     pub fn name(self) -> &'static str {
@@ -61,18 +68,20 @@ impl Format {
             Format::Csv => "csv",
             Format::LammpsDump => "lammps-dump",
             Format::Xyz => "xyz",
+            Format::Vtk => "vtk",
             Format::LammpsData => "lammps-data",
             Format::H5md => "h5md",
         }
     }
 
     /// The format a file's extension names, if it names one: `.csv`; `.dump`, `.lammpstrj`;
-    /// `.xyz`, `.extxyz`; `.data`, `.lmp`; `.h5md`, `.h5`.
+    /// `.xyz`, `.extxyz`; `.vtu`; `.data`, `.lmp`; `.h5md`, `.h5`.
     pub fn of_extension(path: &Path) -> Option<Self> {
         match path.extension()?.to_str()? {
             "csv" => Some(Format::Csv),
             "dump" | "lammpstrj" => Some(Format::LammpsDump),
             "xyz" | "extxyz" => Some(Format::Xyz),
+            "vtu" => Some(Format::Vtk),
             "data" | "lmp" => Some(Format::LammpsData),
             "h5md" | "h5" => Some(Format::H5md),
             _ => None,
@@ -85,6 +94,7 @@ impl Format {
             "csv" => Ok(Format::Csv),
             "lammps-dump" => Ok(Format::LammpsDump),
             "xyz" => Ok(Format::Xyz),
+            "vtk" => Ok(Format::Vtk),
             "lammps-data" => Ok(Format::LammpsData),
             "h5md" => Ok(Format::H5md),
             other => Err(Error::input(
@@ -235,6 +245,29 @@ impl Configuration {
 /// Reads frame `frame` (0 the first, -1 the last) of the particle file `path` of `format`
 /// in `dimension` dimensions, without checking it ([`Configuration::check`]).
 pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result<Configuration> {
+    read_with_box(path, format, dimension, frame, None)
+}
+
+/// [`read`], with the box's `sides` for a file that holds none (a `.vtu` not written by
+/// haff); a box the file holds must agree with them.
+pub fn read_with_box(
+    path: &Path,
+    format: Format,
+    dimension: usize,
+    frame: i64,
+    sides: Option<&[f64]>,
+) -> Result<Configuration> {
+    with_box(path, read_unboxed(path, format, dimension, frame)?, sides)
+}
+
+/// [`read`], its box left empty if the file holds none (the caller supplies it:
+/// `system.box` for `system.initial`).
+pub fn read_unboxed(
+    path: &Path,
+    format: Format,
+    dimension: usize,
+    frame: i64,
+) -> Result<Configuration> {
     if format == Format::H5md {
         return read_h5md(path, dimension, frame);
     }
@@ -249,16 +282,44 @@ pub fn read(path: &Path, format: Format, dimension: usize, frame: i64) -> Result
         message,
     };
     match format {
-        Format::Csv => csv::parse(&text, dimension).map_err(|(at, m)| fail(at, m)),
-        Format::LammpsDump => {
-            lammps::parse_dump(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
-        }
-        Format::Xyz => xyz::parse(&text, dimension, frame).map_err(|(at, m)| fail(at, m)),
-        Format::LammpsData => {
-            lammps_data::parse_data(&text, dimension, frame).map_err(|(at, m)| fail(at, m))
-        }
+        Format::Csv => csv::parse(&text, dimension),
+        Format::LammpsDump => lammps::parse_dump(&text, dimension, frame),
+        Format::Xyz => xyz::parse(&text, dimension, frame),
+        Format::Vtk => vtu::parse(&text, dimension, frame),
+        Format::LammpsData => lammps_data::parse_data(&text, dimension, frame),
         Format::H5md => unreachable!("read above"),
     }
+    .map_err(|(at, m)| fail(at, m))
+}
+
+/// `c` with the box's `sides` for a file that holds none; a box the file holds must agree
+/// with them.
+fn with_box(path: &Path, mut c: Configuration, sides: Option<&[f64]>) -> Result<Configuration> {
+    let fail = |at: String, message: String| Error::ParticleFile {
+        path: path.to_path_buf(),
+        at,
+        message,
+    };
+    match sides {
+        Some(given) if c.sides.is_empty() => c.sides = given.to_vec(),
+        Some(given) if c.sides != given => {
+            return Err(fail(
+                "box".into(),
+                format!(
+                    "the file's box {:?} differs from the sides given {given:?}",
+                    c.sides
+                ),
+            ))
+        }
+        None if c.sides.is_empty() => {
+            return Err(fail(
+                "box".into(),
+                "the file holds no box: give its sides".into(),
+            ))
+        }
+        _ => {}
+    }
+    Ok(c)
 }
 
 #[cfg(feature = "h5md")]
@@ -283,10 +344,31 @@ fn without_h5md(path: &Path) -> Error {
                   MATURIN_PEP517_ARGS=\"--features h5md\" pip install ./python)"
             .into(),
     }
+    .map_err(|(at, m)| fail(at, m))?;
+    match sides {
+        Some(given) if c.sides.is_empty() => c.sides = given.to_vec(),
+        Some(given) if c.sides != given => {
+            return Err(fail(
+                "box".into(),
+                format!(
+                    "the file's box {:?} differs from the sides given {given:?}",
+                    c.sides
+                ),
+            ))
+        }
+        None if c.sides.is_empty() => {
+            return Err(fail(
+                "box".into(),
+                "the file holds no box: give its sides".into(),
+            ))
+        }
+        _ => {}
+    }
+    Ok(c)
 }
 
 /// Writes `configuration` to `path` in `format` (atomically, numbers in the shortest form
-/// that reads back to the same bits).
+/// that reads back to the same bits; `vtk`: binary f64 arrays, the time not kept).
 pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Result<()> {
     if format == Format::H5md {
         #[cfg(feature = "h5md")]
@@ -294,13 +376,34 @@ pub fn write(path: &Path, format: Format, configuration: &Configuration) -> Resu
         #[cfg(not(feature = "h5md"))]
         return Err(without_h5md(path));
     }
-    crate::output::write_file(path, |out| match format {
-        Format::Csv => csv::write(out, configuration),
-        Format::LammpsDump => lammps::write_dump(out, configuration, 0),
-        Format::Xyz => xyz::write(out, configuration),
-        Format::LammpsData => lammps_data::write_data(out, configuration),
+    let text = |write: fn(&mut dyn std::io::Write, &Configuration) -> std::io::Result<()>| {
+        crate::output::write_file(path, |out| write(out, configuration))
+    };
+    match format {
+        Format::Csv => text(csv::write),
+        Format::LammpsDump => text(|out, c| lammps::write_dump(out, c, 0)),
+        Format::Xyz => text(xyz::write),
+        Format::LammpsData => text(lammps_data::write_data),
+        Format::Vtk => vtu::write(path, configuration),
         Format::H5md => unreachable!("written above"),
-    })
+    }
+}
+
+/// One LAMMPS `dump custom` frame of `c` at `timestep` (a frame of a snapshot trajectory).
+pub(crate) fn write_lammps_frame(
+    out: &mut dyn std::io::Write,
+    c: &Configuration,
+    timestep: u64,
+) -> std::io::Result<()> {
+    lammps::write_dump(out, c, timestep)
+}
+
+/// One extended XYZ frame of `c` (a frame of a snapshot trajectory).
+pub(crate) fn write_xyz_frame(
+    out: &mut dyn std::io::Write,
+    c: &Configuration,
+) -> std::io::Result<()> {
+    xyz::write(out, c)
 }
 
 /// Parses a number of a text format, naming the line and column when it is not one.

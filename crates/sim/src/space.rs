@@ -1,6 +1,7 @@
 //! The observers of space, switched on in the run file's `[output]` table: hydrodynamic
 //! modes (`modes.csv`), S(k) and g(r) (`structure.csv`), coarse-grained fields and particle
-//! snapshots for ParaView (VTK XML with `.pvd` time series), and maps of the fields as PNG
+//! snapshots (VTK XML with `.pvd` time series for ParaView, LAMMPS dump and extended XYZ
+//! trajectories: [`crate::snapshots`]), and maps of the fields as PNG
 //! ([`crate::maps`]). They read the engine's
 //! [`gas::system::System`] at the samples of the schedule, so every spatial engine has them;
 //! the homogeneous DSMC schemes have no positions and refuse them. Field and snapshot files
@@ -15,8 +16,9 @@ use crate::observer::{record_of, records_from, Observer};
 use crate::output::{number, write_csv_file};
 use crate::plot::tick_label;
 use crate::schedule::{Schedule, Target};
+use crate::snapshots::{self, Snapshot};
 use crate::validate::Plan;
-use crate::vtk::{write_collection, write_fields, write_particles, ParticleData};
+use crate::vtk::{write_collection, write_fields, ParticleData};
 use gas::structure::{
     coarse_grained_fields, hydrodynamic_modes, pair_correlation, structure_factor, Fields,
 };
@@ -112,7 +114,7 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
         }
         every("output.fields.every", f.every)?;
     }
-    if let Some(s) = o.snapshots {
+    if let Some(s) = &o.snapshots {
         every("output.snapshots.every", s.every)?;
     }
     if let Some(p) = o.profiles {
@@ -241,9 +243,15 @@ pub struct SpaceRecords {
     /// (time, file name) of the field files written.
     #[serde(default)]
     pub fields: Vec<(f64, String)>,
-    /// (time, file name) of the snapshots written.
+    /// (time, file name) of the snapshots written: the `.vtu`, or without `vtk` the
+    /// trajectory holding the frame.
     #[serde(default)]
     pub snapshots: Vec<(f64, String)>,
+    /// (file name, bytes) of each snapshot trajectory after its last frame
+    /// ([`crate::snapshots`]); none without them, so that other runs' check-points keep
+    /// their bytes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub trajectories: Vec<(String, u64)>,
 }
 
 /// The observers of `[output]` and their records.
@@ -348,13 +356,24 @@ impl SpaceObserver {
             (
                 "snapshots",
                 self.records.snapshots.len(),
-                due(o.snapshots.map(|s| s.every)),
+                due(o.snapshots.as_ref().map(|s| s.every)),
             ),
         ];
         for (name, have, want) in counts {
             if have != want {
                 return Err(format!(
                     "{have} {name} records where {samples} samples ask for {want}"
+                ));
+            }
+        }
+        let formats = o.snapshots.as_ref().map(|s| s.format.list()).unwrap_or(&[]);
+        for (name, _) in &self.records.trajectories {
+            let asked = formats
+                .iter()
+                .any(|&f| snapshots::trajectory_name(f) == Some(name.as_str()));
+            if !asked {
+                return Err(format!(
+                    "a trajectory `{name}` that output.snapshots does not ask for"
                 ));
             }
         }
@@ -372,7 +391,10 @@ impl SpaceObserver {
         }
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());
         let o = self.output.clone();
-        let snapshot_due = o.snapshots.is_some_and(|s| sample.is_multiple_of(s.every));
+        let snapshot_due = o
+            .snapshots
+            .as_ref()
+            .is_some_and(|s| sample.is_multiple_of(s.every));
         let fields_due = o.fields.is_some_and(|f| sample.is_multiple_of(f.every));
         if !(o.modes || o.structure || fields_due || snapshot_due) {
             return Ok(());
@@ -436,9 +458,12 @@ impl SpaceObserver {
             }
             self.records.fields.push((time, name));
         }
-        if snapshot_due {
-            let name = format!("snapshot_{sample:06}.vtu");
-            let path = self.file(&name, "output.snapshots")?;
+        if let (Some(s), true) = (&o.snapshots, snapshot_due) {
+            let name = snapshots::record_name(&s.format, sample);
+            let dir = self
+                .directory
+                .clone()
+                .ok_or_else(|| Error::input("output.snapshots", NO_DIRECTORY))?;
             if self.writer {
                 let species: Vec<u32> = system
                     .radii
@@ -446,13 +471,18 @@ impl SpaceObserver {
                     .zip(&system.masses)
                     .map(|(&r, &m)| self.species_of(2.0 * r, m))
                     .collect();
-                let data = ParticleData {
-                    collisions: collisions.as_deref(),
-                    species: &species,
-                    bath_temperatures: baths.as_deref(),
-                    angular_velocities: spins.as_deref(),
+                let snapshot = Snapshot {
+                    sample,
+                    time,
+                    system,
+                    data: ParticleData {
+                        collisions: collisions.as_deref(),
+                        species: &species,
+                        bath_temperatures: baths.as_deref(),
+                        angular_velocities: spins.as_deref(),
+                    },
                 };
-                write_particles(&path, system, &data)?;
+                snapshots::write(&dir, &s.format, &snapshot, &mut self.records.trajectories)?;
             }
             self.records.snapshots.push((time, name));
         }
@@ -508,7 +538,8 @@ impl SpaceObserver {
         if o.fields.is_some() {
             write_collection(&dir.join("fields.pvd"), &self.records.fields)?;
         }
-        if o.snapshots.is_some() {
+        let vtk = crate::description::SnapshotFormat::Vtk;
+        if o.snapshots.as_ref().is_some_and(|s| s.format.has(vtk)) {
             write_collection(&dir.join("snapshots.pvd"), &self.records.snapshots)?;
         }
         Ok(())

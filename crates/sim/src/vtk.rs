@@ -36,35 +36,78 @@ fn export(vtk: Vtk, path: &Path) -> Result<()> {
     })
 }
 
+/// The name of the field data array of a snapshot's `.vtu` that holds the box's sides
+/// (one per dimension, ascii, the shortest decimal form that reads back to the same f64).
+pub const BOX_ARRAY: &str = "box";
+
+/// The arrays of a `.vtu` of particles, three components per point and vector; the
+/// optional ones are written when given, in this order.
+pub(crate) struct VtuParticles {
+    /// The box's sides (one per dimension), written as field data [`BOX_ARRAY`].
+    pub sides: Vec<f64>,
+    pub points: Vec<f64>,
+    pub radii: Vec<f64>,
+    pub masses: Option<Vec<f64>>,
+    pub velocities: Option<Vec<f64>>,
+    pub species: Option<Vec<u32>>,
+    pub collisions: Option<Vec<u64>>,
+    pub bath_temperatures: Option<Vec<f64>>,
+    pub angular_velocities: Option<Vec<f64>>,
+}
+
 /// Writes the particles of `system` as `path` (`.vtu`): points at the centres, one vertex
 /// cell each, with the point data radius, velocity, mass, species and (when known)
-/// collisions, bath_temperature and angular_velocity.
+/// collisions, bath_temperature and angular_velocity, and the box as field data.
 pub fn write_particles<const D: usize>(
     path: &Path,
     system: &System<D>,
     data: &ParticleData<'_>,
 ) -> Result<()> {
-    let n = system.len();
-    let points: Vec<f64> = system.positions.iter().flat_map(padded).collect();
-    let velocities: Vec<f64> = system.velocities.iter().flat_map(padded).collect();
-    let mut point = vec![
-        Attribute::scalars("radius", 1).with_data(system.radii.clone()),
-        Attribute::scalars("mass", 1).with_data(system.masses.clone()),
-        Attribute::vectors("velocity").with_data(velocities),
-        Attribute::scalars("species", 1).with_data(data.species.to_vec()),
-    ];
-    if let Some(c) = data.collisions {
-        point.push(Attribute::scalars("collisions", 1).with_data(c.to_vec()));
+    write_vtu(
+        path,
+        VtuParticles {
+            sides: system.sides.to_vec(),
+            points: system.positions.iter().flat_map(padded).collect(),
+            radii: system.radii.clone(),
+            masses: Some(system.masses.clone()),
+            velocities: Some(system.velocities.iter().flat_map(padded).collect()),
+            species: Some(data.species.to_vec()),
+            collisions: data.collisions.map(<[u64]>::to_vec),
+            bath_temperatures: data.bath_temperatures.map(<[f64]>::to_vec),
+            angular_velocities: data
+                .angular_velocities
+                .map(|w| w.iter().flatten().copied().collect()),
+        },
+    )
+}
+
+/// Writes `particles` as `path` (`.vtu`, VTK XML through `vtkio`, binary f64 arrays;
+/// atomically).
+/// `vtkio` writes no field data: the box is put in as the first child of
+/// `<UnstructuredGrid>`, where VTK's readers (ParaView's) look for a data set's field data.
+pub(crate) fn write_vtu(path: &Path, particles: VtuParticles) -> Result<()> {
+    let n = particles.radii.len();
+    let mut point = vec![Attribute::scalars("radius", 1).with_data(particles.radii)];
+    if let Some(m) = particles.masses {
+        point.push(Attribute::scalars("mass", 1).with_data(m));
     }
-    if let Some(b) = data.bath_temperatures {
-        point.push(Attribute::scalars("bath_temperature", 1).with_data(b.to_vec()));
+    if let Some(v) = particles.velocities {
+        point.push(Attribute::vectors("velocity").with_data(v));
     }
-    if let Some(w) = data.angular_velocities {
-        let flat: Vec<f64> = w.iter().flatten().copied().collect();
-        point.push(Attribute::vectors("angular_velocity").with_data(flat));
+    if let Some(s) = particles.species {
+        point.push(Attribute::scalars("species", 1).with_data(s));
+    }
+    if let Some(c) = particles.collisions {
+        point.push(Attribute::scalars("collisions", 1).with_data(c));
+    }
+    if let Some(b) = particles.bath_temperatures {
+        point.push(Attribute::scalars("bath_temperature", 1).with_data(b));
+    }
+    if let Some(w) = particles.angular_velocities {
+        point.push(Attribute::vectors("angular_velocity").with_data(w));
     }
     let piece = UnstructuredGridPiece {
-        points: points.into(),
+        points: particles.points.into(),
         cells: Cells {
             cell_verts: VertexNumbers::XML {
                 connectivity: (0..n as u64).collect(),
@@ -77,19 +120,41 @@ pub fn write_particles<const D: usize>(
             cell: vec![],
         },
     };
-    export(
-        Vtk {
-            version: Version::new((1, 0)),
-            title: String::from("haff snapshot"),
-            byte_order: ByteOrder::LittleEndian,
-            data: DataSet::UnstructuredGrid {
-                meta: None,
-                pieces: vec![Piece::Inline(Box::new(piece))],
-            },
-            file_path: None,
+    let vtk = Vtk {
+        version: Version::new((1, 0)),
+        title: String::from("haff snapshot"),
+        byte_order: ByteOrder::LittleEndian,
+        data: DataSet::UnstructuredGrid {
+            meta: None,
+            pieces: vec![Piece::Inline(Box::new(piece))],
         },
-        path,
-    )
+        file_path: None,
+    };
+    let fail = |message: String| Error::Write {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(message),
+    };
+    let mut xml = Vec::new();
+    vtk.write_xml(&mut xml).map_err(|e| fail(e.to_string()))?;
+    let grid = b"<UnstructuredGrid>";
+    let at = xml
+        .windows(grid.len())
+        .position(|w| w == grid)
+        .ok_or_else(|| fail("vtkio wrote no <UnstructuredGrid>".into()))?
+        + grid.len();
+    let sides: Vec<String> = particles
+        .sides
+        .iter()
+        .map(|&l| crate::output::number(l))
+        .collect();
+    let field = format!(
+        "<FieldData><DataArray type=\"Float64\" Name=\"{BOX_ARRAY}\" NumberOfTuples=\"{}\" \
+         format=\"ascii\">{}</DataArray></FieldData>",
+        sides.len(),
+        sides.join(" ")
+    );
+    xml.splice(at..at, field.into_bytes());
+    crate::output::write_file(path, |out| out.write_all(&xml))
 }
 
 /// Writes coarse-grained fields as `path` (`.vti`): G^D cells of sides `spacing` from the

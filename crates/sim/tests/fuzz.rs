@@ -107,7 +107,7 @@ const SEEDS: [&str; 19] = [
 ];
 
 /// Keys, in and out of the schema, that mutations insert.
-const KEYS: [&str; 58] = [
+const KEYS: [&str; 60] = [
     "dimension",
     "particles",
     "packing_fraction",
@@ -166,10 +166,12 @@ const KEYS: [&str; 58] = [
     "run",
     "momentum",
     "density",
+    "snapshots",
+    "every",
 ];
 
 /// Values of every TOML type, in and out of range.
-const VALUES: [&str; 46] = [
+const VALUES: [&str; 52] = [
     "0",
     "1",
     "-1",
@@ -217,6 +219,13 @@ const VALUES: [&str; 46] = [
     "{ file = \"fuzz.toml\", format = \"xyz\", frame = 3 }",
     "\"remove\"",
     "\"lammps-dump\"",
+    // output.snapshots and its formats (issue 38), good and bad.
+    "\"vtk\"",
+    "\"h5md\"",
+    "[\"vtk\", \"xyz\"]",
+    "[\"xyz\", \"xyz\"]",
+    "{ every = 1, format = [\"lammps-dump\", \"xyz\"] }",
+    "{ every = 2, format = [] }",
 ];
 
 /// One mutation of a run file's text.
@@ -761,6 +770,7 @@ fn particle_seeds() -> Vec<(sim::particles::Format, String)> {
         Format::LammpsDump,
         Format::Xyz,
         Format::LammpsData,
+        Format::Vtk,
     ]
     .into_iter()
     .map(|format| {

@@ -310,7 +310,7 @@ fn bad_initial_descriptions_are_refused_naming_the_key() {
     for (extra, key) in [
         ("particles = 16", "system.particles"),
         ("packing_fraction = 0.1", "system.packing_fraction"),
-        ("box = [8.0, 8.0]", "system.box"),
+        ("box = [9.0, 8.0]", "system.box"),
         (
             "species = [{ diameter = 1.0, mass = 1.0, fraction = 1.0 }]",
             "system.species",

@@ -69,6 +69,9 @@ fn every_format_reads_back_what_it_wrote_bit_for_bit() {
             ("csv", Format::Csv),
             ("lammps-dump", Format::LammpsDump),
             ("xyz", Format::Xyz),
+            // Binary (base64) f64 arrays: exact; the diameter goes through the radius,
+            // d / 2 * 2, exact too.
+            ("vtk", Format::Vtk),
         ] {
             assert_eq!(Format::parse("format", name).unwrap(), format);
             let path = dir.join(format!("{dimension}d.{name}"));
@@ -238,7 +241,7 @@ fn bad_files_are_refused_naming_the_line_and_column() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("system.initial.format") && e.contains("csv, lammps-dump, xyz"),
+        e.contains("system.initial.format") && e.contains("csv, lammps-dump, xyz, vtk"),
         "{e}"
     );
     std::fs::remove_dir_all(&dir).ok();
@@ -290,4 +293,40 @@ fn h5md_without_the_feature_says_how_to_build_it() {
         assert_eq!(write(path, Format::H5md, &c).unwrap_err().to_string(), e);
         assert_eq!(read(path, Format::H5md, 3, -1).unwrap_err().to_string(), e);
     }
+}
+
+/// A `.vtu` holds its box as field data (haff writes it); without it (a `.vtu` from
+/// elsewhere, or haff's before the box was added) the sides must be given, and given sides
+/// must agree with the file's. Oracle: the configuration written.
+#[test]
+fn a_vtu_without_its_box_needs_the_sides() {
+    let dir = scratch("vtu");
+    let original = sample(3, 3, 4);
+    let path = dir.join("a.vtu");
+    write(&path, Format::Vtk, &original).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("<FieldData><DataArray type=\"Float64\" Name=\"box\""));
+    let (start, end) = (
+        text.find("<FieldData>").unwrap(),
+        text.find("</FieldData>").unwrap() + "</FieldData>".len(),
+    );
+    let bare = dir.join("bare.vtu");
+    std::fs::write(&bare, format!("{}{}", &text[..start], &text[end..])).unwrap();
+    let e = read(&bare, Format::Vtk, 3, -1).unwrap_err().to_string();
+    assert!(
+        e.starts_with(&bare.display().to_string()) && e.contains("box") && e.contains("sides"),
+        "{e}"
+    );
+    let back = read_with_box(&bare, Format::Vtk, 3, -1, Some(&original.sides)).unwrap();
+    assert_eq!(back, original);
+    let e = read_with_box(&path, Format::Vtk, 3, -1, Some(&[1.0, 2.0, 3.0]))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("box") && e.contains("differs"), "{e}");
+    let e = read(&path, Format::Vtk, 3, 1).unwrap_err().to_string();
+    assert!(e.contains("frame 1 of a file of 1 frames"), "{e}");
+    std::fs::write(&bare, "<VTKFile").unwrap();
+    let e = read(&bare, Format::Vtk, 3, -1).unwrap_err().to_string();
+    assert!(e.contains("not a VTK XML file"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -246,7 +246,7 @@ fn load(
             };
             let frame = section.frame.unwrap_or(-1);
             let path = absolute(Path::new(file));
-            let configuration = crate::particles::read(&path, format, dimension, frame)?;
+            let configuration = crate::particles::read_unboxed(&path, format, dimension, frame)?;
             normal.file = Some(path.display().to_string());
             normal.format = Some(format.name().to_string());
             normal.frame = Some(frame);
