@@ -344,27 +344,6 @@ fn without_h5md(path: &Path) -> Error {
                   MATURIN_PEP517_ARGS=\"--features h5md\" pip install ./python)"
             .into(),
     }
-    .map_err(|(at, m)| fail(at, m))?;
-    match sides {
-        Some(given) if c.sides.is_empty() => c.sides = given.to_vec(),
-        Some(given) if c.sides != given => {
-            return Err(fail(
-                "box".into(),
-                format!(
-                    "the file's box {:?} differs from the sides given {given:?}",
-                    c.sides
-                ),
-            ))
-        }
-        None if c.sides.is_empty() => {
-            return Err(fail(
-                "box".into(),
-                "the file holds no box: give its sides".into(),
-            ))
-        }
-        _ => {}
-    }
-    Ok(c)
 }
 
 /// Writes `configuration` to `path` in `format` (atomically, numbers in the shortest form
