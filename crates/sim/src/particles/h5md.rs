@@ -21,7 +21,9 @@
 //! species, masses and diameters are written once: the frames appended later must have
 //! the same. No `image`: haff's positions are in the box and it keeps no crossings. Frames
 //! are chunks of [1][N][D] (one write and one read each), data are written as they are:
-//! the round trip is bit for bit. The reader takes what other writers put there too: time-
+//! the round trip is bit for bit. Every series is chunked and resizable along F and the
+//! file is flushed after each frame and value: a killed run leaves a valid file, which
+//! [`Trajectory::resume`] cuts back to the run's check-point and continues. The reader takes what other writers put there too: time-
 //! dependent or time-independent elements, scalar `step`s with an `offset`, a `box/edges`
 //! matrix if diagonal, the velocities etc. of the position's step; positions are wrapped
 //! into the box.
