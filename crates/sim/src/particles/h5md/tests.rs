@@ -346,6 +346,16 @@ fn resume_refuses_a_file_it_cannot_continue() {
         .to_string();
     assert!(e.contains("h5md/creator: name \"\""), "{e}");
     says(&dir.join("none.h5"), &c, 1, "file: no such file");
+    // A file cut anywhere (a kill during a write, a full disk): an error, never a panic.
+    let bytes = std::fs::read(&path).unwrap();
+    let cut = dir.join("cut.h5");
+    for k in 1..16 {
+        std::fs::write(&cut, &bytes[..bytes.len() * k / 16]).unwrap();
+        assert!(
+            Trajectory::resume(&cut, &c, 1, &[]).is_err(),
+            "cut at {k}/16"
+        );
+    }
     // Nothing written yet: a new file, whatever was there.
     let t = Trajectory::resume(&text, &c, 0, &[("temperature", 0)]).unwrap();
     t.close().unwrap();
