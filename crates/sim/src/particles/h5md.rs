@@ -21,7 +21,9 @@
 //! species, masses and diameters are written once: the frames appended later must have
 //! the same. No `image`: haff's positions are in the box and it keeps no crossings. Frames
 //! are chunks of [1][N][D] (one write and one read each), data are written as they are:
-//! the round trip is bit for bit. The reader takes what other writers put there too: time-
+//! the round trip is bit for bit. Every series is chunked and resizable along F and the
+//! file is flushed after each frame and value: a killed run leaves a valid file, which
+//! [`Trajectory::resume`] cuts back to the run's check-point and continues. The reader takes what other writers put there too: time-
 //! dependent or time-independent elements, scalar `step`s with an `offset`, a `box/edges`
 //! matrix if diagonal, the velocities etc. of the position's step; positions are wrapped
 //! into the box.
@@ -87,6 +89,62 @@ impl Series {
         })
     }
 
+    /// The series `name` of `group` as haff writes it: `step` (and `time`) one per
+    /// sample, all three resizable along the sample axis (so a resumed run can cut them).
+    fn open(group: &Group, name: &str) -> hdf5::Result<Self> {
+        let g = group
+            .group(name)
+            .map_err(|_| hdf5::Error::from(format!("no group `{name}`").as_str()))?;
+        let growing = |what: &str| -> hdf5::Result<Dataset> {
+            let ds = g
+                .dataset(what)
+                .map_err(|_| hdf5::Error::from(format!("{name}: no dataset `{what}`").as_str()))?;
+            if ds.is_scalar() || !ds.is_chunked() || !ds.is_resizable() {
+                return Err(format!(
+                    "{name}/{what}: not a resizable series (not written by haff's Trajectory)"
+                )
+                .as_str()
+                .into());
+            }
+            Ok(ds)
+        };
+        let step = growing("step")?;
+        let time = if g.link_exists("time") {
+            Some(growing("time")?)
+        } else {
+            None
+        };
+        let value = growing("value")?;
+        let sample = value.shape()[1..].to_vec();
+        Ok(Series {
+            step,
+            time,
+            value,
+            sample,
+        })
+    }
+
+    /// The number of complete samples (a crash between its datasets' writes leaves some
+    /// longer than others).
+    fn len(&self) -> usize {
+        let mut k = self.step.shape()[0].min(self.value.shape()[0]);
+        if let Some(t) = &self.time {
+            k = k.min(t.shape()[0]);
+        }
+        k
+    }
+
+    /// Cuts the series to its first `k` samples.
+    fn truncate(&self, k: usize) -> hdf5::Result<()> {
+        self.step.resize(k)?;
+        if let Some(t) = &self.time {
+            t.resize(k)?;
+        }
+        let mut shape = vec![k];
+        shape.extend(&self.sample);
+        self.value.resize(shape)
+    }
+
     /// Appends one sample (`data` of the sample's shape, row-major).
     fn push(&self, step: i64, time: Option<f64>, data: &[f64]) -> hdf5::Result<()> {
         let k = self.step.shape()[0];
@@ -125,12 +183,12 @@ struct Layout {
     spin: Option<Series>,
 }
 
-/// An H5MD trajectory being written: [`Trajectory::create`], [`Trajectory::append`] frame
-/// after frame (and [`Trajectory::observable`]s), [`Trajectory::close`]. The file is
-/// written as `path.partial` and renamed to `path` on close, as haff's other files.
+/// An H5MD trajectory being written: [`Trajectory::create`] (or [`Trajectory::resume`]),
+/// [`Trajectory::append`] frame after frame (and [`Trajectory::observable`]s),
+/// [`Trajectory::close`]. It is written in place and flushed after every frame and value,
+/// so that the file a killed run leaves is a valid H5MD file a resumed run can continue.
 pub struct Trajectory {
     path: PathBuf,
-    partial: PathBuf,
     file: File,
     layout: Option<Layout>,
     observables: Vec<(String, Series)>,
@@ -138,17 +196,19 @@ pub struct Trajectory {
 
 impl Trajectory {
     /// Starts an H5MD file at `path` (the `h5md` group; the particles come with the first
-    /// frame).
+    /// frame), replacing any file there.
     pub fn create(path: &Path) -> Result<Self> {
-        let mut partial = path.as_os_str().to_owned();
-        partial.push(".partial");
-        let partial = PathBuf::from(partial);
+        Self::start(path, path)
+    }
+
+    /// Starts the file `file`; errors name `path`.
+    fn start(path: &Path, file: &Path) -> Result<Self> {
         let fail = |e: hdf5::Error| Error::ParticleFile {
             path: path.to_path_buf(),
             at: "file".into(),
             message: line(e),
         };
-        let file = File::create(&partial).map_err(fail)?;
+        let file = File::create(file).map_err(fail)?;
         let header = || -> hdf5::Result<()> {
             let h5md = file.create_group("h5md")?;
             h5md.new_attr_builder()
@@ -167,16 +227,182 @@ impl Trajectory {
             let creator = h5md.create_group("creator")?;
             text(&creator, "name", "haff")?;
             text(&creator, "version", env!("CARGO_PKG_VERSION"))?;
-            Ok(())
+            file.flush()
         };
         header().map_err(fail)?;
         Ok(Trajectory {
             path: path.to_path_buf(),
-            partial,
             file,
             layout: None,
             observables: Vec::new(),
         })
+    }
+
+    /// Reopens the trajectory a killed run left at `path` to continue it from a
+    /// check-point that had written `frames` frames and, of each observable `(name,
+    /// count)`, `count` values: what was appended after is cut off (observables not
+    /// listed are cut to none). `c` is the run's configuration: the file must be haff's,
+    /// of its dimension, number of particles, box, species, masses and diameters. No
+    /// file and nothing written: a new file.
+    pub fn resume(
+        path: &Path,
+        c: &Configuration,
+        frames: usize,
+        observables: &[(&str, usize)],
+    ) -> Result<Self> {
+        let nothing = frames == 0 && observables.iter().all(|(_, k)| *k == 0);
+        if nothing {
+            // Also a file damaged by a kill during its first frame: nothing to keep.
+            return Self::create(path);
+        }
+        let fail = |at: &str, message: String| Error::ParticleFile {
+            path: path.to_path_buf(),
+            at: at.into(),
+            message,
+        };
+        if !path.exists() {
+            return Err(fail(
+                "file",
+                format!("no such file; the check-point counts {frames} frames written to it"),
+            ));
+        }
+        if frames > 0 {
+            // The reader's checks (H5MD, the box's dimension, ...) and the particles of
+            // the last frame kept.
+            let last = read::read(path, c.dimension, frames as i64 - 1)?;
+            if last.len() != c.len() {
+                return Err(fail(
+                    "particles/all/position",
+                    format!(
+                        "{} particles in the file; the run has {}",
+                        last.len(),
+                        c.len()
+                    ),
+                ));
+            }
+            let same = last.sides == c.sides
+                && last.species == c.species
+                && last.masses == c.masses
+                && last.diameters == c.diameters
+                && last.time.is_some()
+                && last.velocities.is_some() == c.velocities.is_some()
+                && last.spins.is_some() == c.spins.is_some();
+            if !same {
+                return Err(fail(
+                    "particles/all",
+                    "the box, species, masses or diameters, or which of velocities, spins \
+                     and time are given, differ from the run's"
+                        .into(),
+                ));
+            }
+        }
+        let file = File::open_rw(path).map_err(|e| {
+            fail(
+                "file",
+                format!("not an HDF5 file that can be written: {}", line(e)),
+            )
+        })?;
+        let creator = file
+            .group("h5md/creator")
+            .and_then(|g| g.attr("name"))
+            .and_then(|a| a.read_scalar::<VarLenUnicode>())
+            .map(|s| s.as_str().to_string())
+            .unwrap_or_default();
+        if creator != "haff" {
+            return Err(fail(
+                "h5md/creator",
+                format!("name {creator:?}; haff continues only the trajectories it wrote"),
+            ));
+        }
+        let layout = if frames > 0 {
+            let all = file
+                .group("particles/all")
+                .map_err(|e| fail("particles/all", line(e)))?;
+            let series = |name: &str| -> Result<Series> {
+                let s = Series::open(&all, name)
+                    .map_err(|e| fail(&format!("particles/all/{name}"), line(e)))?;
+                if s.len() < frames {
+                    return Err(fail(
+                        &format!("particles/all/{name}"),
+                        format!("{} frames; the check-point counts {frames}", s.len()),
+                    ));
+                }
+                s.truncate(frames)
+                    .map_err(|e| fail(&format!("particles/all/{name}"), line(e)))?;
+                Ok(s)
+            };
+            Some(Layout {
+                dimension: c.dimension,
+                n: c.len(),
+                sides: c.sides.clone(),
+                species: c.species.clone(),
+                masses: c.masses.clone(),
+                diameters: c.diameters.clone(),
+                timed: true,
+                position: series("position")?,
+                velocity: c
+                    .velocities
+                    .as_ref()
+                    .map(|_| series("velocity"))
+                    .transpose()?,
+                spin: c
+                    .spins
+                    .as_ref()
+                    .map(|_| series("angular_velocity"))
+                    .transpose()?,
+            })
+        } else {
+            // No frame kept: the particles are laid out again by the next frame.
+            if file.link_exists("particles") {
+                file.unlink("particles")
+                    .map_err(|e| fail("particles", line(e)))?;
+            }
+            None
+        };
+        let mut kept = Vec::new();
+        let names = file
+            .group("observables")
+            .and_then(|g| g.member_names())
+            .unwrap_or_default();
+        for (name, count) in observables {
+            if *count > 0 && !names.iter().any(|n| n == name) {
+                return Err(fail(
+                    &format!("observables/{name}"),
+                    format!("no such series; the check-point counts {count} values"),
+                ));
+            }
+        }
+        for name in names {
+            let at = format!("observables/{name}");
+            let count = observables
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(0, |(_, k)| *k);
+            let s = file
+                .group("observables")
+                .and_then(|g| Series::open(&g, &name))
+                .map_err(|e| fail(&at, line(e)))?;
+            if s.len() < count {
+                return Err(fail(
+                    &at,
+                    format!("{} values; the check-point counts {count}", s.len()),
+                ));
+            }
+            s.truncate(count).map_err(|e| fail(&at, line(e)))?;
+            kept.push((name, s));
+        }
+        file.flush().map_err(|e| fail("file", line(e)))?;
+        Ok(Trajectory {
+            path: path.to_path_buf(),
+            file,
+            layout,
+            observables: kept,
+        })
+    }
+
+    /// Writes what is buffered to the file (done after every frame and value).
+    pub fn flush(&self) -> Result<()> {
+        self.file.flush().map_err(|e| self.fail("file", line(e)))
     }
 
     fn fail(&self, at: &str, message: String) -> Error {
@@ -245,7 +471,8 @@ impl Trajectory {
             }
             Ok(())
         };
-        write().map_err(|e| self.fail(&at, line(e)))
+        write().map_err(|e| self.fail(&at, line(e)))?;
+        self.flush()
     }
 
     /// The particles group of the first frame `c`.
@@ -317,35 +544,43 @@ impl Trajectory {
         };
         series
             .push(step, Some(time), &[value])
-            .map_err(|e| self.fail(&at, line(e)))
+            .map_err(|e| self.fail(&at, line(e)))?;
+        self.flush()
     }
 
-    /// Flushes and closes the file, and moves it to its path.
+    /// Flushes and closes the file.
     pub fn close(self) -> Result<()> {
         let Trajectory {
             path,
-            partial,
             file,
             layout,
             observables,
         } = self;
+        // The datasets first: the file closes when its last handle does.
         drop(layout);
         drop(observables);
-        let fail = |message: String| Error::ParticleFile {
-            path: path.clone(),
+        file.close().map_err(|e| Error::ParticleFile {
+            path,
             at: "file".into(),
-            message,
-        };
-        file.close().map_err(|e| fail(line(e)))?;
-        std::fs::rename(&partial, &path).map_err(|e| fail(e.to_string()))
+            message: line(e),
+        })
     }
 }
 
-/// Writes `c` as a one-frame H5MD file (step 0, its time if it has one).
+/// Writes `c` as a one-frame H5MD file (step 0, its time if it has one), as
+/// `path.partial` renamed at the end, as haff's other files.
 pub(super) fn write(path: &Path, c: &Configuration) -> Result<()> {
-    let mut t = Trajectory::create(path)?;
+    let mut partial = path.as_os_str().to_owned();
+    partial.push(".partial");
+    let partial = PathBuf::from(partial);
+    let mut t = Trajectory::start(path, &partial)?;
     t.push(0, c.time, c)?;
-    t.close()
+    t.close()?;
+    std::fs::rename(&partial, path).map_err(|e| Error::ParticleFile {
+        path: path.to_path_buf(),
+        at: "file".into(),
+        message: e.to_string(),
+    })
 }
 
 #[cfg(test)]

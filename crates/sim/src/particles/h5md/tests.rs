@@ -159,3 +159,212 @@ fn bad_and_damaged_files_are_refused_naming_the_file() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Frame `k` of a trajectory of the particles of `sample(3, 3, 1)`, moved: positions,
+/// velocities and spins of another seed.
+fn moved(k: u64, seed: u64) -> Configuration {
+    let other = sample(3, 3, seed);
+    Configuration {
+        positions: other.positions,
+        velocities: other.velocities,
+        spins: other.spins,
+        time: Some(0.25 * k as f64),
+        ..sample(3, 3, 1)
+    }
+}
+
+/// Appends frame `k` and the observables a run would write with it: `temperature` once,
+/// `energy` twice, `late` only from frame `late`.
+fn sample_frame(t: &mut Trajectory, k: u64, c: &Configuration, late: u64) {
+    let time = 0.25 * k as f64;
+    t.append(10 * k, time, c).unwrap();
+    let v = c.velocities.as_ref().unwrap()[0][0];
+    t.observable("temperature", 10 * k, time, v).unwrap();
+    t.observable("energy", 10 * k, time, 2.0 * v).unwrap();
+    t.observable("energy", 10 * k + 5, time + 0.125, 3.0 * v)
+        .unwrap();
+    if k >= late {
+        t.observable("late", 10 * k, time, -v).unwrap();
+    }
+}
+
+/// Every dataset of the file, as bits, by HDF5 path (oracle: the HDF5 library).
+fn contents(path: &std::path::Path) -> Vec<(String, Vec<u64>)> {
+    let f = hdf5::File::open(path).unwrap();
+    let mut out = Vec::new();
+    let mut series = vec![
+        "particles/all/position".to_string(),
+        "particles/all/velocity".into(),
+        "particles/all/angular_velocity".into(),
+    ];
+    for name in f.group("observables").unwrap().member_names().unwrap() {
+        series.push(format!("observables/{name}"));
+    }
+    for s in series {
+        let steps: Vec<i64> = f.dataset(&format!("{s}/step")).unwrap().read_raw().unwrap();
+        out.push((
+            format!("{s}/step"),
+            steps.iter().map(|&x| x as u64).collect(),
+        ));
+        for d in ["time", "value"] {
+            let x: Vec<f64> = f.dataset(&format!("{s}/{d}")).unwrap().read_raw().unwrap();
+            out.push((format!("{s}/{d}"), x.iter().map(|x| x.to_bits()).collect()));
+        }
+    }
+    for d in ["mass", "diameter", "box/edges"] {
+        let x: Vec<f64> = f
+            .dataset(&format!("particles/all/{d}"))
+            .unwrap()
+            .read_raw()
+            .unwrap();
+        out.push((d.into(), x.iter().map(|x| x.to_bits()).collect()));
+    }
+    let species: Vec<i32> = f
+        .dataset("particles/all/species")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    out.push((
+        "species".into(),
+        species.iter().map(|&s| s as u64).collect(),
+    ));
+    out
+}
+
+/// A run killed after 5 frames and resumed from its check-point at 3 writes the file a run
+/// never killed writes. The killed file: the bytes on disk after the 5th frame while the
+/// writer still holds it (a kill), and the file of a writer dropped without `close`.
+#[test]
+fn a_resumed_trajectory_equals_one_written_straight() {
+    let dir = scratch("h5md-resume");
+    let first: Vec<Configuration> = (0..5).map(|k| moved(k, 10 + k)).collect();
+    let again: Vec<Configuration> = (3..5).map(|k| moved(k, 20 + k)).collect();
+    let straight = dir.join("straight.h5");
+    let mut t = Trajectory::create(&straight).unwrap();
+    for (k, c) in first[..3].iter().chain(&again).enumerate() {
+        sample_frame(&mut t, k as u64, c, 4);
+    }
+    t.close().unwrap();
+    let expected = contents(&straight);
+    let (killed, dropped) = (dir.join("killed.h5"), dir.join("dropped.h5"));
+    let mut t = Trajectory::create(&dropped).unwrap();
+    for (k, c) in first.iter().enumerate() {
+        sample_frame(&mut t, k as u64, c, 3);
+    }
+    std::fs::copy(&dropped, &killed).unwrap();
+    drop(t);
+    for path in [&killed, &dropped] {
+        // `late` began after the check-point: not listed, cut to nothing.
+        let counts = [("temperature", 3), ("energy", 6)];
+        let mut t = Trajectory::resume(path, &first[2], 3, &counts).unwrap();
+        assert_eq!(read(path, Format::H5md, 3, -1).unwrap(), first[2]);
+        for (k, c) in again.iter().enumerate() {
+            sample_frame(&mut t, 3 + k as u64, c, 4);
+        }
+        t.close().unwrap();
+        let back = contents(path);
+        for ((name, a), (_, b)) in back.iter().zip(&expected) {
+            assert_eq!(a, b, "{}: {name}", path.display());
+        }
+        assert_eq!(back, expected, "{}", path.display());
+        for (k, c) in first[..3].iter().chain(&again).enumerate() {
+            assert_eq!(&read(path, Format::H5md, 3, k as i64).unwrap(), c);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// After every frame the file on disk is a whole H5MD file: its bytes, copied while the
+/// writer holds it (what a kill leaves), read back to the frame just appended.
+#[test]
+fn a_trajectory_is_readable_after_every_append() {
+    let dir = scratch("h5md-live");
+    let (path, copy) = (dir.join("live.h5"), dir.join("copy.h5"));
+    let mut t = Trajectory::create(&path).unwrap();
+    for k in 0..4 {
+        let c = moved(k, 30 + k);
+        t.append(k, 0.25 * k as f64, &c).unwrap();
+        std::fs::copy(&path, &copy).unwrap();
+        assert_eq!(read(&copy, Format::H5md, 3, -1).unwrap(), c, "frame {k}");
+        assert_eq!(read(&path, Format::H5md, 3, -1).unwrap(), c, "frame {k}");
+        t.observable("temperature", k, 0.25 * k as f64, k as f64)
+            .unwrap();
+    }
+    t.close().unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn resume_refuses_a_file_it_cannot_continue() {
+    let dir = scratch("h5md-refuse");
+    let path = dir.join("r.h5");
+    let c = moved(0, 40);
+    let mut t = Trajectory::create(&path).unwrap();
+    t.append(0, 0.0, &c).unwrap();
+    t.append(1, 0.25, &c).unwrap();
+    t.close().unwrap();
+    let says = |p: &std::path::Path, c: &Configuration, frames: usize, what: &str| {
+        let e = match Trajectory::resume(p, c, frames, &[]) {
+            Ok(_) => panic!("{} resumed", p.display()),
+            Err(e) => e.to_string(),
+        };
+        assert!(
+            e.starts_with(&p.display().to_string()) && e.contains(what) && !e.contains('\n'),
+            "{e}"
+        );
+    };
+    says(
+        &path,
+        &sample(3, 2, 1),
+        2,
+        "particles/all/position: 27 particles in the file; the run has 8",
+    );
+    says(
+        &path,
+        &sample(2, 3, 1),
+        2,
+        "particles/all/box: dimension 3 in the file; the run asks for 2",
+    );
+    let heavier = Configuration {
+        masses: Some(vec![2.0; c.len()]),
+        ..c.clone()
+    };
+    says(&path, &heavier, 2, "particles/all: the box, species");
+    says(&path, &c, 3, "frame 2 of a file of 2 frames");
+    let text = dir.join("t.h5");
+    std::fs::write(&text, "not hdf5").unwrap();
+    says(&text, &c, 1, "file: not an HDF5 file");
+    let other = dir.join("o.h5");
+    hdf5::File::create(&other)
+        .unwrap()
+        .create_group("data")
+        .unwrap();
+    says(&other, &c, 1, "h5md: no group `h5md`");
+    let e = Trajectory::resume(&other, &c, 0, &[("temperature", 2)])
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("h5md/creator: name \"\""), "{e}");
+    says(&dir.join("none.h5"), &c, 1, "file: no such file");
+    // A file cut anywhere (a kill during a write, a full disk): an error, never a panic.
+    let bytes = std::fs::read(&path).unwrap();
+    let cut = dir.join("cut.h5");
+    for k in 1..16 {
+        std::fs::write(&cut, &bytes[..bytes.len() * k / 16]).unwrap();
+        assert!(
+            Trajectory::resume(&cut, &c, 1, &[]).is_err(),
+            "cut at {k}/16"
+        );
+    }
+    // Nothing written yet: a new file, whatever was there.
+    let t = Trajectory::resume(&text, &c, 0, &[("temperature", 0)]).unwrap();
+    t.close().unwrap();
+    assert!(hdf5::File::open(&text).unwrap().group("h5md").is_ok());
+    // The same particles resume (the file is left as the check-point had it).
+    Trajectory::resume(&path, &c, 1, &[])
+        .unwrap()
+        .close()
+        .unwrap();
+    assert_eq!(read(&path, Format::H5md, 3, -1).unwrap().time, Some(0.0));
+    std::fs::remove_dir_all(&dir).ok();
+}
