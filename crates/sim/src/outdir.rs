@@ -257,6 +257,7 @@ fn is_space_output(name: &str) -> bool {
         "snapshots.pvd",
         "snapshots.lammpstrj",
         "snapshots.xyz",
+        "snapshots.h5md",
     ]
     .contains(&name)
         || numbered("fields_", &[".vti", ".png"])
@@ -297,6 +298,8 @@ mod tests {
             "snapshot_000000.vtu",
             "snapshots.lammpstrj",
             "snapshots.xyz",
+            "snapshots.h5md",
+            "snapshots.h5md",
         ] {
             assert!(is_space_output(ours), "{ours}");
         }

@@ -116,6 +116,13 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
     }
     if let Some(s) = &o.snapshots {
         every("output.snapshots.every", s.every)?;
+        if cfg!(not(feature = "h5md")) && s.format.has(crate::description::SnapshotFormat::H5md) {
+            return Err(Error::input(
+                "output.snapshots.format",
+                "`h5md`: this haff was built without H5MD support; build it with the cargo \
+                 feature `h5md` (docs/particles.md)",
+            ));
+        }
     }
     if let Some(p) = o.profiles {
         if p.axis.index() >= dimension {
@@ -390,6 +397,7 @@ impl SpaceObserver {
             return Ok(());
         }
         let (time, cpp) = (engine.time(), engine.collisions_per_particle());
+        let energy_lost = engine.counters().energy_lost;
         let o = self.output.clone();
         let snapshot_due = o
             .snapshots
@@ -481,6 +489,7 @@ impl SpaceObserver {
                         bath_temperatures: baths.as_deref(),
                         angular_velocities: spins.as_deref(),
                     },
+                    energy_lost,
                 };
                 snapshots::write(&dir, &s.format, &snapshot, &mut self.records.trajectories)?;
             }

@@ -60,11 +60,17 @@ fn every_format_and_the_run_start_the_same_run() {
     assert_eq!(start.temperature.to_bits(), last.temperature.to_bits());
     assert_eq!(start.a2.to_bits(), last.a2.to_bits());
     let configuration = first.configuration();
-    for (format, name) in [
+    let mut formats = vec![
         (Format::Csv, "state.csv"),
         (Format::LammpsDump, "state.dump"),
         (Format::Xyz, "state.xyz"),
-    ] {
+        (Format::Vtk, "state.vtu"),
+        (Format::LammpsData, "state.data"),
+    ];
+    if cfg!(feature = "h5md") {
+        formats.push((Format::H5md, "state.h5md"));
+    }
+    for (format, name) in formats {
         let path = dir.join(name);
         particles::write(&path, format, &configuration).unwrap();
         let text = run_text(
@@ -413,4 +419,42 @@ fn bad_initial_descriptions_are_refused_naming_the_key() {
         2,
     ));
     assert!(message.contains("system.dimension"), "{message}");
+}
+
+/// A data file LAMMPS wrote (`write_data`, 29 Sep 2021; `tests/data/lammps/`, made by the
+/// `.in` beside it) starts a haff run in 2D and 3D: its 50 atoms, box, two types as two
+/// species with LAMMPS' masses (density x 4 pi r^3 / 3, in 2D too) and velocities, as the
+/// reader gives them (the reader is tested against LAMMPS' own dump of the same atoms in
+/// `tests/lammps_data.rs`).
+#[test]
+fn a_lammps_data_file_starts_a_run() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/lammps");
+    for (dimension, name) in [(2, "sphere2d.data"), (3, "sphere3d.data")] {
+        let path = data.join(name);
+        let c = particles::read(&path, Format::LammpsData, dimension, -1).unwrap();
+        let text = run_text(
+            &format!(
+                "dimension = {dimension}\ninitial = {{ file = {} }}",
+                quoted(&path)
+            ),
+            1.0,
+            2,
+        );
+        let mut run = simulation(&text).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let s = &run.description().system;
+        assert_eq!(s.particles, 50);
+        assert_eq!(s.sides.as_deref(), Some(c.sides.as_slice()));
+        assert_eq!(s.species.as_ref().map(Vec::len), Some(2), "{name}");
+        let p = run.particles();
+        assert_eq!(&p.masses, c.masses.as_ref().unwrap());
+        let v: Vec<f64> = c
+            .velocities
+            .as_ref()
+            .unwrap()
+            .iter()
+            .flat_map(|v| v[..dimension].to_vec())
+            .collect();
+        assert_eq!(p.velocities, v);
+        run.run(&mut (), None).unwrap();
+    }
 }

@@ -13,14 +13,18 @@ pub enum SnapshotFormat {
     LammpsDump,
     /// An extended XYZ trajectory, `snapshots.xyz` (OVITO, ASE).
     Xyz,
+    /// An H5MD trajectory, `snapshots.h5md` (h5py, MDAnalysis, OVITO), with the
+    /// temperature and the energy lost as observables (the feature `h5md`).
+    H5md,
 }
 
 impl SnapshotFormat {
     /// Every format, in the order of the error message's list.
-    pub const ALL: [SnapshotFormat; 3] = [
+    pub const ALL: [SnapshotFormat; 4] = [
         SnapshotFormat::Vtk,
         SnapshotFormat::LammpsDump,
         SnapshotFormat::Xyz,
+        SnapshotFormat::H5md,
     ];
 
     /// The name in the run file.
@@ -29,6 +33,7 @@ impl SnapshotFormat {
             SnapshotFormat::Vtk => "vtk",
             SnapshotFormat::LammpsDump => "lammps-dump",
             SnapshotFormat::Xyz => "xyz",
+            SnapshotFormat::H5md => "h5md",
         }
     }
 
@@ -106,7 +111,7 @@ impl<'de> Deserialize<'de> for SnapshotFormats {
         impl<'de> serde::de::Visitor<'de> for Visitor {
             type Value = SnapshotFormats;
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-                f.write_str("a snapshot format (vtk, lammps-dump, xyz) or a list of them")
+                f.write_str("a snapshot format (vtk, lammps-dump, xyz, h5md) or a list of them")
             }
             fn visit_str<E: serde::de::Error>(
                 self,

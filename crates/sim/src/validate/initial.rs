@@ -261,18 +261,14 @@ fn load(
                     return Err(Error::input(
                         key,
                         "for a particle file (system.initial.file); a run continues from its \
-                         last check-point",
+                         last check-point or snapshot",
                     ));
                 }
             }
             let dir = absolute(Path::new(run));
-            let configuration = last_state(&dir, dimension)?;
+            let (configuration, read) = last_state(&dir, dimension)?;
             normal.run = Some(dir.display().to_string());
-            Ok((
-                configuration,
-                dir.join(crate::checkpoint::FILE_NAME),
-                normal,
-            ))
+            Ok((configuration, read, normal))
         }
     }
 }
@@ -283,8 +279,15 @@ fn absolute(path: &Path) -> PathBuf {
     std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf())
 }
 
-/// The particles of the last check-point of the run in `dir`, checked as a resumed run's.
-fn last_state(dir: &Path, dimension: usize) -> Result<Configuration> {
+/// The particles of the last state the run in `dir` kept: its check-point
+/// (`checkpoint.bin`, checked as a resumed run's), else its last snapshot (`output.snapshots`
+/// in any format: `snapshots.h5md`, the last `snapshot_NNNNNN.vtu`, `snapshots.xyz`,
+/// `snapshots.lammpstrj`), and the file read.
+fn last_state(dir: &Path, dimension: usize) -> Result<(Configuration, PathBuf)> {
+    let checkpoint = dir.join(crate::checkpoint::FILE_NAME);
+    if !checkpoint.exists() {
+        return last_snapshot(dir, dimension);
+    }
     let mut run = crate::Simulation::load(dir).map_err(|e| {
         Error::input(
             "system.initial.run",
@@ -305,7 +308,38 @@ fn last_state(dir: &Path, dimension: usize) -> Result<Configuration> {
             ),
         ));
     }
-    Ok(run.configuration())
+    Ok((run.configuration(), checkpoint))
+}
+
+/// The last snapshot of the run in `dir`, for a run that kept no check-point.
+fn last_snapshot(dir: &Path, dimension: usize) -> Result<(Configuration, PathBuf)> {
+    let last_vtu = std::fs::read_dir(dir).ok().and_then(|entries| {
+        entries
+            .filter_map(|e| e.ok().map(|e| e.file_name().to_string_lossy().into_owned()))
+            .filter(|n| n.starts_with("snapshot_") && n.ends_with(".vtu"))
+            .max()
+    });
+    let candidates = [
+        Some(("snapshots.h5md".to_string(), Format::H5md)),
+        last_vtu.map(|n| (n, Format::Vtk)),
+        Some(("snapshots.xyz".to_string(), Format::Xyz)),
+        Some(("snapshots.lammpstrj".to_string(), Format::LammpsDump)),
+    ];
+    for (name, format) in candidates.into_iter().flatten() {
+        let path = dir.join(name);
+        if path.exists() {
+            let c = crate::particles::read(&path, format, dimension, -1)?;
+            return Ok((c, path));
+        }
+    }
+    Err(Error::input(
+        "system.initial.run",
+        format!(
+            "{}: no check-point (checkpoint.bin: haff run --checkpoint-every K) and no \
+             snapshots (output.snapshots) to continue from",
+            dir.display()
+        ),
+    ))
 }
 
 /// The box: the file's, or `system.box` for a file without one (refused with one).
