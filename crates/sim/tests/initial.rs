@@ -361,33 +361,28 @@ fn bad_initial_descriptions_are_refused_naming_the_key() {
         ));
         assert!(message.contains(expected), "{initial}: {message}");
     }
+    // The refusal of a run from `c` written as `name`, with `extra` keys in [system].
+    let refused_file = |name: &str, c: &Configuration, extra: &str| {
+        let path = dir.join(name);
+        particles::write(&path, Format::Csv, c).unwrap();
+        refusal(&run_text(
+            &format!(
+                "dimension = 2\n{extra}initial = {{ file = {} }}",
+                quoted(&path)
+            ),
+            1.0,
+            2,
+        ))
+    };
     // Velocities in the file and a temperature to draw them at.
     let mut moving = lattice(16, None);
     moving.velocities = Some(vec![[1.0, -1.0, 0.0]; 16]);
-    let moving_path = dir.join("moving.csv");
-    particles::write(&moving_path, Format::Csv, &moving).unwrap();
-    let message = refusal(&run_text(
-        &format!(
-            "dimension = 2\ntemperature = 1.0\ninitial = {{ file = {} }}",
-            quoted(&moving_path)
-        ),
-        1.0,
-        2,
-    ));
+    let message = refused_file("moving.csv", &moving, "temperature = 1.0\n");
     assert!(message.contains("system.temperature"), "{message}");
     // Overlapping spheres: the file and the records named.
     let mut dense = lattice(16, None);
     dense.positions[1] = [1.5, 1.0, 0.0];
-    let dense_path = dir.join("dense.csv");
-    particles::write(&dense_path, Format::Csv, &dense).unwrap();
-    let message = refusal(&run_text(
-        &format!(
-            "dimension = 2\ninitial = {{ file = {} }}",
-            quoted(&dense_path)
-        ),
-        1.0,
-        2,
-    ));
+    let message = refused_file("dense.csv", &dense, "");
     assert!(
         message.contains("dense.csv") && message.contains("records 0 and 1"),
         "{message}"
@@ -395,16 +390,7 @@ fn bad_initial_descriptions_are_refused_naming_the_key() {
     // Kinds of particle without masses.
     let mut two = lattice(16, Some(vec![1.0; 16]));
     two.diameters.as_mut().unwrap()[3] = 0.5;
-    let two_path = dir.join("two.csv");
-    particles::write(&two_path, Format::Csv, &two).unwrap();
-    let message = refusal(&run_text(
-        &format!(
-            "dimension = 2\ninitial = {{ file = {} }}",
-            quoted(&two_path)
-        ),
-        1.0,
-        2,
-    ));
+    let message = refused_file("two.csv", &two, "");
     assert!(
         message.contains("system.initial") && message.contains("masses"),
         "{message}"
