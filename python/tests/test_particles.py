@@ -127,7 +127,7 @@ def test_a_simulation_from_arrays_draws_missing_velocities():
         del c[key]
     c["diameters"] = np.full(len(c["positions"]), 0.9)
     sim = haff.Simulation({"system": {"dimension": 2, "temperature": 1.5}, **RUN}, initial=c)
-    assert sim.timeseries["temperature"][0] == pytest.approx(1.5, rel=1e-12)
+    assert sim.run().timeseries["temperature"][0] == pytest.approx(1.5, rel=1e-12)
 
 
 def test_bad_initial_arrays_raise_naming_the_record():

@@ -106,3 +106,31 @@ def test_lammps_data_round_trip(tmp_path, dimension):
             np.testing.assert_array_max_ulp(back[key], value, maxulp=1)
         else:
             np.testing.assert_array_equal(back[key], np.asarray(value), err_msg=key)
+
+
+def test_h5py_reads_the_snapshot_trajectory(tmp_path):
+    """`[output] snapshots = { format = "h5md" }`: h5py finds a frame per snapshot (value
+    (frames, N, D), step = the sample's number, time = the sample's) and the observables
+    temperature and energy_lost of the run's timeseries at those samples (oracle: the
+    timeseries; T to 1e-14 relative, the same sum in another order)."""
+    h5py = pytest.importorskip("h5py")
+    config = {"system": {"dimension": 2, "particles": 60, "packing_fraction": 0.2},
+              "collision": {"law": "constant", "restitution": 0.8},
+              "run": {"collisions_per_particle": 4, "samples": 5, "spacing": "linear"},
+              "output": {"snapshots": {"every": 2, "format": "h5md"}}}
+    try:
+        sim = haff.Simulation(config, output_dir=tmp_path / "run").run()
+    except haff.ConfigError as e:
+        if "without H5MD" in str(e):
+            pytest.skip("haff built without the feature h5md")
+        raise
+    ts = sim.timeseries
+    with h5py.File(tmp_path / "run" / "snapshots.h5md", "r") as f:
+        position = f["particles/all/position"]
+        assert position["value"].shape == (3, 60, 2)
+        assert list(position["step"][()]) == [0, 2, 4]
+        np.testing.assert_array_equal(position["time"][()], ts["time"][[0, 2, 4]])
+        temperature = f["observables/temperature/value"][()]
+        np.testing.assert_allclose(temperature, ts["temperature"][[0, 2, 4]], rtol=1e-14)
+        np.testing.assert_array_equal(f["observables/energy_lost/value"][()],
+                                      ts["energy_lost"][[0, 2, 4]])
