@@ -794,7 +794,8 @@ impl RunDescription {
 }
 
 /// Parses TOML text into `T`. A value of the wrong type or a name outside its choices is an
-/// [`Error::Input`] naming the key (`collision.law: unknown variant ...`); text that is not
+/// [`Error::Input`] naming the key (`collision.law: unknown value `constnt`; did you mean
+/// `constant`? ...`, [`did_you_mean`]); text that is not
 /// TOML is an [`Error::RunFile`] of `origin`.
 pub fn parse_toml<T: DeserializeOwned>(text: &str, origin: &Path) -> Result<T> {
     let syntax = |e: toml::de::Error| Error::RunFile {
@@ -804,7 +805,7 @@ pub fn parse_toml<T: DeserializeOwned>(text: &str, origin: &Path) -> Result<T> {
     let deserializer = toml::de::Deserializer::parse(text).map_err(syntax)?;
     serde_path_to_error::deserialize(deserializer).map_err(|e| {
         let key = e.path().to_string();
-        let message = one_line(e.inner().message());
+        let message = did_you_mean(&key, &one_line(e.inner().message()));
         if key == "." {
             Error::RunFile {
                 path: origin.to_path_buf(),
@@ -814,6 +815,45 @@ pub fn parse_toml<T: DeserializeOwned>(text: &str, origin: &Path) -> Result<T> {
             Error::Input { key, message }
         }
     })
+}
+
+/// serde's refusal of an unknown key or value (`unknown field `restituton`, expected one of
+/// `law`, `restitution`, ...`) said for a user: the closest allowed name suggested when it is
+/// close (the Damerau–Levenshtein distance at most a third of the name's length, at least
+/// 1), the allowed names listed. Other messages are returned as they are.
+fn did_you_mean(key: &str, message: &str) -> String {
+    let (what, rest) = if let Some(rest) = message.strip_prefix("unknown field ") {
+        ("key", rest)
+    } else if let Some(rest) = message.strip_prefix("unknown variant ") {
+        ("value", rest)
+    } else {
+        return message.to_string();
+    };
+    let names: Vec<&str> = rest.split('`').skip(1).step_by(2).collect();
+    let Some((given, allowed)) = names.split_first() else {
+        return message.to_string();
+    };
+    let section = match (what, key.rsplit_once('.')) {
+        ("key", Some((table, _))) => format!(" in [{table}]"),
+        _ => String::new(),
+    };
+    let list = allowed
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let closest = allowed
+        .iter()
+        .map(|n| (strsim::damerau_levenshtein(given, n), *n))
+        .min()
+        .filter(|&(d, _)| d <= (given.chars().count() / 3).max(1));
+    match closest {
+        Some((_, name)) => {
+            format!("unknown {what} `{given}`{section}; did you mean `{name}`? (allowed: {list})")
+        }
+        None if allowed.is_empty() => format!("unknown {what} `{given}`{section}"),
+        None => format!("unknown {what} `{given}`{section}; allowed: {list}"),
+    }
 }
 
 /// Reads a TOML file and parses it into `T` (see [`parse_toml`]).

@@ -77,3 +77,43 @@ fn text_that_is_not_toml_names_the_file() {
         other => panic!("{:?}", other.err()),
     }
 }
+
+/// An unknown key or value is answered with the closest allowed name when one is close
+/// (issue 39: "unknown key `restituton` in [collision]; did you mean `restitution`?"), and
+/// with the allowed names always; a name far from all gets the list alone.
+#[test]
+fn unknown_names_suggest_the_closest() {
+    let file = |collision: &str| {
+        format!(
+            "[system]\nparticles = 10\npacking_fraction = 0.1\n[collision]\n{collision}\n\
+             [run]\ncollisions_per_particle = 1\n"
+        )
+    };
+    let refusal = |text: &str| {
+        sim::RunDescription::from_toml(text, "t.toml".as_ref())
+            .unwrap_err()
+            .to_string()
+    };
+    let e = refusal(&file("law = \"constant\"\nrestituton = 0.9"));
+    assert!(
+        e.starts_with(
+            "collision.restituton: unknown key `restituton` in [collision]; did you mean \
+             `restitution`? (allowed: `law`, `restitution`,"
+        ),
+        "{e}"
+    );
+    let e = refusal(&file("law = \"constnt\"\nrestitution = 0.9"));
+    assert!(
+        e.starts_with(
+            "collision.law: unknown value `constnt`; did you mean `constant`? (allowed: \
+             `constant`, `dashpot`, `viscoelastic`, `stochastic`)"
+        ),
+        "{e}"
+    );
+    let e = refusal(&file("law = \"constant\"\nrestitution = 0.9\nwobble = 1"));
+    assert!(
+        e.starts_with("collision.wobble: unknown key `wobble` in [collision]; allowed: `law`"),
+        "{e}"
+    );
+    assert!(!e.contains("did you mean"), "{e}");
+}
