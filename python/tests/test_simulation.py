@@ -540,3 +540,18 @@ def test_an_elastic_gas_reports_its_green_kubo_viscosity(tmp_path):
     sim = haff.Simulation(elastic).run(progress=False)
     assert "not elastic" in sim.green_kubo()["skipped"]
     assert haff.Simulation(CONFIGS["event-driven"]).green_kubo() is None
+
+
+def test_unknown_names_suggest_the_closest():
+    """A misspelt key or value: the ConfigError names it and suggests the closest allowed
+    name, as the CLI does (the same sim::description)."""
+    config = {"system": {"particles": 10, "packing_fraction": 0.1},
+              "collision": {"law": "constant", "restituton": 0.9},
+              "run": {"collisions_per_particle": 1}}
+    with pytest.raises(haff.ConfigError,
+                       match=r"unknown key `restituton` in \[collision\]; did you mean "
+                             r"`restitution`\?"):
+        haff.Simulation(config)
+    config["collision"] = {"law": "constnt", "restitution": 0.9}
+    with pytest.raises(haff.ConfigError, match="did you mean `constant`"):
+        haff.Simulation(config)
