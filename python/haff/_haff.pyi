@@ -12,7 +12,10 @@ import numpy.typing as npt
 __version__: str
 
 class ConfigError(ValueError):
-    """Bad input: the message names the key or argument and what is allowed."""
+    """Bad input: the message names the key or argument and what is allowed.
+
+    Declared in the module ``haff`` (its ``__module__``), which re-exports it.
+    """
 
 Float1D = npt.NDArray[np.float64]
 Callback = Optional[Callable[[int, int, str], Any]]
@@ -113,6 +116,9 @@ class _Simulation:
         pxz, pyz, kinetic_xy."""
     def rheology(self) -> str | None:
         """summary.json's rheology as JSON text (None without [shear])."""
+    def green_kubo(self) -> str | None:
+        """summary.json's green_kubo as JSON text (None without output.pressure or under
+        [shear])."""
     def profiles(self) -> dict[str, Float1D] | None:
         """The columns of profiles.csv (one row per slab and sample; NaN for empty cells)."""
     def velocity_histograms(self) -> list[tuple[float, float, float, Float1D, Float1D]]: ...
@@ -132,7 +138,10 @@ class _Simulation:
         self,
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], Float1D, Float1D]: ...
     def temperature(self) -> float: ...
-    def counters(self) -> tuple[int, int, float, int]: ...
+    def counters(self) -> tuple[int, int, float, int]:
+        """(collisions, events, energy_lost, tc_elastic_collisions) so far."""
+    def initial_state_json(self) -> str | None:
+        """How a dense start was grown (summary.json's initial_state) as JSON, or None."""
     def contact_statistics(self) -> dict[str, float] | None: ...
     def description_json(self) -> str: ...
     def save(self, path: str) -> None: ...

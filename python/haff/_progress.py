@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sys
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
 
 def _interactive() -> bool:
@@ -16,13 +16,13 @@ class _Bar:
     """Calls from the run driver: (done, total, note) at the start and at every sample."""
 
     def __init__(self) -> None:
-        self._bar = None
-        self._plain_total = None
+        self._bar: Any = None  # a tqdm bar, made at the first call
+        self._tqdm: Any = None
         try:
             from tqdm.auto import tqdm
             self._tqdm = tqdm
         except ImportError:
-            self._tqdm = None
+            pass
 
     def __call__(self, done: int, total: int, note: str) -> None:
         if self._tqdm is not None:

@@ -17,10 +17,11 @@ import concurrent.futures
 import json
 import operator
 import os
+import sys
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
 
 from . import _haff
 from ._haff import ConfigError
@@ -37,7 +38,27 @@ def study_toml(base: Union[Mapping[str, Any], PathLike],
                vary: Optional[Mapping[str, Sequence[Any]]] = None,
                seeds: int = 1,
                zip: Optional[Sequence[Mapping[str, Sequence[Any]]]] = None) -> str:
-    """The study file (TOML text) of these arguments; a base path is made absolute."""
+    """The study file (TOML text) of these arguments; a base path is made absolute.
+
+    Parameters
+    ----------
+    base, vary, seeds, zip
+        As for :func:`study`.
+
+    Returns
+    -------
+    str
+        The text of a study file that ``haff study FILE`` runs as :func:`study` would.
+
+    Examples
+    --------
+    >>> print(study_toml({"run": {"samples": 3}}, {"collision.restitution": [0.7, 0.9]}, 2))
+    base = { run = { samples = 3 } }
+    seeds = 2
+    [vary]
+    "collision.restitution" = [0.7, 0.9]
+    <BLANKLINE>
+    """
     if isinstance(base, Mapping):
         base_line = f"base = {_toml_value(dict(base), 'base')}"
     elif isinstance(base, (str, os.PathLike)):
@@ -85,33 +106,67 @@ def _integer(name: str, value: Any, low: int, high: int) -> int:
 def _run_one(text: str, origin: str, output_dir: str, point: int, replica: int,
              threads: int, checkpoint_every: Optional[int]) -> Dict[str, Any]:
     """One run of a study, in a worker: its outcome (a dict, as in ``study.json``)."""
-    return json.loads(_haff.study_run(text, origin, output_dir, point, replica, threads,
-                                      checkpoint_every))
+    outcome: Dict[str, Any] = json.loads(_haff.study_run(
+        text, origin, output_dir, point, replica, threads, checkpoint_every))
+    return outcome
 
 
 def _is_dask(executor: Any) -> bool:
-    try:
-        from distributed import Client
-    except ImportError:
+    # A dask Client exists only once `distributed` is imported: no import (seconds) here.
+    if "distributed" not in sys.modules:
         return False
+    from distributed import Client
     return isinstance(executor, Client)
 
 
 @dataclass
 class StudyResult:
-    """What a study gives back (every table is also a file in ``output_dir``).
+    """What :func:`study` gives back; every table is also a file in ``output_dir``.
 
-    ensemble: ``ensemble.csv`` as a pandas DataFrame (a row per point, sample and quantity:
-        mean and standard error over the replicas).
-    runs: a DataFrame of the runs (point, replica, seed, dir, state, wall_seconds, resumed,
-        kept, error).
-    summary: ``study.json`` (the study, the points' summary scalars with mean and standard
-        error, every run's outcome).
-    dataset: an xarray Dataset of every quantity of every complete run, dims
-        ``(run, sample)`` with the point, seed and varied keys as coordinates of ``run``
-        (None when xarray is not installed).
-    failed: the outcomes of the runs that failed and the points left out (empty when
+    Parameters
+    ----------
+    output_dir : pathlib.Path
+        The study's directory (absolute).
+    ensemble : pandas.DataFrame
+        ``ensemble.csv``: a row per point, sample and quantity, with the columns
+        ``point``, the varied keys, ``sample``, ``time``, ``collisions_per_particle``
+        (the replicas' means), ``quantity`` (a column of the runs' ``timeseries.csv``),
+        ``mean``, ``standard_error`` (the sample standard deviation over the replicas
+        over sqrt(replicas); NaN for one replica) and ``replicas``.
+    runs : pandas.DataFrame
+        A row per run: ``point``, ``replica``, ``seed``, ``dir`` (relative to
+        `output_dir`), ``state`` (``complete`` or ``failed``), ``wall_seconds``,
+        ``resumed``, ``kept`` (finished by an earlier call), ``error``.
+    summary : dict
+        ``study.json``: the study, its keys and points, per point the scalars of the
+        runs' ``summary.json`` with mean and standard error, every run's outcome.
+    dataset : xarray.Dataset or None
+        Every quantity of every complete run, dims ``(run, sample)``, with the point, the
+        seed and the varied keys as coordinates of ``run``; None without xarray.
+    failed : list of dict
+        The outcomes of the runs that failed and the invalid points left out (empty when
         everything ran).
+
+    Examples
+    --------
+    >>> import haff
+    >>> gas = {"system": {"particles": 200, "packing_fraction": 0.1, "seed": 1},
+    ...        "collision": {"law": "constant", "restitution": 0.9},
+    ...        "run": {"collisions_per_particle": 10, "samples": 3}}
+    >>> result = haff.study(gas, vary={"collision.restitution": [0.7, 0.9]}, seeds=3,
+    ...                     output_dir="result-study", progress=False)
+    >>> result.runs[["point", "seed", "dir", "state"]]
+       point  seed         dir     state
+    0      0     1  runs/000/1  complete
+    1      0     2  runs/000/2  complete
+    2      0     3  runs/000/3  complete
+    3      1     1  runs/001/1  complete
+    4      1     2  runs/001/2  complete
+    5      1     3  runs/001/3  complete
+    >>> result.failed
+    []
+    >>> result.dataset["temperature"].shape      # (run, sample)
+    (6, 3)
     """
 
     output_dir: Path
@@ -134,28 +189,87 @@ def study(base: Union[Mapping[str, Any], PathLike],
           force: bool = False,
           keep_going: bool = False,
           progress: Union[None, bool, Callable[[int, int, str], None]] = None) -> StudyResult:
-    """Runs a study: every point of ``vary`` (and ``zip``) times ``seeds`` replicas of
-    ``base``, the same study and directory layout as ``haff study``.
+    """Runs a study: many runs of one run file over a grid of parameters and seeds.
 
-    base: the run file's sections as a dict, or a run file's path.
-    vary: dotted keys of the run file and their lists of values (the cross product), e.g.
-        ``{"collision.restitution": [0.5, 0.7, 0.9]}``.
-    seeds: replicas per point; replica r runs with ``system.seed`` = base seed + r.
-    output_dir: the study's directory (new, empty, or this study's to continue it: finished
-        runs are kept, interrupted ones resume from their check-points). Workers of a remote
+    Every point of `vary` (and `zip`) times `seeds` replicas of `base`: the same study,
+    the same run files and the same ``ensemble.csv`` (byte for byte) as ``haff study``
+    (docs/studies.md), each run a complete ``haff run`` in
+    ``output_dir/runs/<point>/<seed>/``. The aggregates — the mean and standard error over
+    the replicas at every sample — are computed here from the runs' files.
+
+    Parameters
+    ----------
+    base : dict, str or path
+        The run: the run file's sections as a dict (as for :class:`Simulation`), or a
+        run file's path.
+    vary : dict of str to list, optional
+        Dotted keys of the run file and their lists of values, whose cross product makes
+        the points, e.g. ``{"collision.restitution": [0.5, 0.7, 0.9]}``; the last key
+        varies fastest. ``system.seed`` cannot be varied.
+    seeds : int, default 1
+        Replicas per point (1..100000); replica r runs with ``system.seed`` = base seed
+        + r.
+    output_dir : str or path
+        The study's directory: new, empty, or this study's to continue it (finished runs
+        are kept, interrupted ones resume from their check-points). Workers of a remote
         executor must see it at the same path.
-    zip: tables of keys whose lists vary together (each one axis).
-    executor: a ``concurrent.futures.Executor`` or a ``dask.distributed.Client``; None: a
-        pool of ``jobs`` threads here.
-    threads: threads per run. checkpoint_every: samples between check-points (default: at
-        the first sample after each minute of a run, as ``haff study``).
-    force: replace another study's directory. keep_going: leave out invalid points (listed
-        in ``failed``) instead of raising ``ConfigError``.
-    progress: a bar over the runs (tqdm's if installed; None: when interactive), or a
-        callable ``(done, total, note)``.
+    zip : list of dict, optional
+        Tables of keys whose lists (of equal length) vary together, each one axis.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where the runs go (a ``ProcessPoolExecutor``, a dask ``Client`` of a
+        ``LocalCluster`` or of a Slurm/PBS cluster by ``dask-jobqueue``); None: a pool of
+        `jobs` threads here (the runs release the GIL).
+    jobs : int, default 1
+        Runs at a time on the threads of the default executor.
+    threads : int, default 1
+        Threads per run.
+    checkpoint_every : int, optional
+        Samples between check-points (default: at the first sample after each minute of
+        a run, as ``haff study``).
+    force : bool, default False
+        Replace another study's directory.
+    keep_going : bool, default False
+        Leave out invalid points (listed in ``failed``) instead of raising.
+    progress : bool, None or callable, default None
+        A bar over the runs (tqdm's if installed; None: when interactive), or a callable
+        ``(done, total, note)`` called as runs finish.
 
-    Raises ``ConfigError`` for a bad study (naming the point and key) before any run starts.
-    A run that fails does not stop the others; its outcome is in ``failed``.
+    Returns
+    -------
+    StudyResult
+        ``ensemble`` (mean and standard error per point, sample and quantity), ``runs``,
+        ``summary``, ``dataset`` and ``failed``.
+
+    Raises
+    ------
+    ConfigError
+        A bad study, naming the point and key, before any run starts; a directory
+        holding another study (without `force`) or other files.
+    ImportError
+        pandas is not installed.
+
+    Notes
+    -----
+    A run that fails does not stop the others: its outcome is in ``failed``. Calling
+    ``study`` again with the same arguments keeps the finished runs and resumes the
+    others. Ctrl-C cancels the runs not started.
+
+    Examples
+    --------
+    The temperature after 10 collisions per particle at two restitutions, 3 seeds each:
+
+    >>> import haff
+    >>> gas = {"system": {"particles": 200, "packing_fraction": 0.1, "seed": 1},
+    ...        "collision": {"law": "constant", "restitution": 0.9},
+    ...        "run": {"collisions_per_particle": 10, "samples": 3}}
+    >>> result = haff.study(gas, vary={"collision.restitution": [0.7, 0.9]}, seeds=3,
+    ...                     output_dir="eps-study", progress=False)
+    >>> e = result.ensemble
+    >>> end = e[(e["quantity"] == "temperature") & (e["sample"] == 2)]
+    >>> end[["collision.restitution", "mean", "standard_error", "replicas"]].round(4)
+        collision.restitution    mean  standard_error  replicas
+    10                    0.7  0.1...          0.0...         3
+    25                    0.9  0.5...          0.0...         3
     """
     try:
         import pandas  # noqa: F401  (the results' tables: checked before any run)
@@ -186,8 +300,10 @@ def study(base: Union[Mapping[str, Any], PathLike],
     try:
         args = [(text, _ORIGIN, str(directory), p, r, threads, checkpoint_every)
                 for p, r, _ in runs]
+        as_completed: Callable[[List[Any]], Iterable[Any]]
         if _is_dask(executor):
-            from distributed import as_completed
+            from distributed import as_completed as dask_as_completed
+            as_completed = dask_as_completed
             futures = [executor.submit(_run_one, *a, pure=False) for a in args]
         else:
             as_completed = concurrent.futures.as_completed
@@ -224,7 +340,8 @@ def study(base: Union[Mapping[str, Any], PathLike],
     return _result(directory, keys, [json.loads(v) for v in points], ordered, summary, failed)
 
 
-def _progress(progress, total):
+def _progress(progress: Union[None, bool, Callable[[int, int, str], None]],
+              total: int) -> Optional[Callable[[int, int, str], None]]:
     if callable(progress):
         return progress
     if progress is None:
@@ -263,7 +380,7 @@ def _result(directory: Path, keys: List[str], points: List[Dict[str, Any]],
 
 
 def _dataset(directory: Path, keys: List[str], points: List[Dict[str, Any]],
-             outcomes: List[Dict[str, Any]]):
+             outcomes: List[Dict[str, Any]]) -> Any:
     """Every complete run's ``timeseries.csv`` as one xarray Dataset (run x sample)."""
     try:
         import xarray as xr
@@ -289,7 +406,7 @@ def _dataset(directory: Path, keys: List[str], points: List[Dict[str, Any]],
               "point": ("run", [o["point"] for o in complete]),
               "seed": ("run", [o["seed"] for o in complete])}
     for key in keys:
-        values = [points[o["point"]].get(key) for o in complete]
+        values: Any = [points[o["point"]].get(key) for o in complete]
         if any(isinstance(v, (list, dict)) for v in values):  # a varied list or table:
             column = np.empty(len(values), dtype=object)       # one object per run
             column[:] = [json.dumps(v) for v in values]

@@ -21,13 +21,26 @@ mod simulation;
 mod study;
 mod theory;
 
+// Declared in the module `haff`, which re-exports it: tracebacks and help() name it
+// `haff.ConfigError`, and pickle (a process pool's or dask's worker raising it) finds it.
 create_exception!(
-    _haff,
+    haff,
     ConfigError,
     PyValueError,
-    "Bad input: a run description, an argument or a check-point file. The message names the \
-     key or argument (e.g. `system.packing_fraction`) and what is allowed, as the haff \
-     command's does."
+    "Bad input: a run description, an argument, a particle or check-point file.\n\n\
+     A ``ValueError`` whose message names the key or argument (e.g. \
+     ``system.packing_fraction``, ``vstar[0]``) and what is allowed, as the message of the \
+     ``haff`` command does (which exits with status 2 there).\n\n\
+     Examples\n\
+     --------\n\
+     >>> import haff\n\
+     >>> try:\n\
+     ...     haff.eps(-1.0)\n\
+     ... except haff.ConfigError as error:\n\
+     ...     print(error)\n\
+     vstar[0]: -1 is out of range; allowed: 0 <= vstar <= 1000000\n\
+     >>> issubclass(haff.ConfigError, ValueError)\n\
+     True\n"
 );
 
 /// `key: message` as a [`ConfigError`].
