@@ -1,11 +1,20 @@
-//! `haff demo`: eps(v) of ice spheres with every law side by side.
+//! `haff demo`: the main job of haff in seconds. A 3D gas cooling (against Haff's law, its
+//! velocity distribution against the Maxwellian and the Sonine correction), a 2D gas
+//! clustering, and eps(v) of ice spheres with every law side by side. The gases are run files
+//! of [`sim::demo`] written beside their outputs, run as `haff run` runs them.
 
 use crate::bench::log_spaced;
 use crate::error::{CliError, CliResult};
 use crate::output::{significant, stdout, write_table};
+use crate::progress::Bar;
+use crate::DemoArgs;
 use restitution::material::ICE_BRIDGES_BETA_CGS;
 use restitution::{Restitution, ScaledForm, Viscoelastic};
+use sim::outdir::{run_hash, OutputDir, RunState};
+use sim::{RunDescription, Simulation};
 use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
 
 /// The laws shown, one column each.
 const LAWS: [&str; 7] = [
@@ -27,7 +36,106 @@ const SPEEDS: usize = 11;
 const EPS_DIGITS: usize = 6;
 
 /// `haff demo`.
-pub fn run() -> CliResult {
+pub fn run(args: &DemoArgs) -> CliResult {
+    if args.table {
+        let mut out = stdout();
+        eps_table(&mut out)?;
+        return Ok(out.flush()?);
+    }
+    let dir = &args.out;
+    std::fs::create_dir_all(dir).map_err(|e| CliError::argument("--out", e))?;
+    let shown = |name: &str| dir.join(name).display().to_string();
+    let mut out = stdout();
+    writeln!(
+        out,
+        "haff demo: granular gases in a few seconds; everything is in {}/",
+        dir.display()
+    )?;
+
+    let clock = Instant::now();
+    let cooling = run_gas(dir, "cooling", sim::demo::COOLING)?;
+    let report = sim::demo::cooling_report(&cooling)?;
+    sim::demo::velocity_distribution_figure(
+        &dir.join("velocity-distribution.png"),
+        cooling.histograms(),
+        &report,
+    )?;
+    let (a2, a2_error) = report.a2;
+    writeln!(
+        out,
+        "\n1. A freely cooling gas: 3D, 4000 spheres, eps = 0.9, event-driven ({:.1} s)\n   \
+         T / T_Haff = {:.3} after {} collisions per particle (Haff's law with the Enskog \
+         rate and the cooling state's a2; no fit)\n   \
+         Sonine a2 = {a2:.4} +- {a2_error:.4} in the cooling state; van Noije & Ernst: {:.4}\n   \
+         {}  T(t) against Haff's law\n   \
+         {}  the velocity distribution against the Maxwellian and Sonine\n   \
+         {}  the run: timeseries.csv, velocity_histograms.csv, summary.json",
+        clock.elapsed().as_secs_f64(),
+        report.haff_ratio,
+        report.collisions_per_particle,
+        report.a2_theory,
+        shown("cooling/temperature.png"),
+        shown("velocity-distribution.png"),
+        shown("cooling/"),
+    )?;
+
+    let clock = Instant::now();
+    let mut clustering = run_gas(dir, "clustering", sim::demo::CLUSTERING)?;
+    let cpp = clustering
+        .samples()
+        .last()
+        .map_or(0.0, |s| s.collisions_per_particle);
+    sim::demo::snapshot_figure(
+        &dir.join("clustering.png"),
+        &clustering.configuration(),
+        &format!("20000 disks, eps = 0.7, after {cpp} collisions per particle"),
+    )?;
+    writeln!(
+        out,
+        "\n2. Clustering: 2D, 20000 disks, eps = 0.7, event-driven ({:.1} s)\n   \
+         {}  the disks at the end: dense clusters and empty space\n   \
+         {}  density and vorticity maps as the clusters grow\n   \
+         {}  the same for ParaView (and fields.pvd)",
+        clock.elapsed().as_secs_f64(),
+        shown("clustering.png"),
+        shown("clustering/fields_*.png"),
+        shown("clustering/snapshots.pvd"),
+    )?;
+
+    writeln!(
+        out,
+        "\n3. One collision: the coefficient of restitution of ice spheres, every law"
+    )?;
+    eps_table(&mut out)?;
+    writeln!(
+        out,
+        "\nNext: change {} and run it with `haff run {}`; the guide is docs/guide/ \
+         (start at docs/guide/first-run.md).",
+        shown("cooling.toml"),
+        shown("cooling.toml"),
+    )?;
+    Ok(out.flush()?)
+}
+
+/// Writes the run file `DIR/NAME.toml` and runs it into `DIR/NAME/` as `haff run` does
+/// (replacing an earlier demo's run there).
+fn run_gas(dir: &Path, name: &str, text: &str) -> CliResult<Simulation> {
+    let file = dir.join(format!("{name}.toml"));
+    std::fs::write(&file, text).map_err(|e| CliError::argument("--out", e))?;
+    let description = RunDescription::from_toml(text, &file).map_err(CliError::in_file(&file))?;
+    let mut simulation = Simulation::new(&description)?;
+    let out = dir.join(name);
+    let mut claimed =
+        OutputDir::open(&out, None, "run", &run_hash(simulation.description()), true)?;
+    simulation.set_output_dir(&out);
+    simulation.run(&mut Bar::samples(), None)?;
+    simulation.write(&out)?;
+    claimed.set_state(RunState::Complete)?;
+    Ok(simulation)
+}
+
+/// The eps(v) table of ice spheres for every law in [`LAWS`], with its title and note.
+fn eps_table(out: &mut impl Write) -> CliResult {
     let laws = LAWS
         .iter()
         .map(|name| ice_law(name))
@@ -41,18 +149,17 @@ pub fn run() -> CliResult {
         .into_iter()
         .map(|v| table_row(v, &laws))
         .collect();
-    let mut out = stdout();
     writeln!(
         out,
         "eps(v) of ice spheres, beta = {BETA} (s/cm)^(1/5), v* = beta^(1/2) v^(1/10)"
     )?;
-    write_table(&mut out, &header, &rows)?;
+    write_table(out, &header, &rows)?;
     writeln!(
         out,
         "note: beta from Bridges et al. (1984) via MP2011; exact-naive ends the collision at \
          zero overlap, the others at zero force; series:K holds only for v* well below 1."
     )?;
-    Ok(out.flush()?)
+    Ok(())
 }
 
 /// The law `name` for ice, in cm/s.

@@ -39,8 +39,9 @@ enum Command {
     /// Timing measurements.
     #[command(subcommand)]
     Bench(BenchCommand),
-    /// eps(v) of ice spheres with every law side by side.
-    Demo,
+    /// The main job in seconds: a cooling gas against Haff's law and the Maxwellian, a 2D
+    /// gas clustering, eps(v) of ice for every law; figures and run files in demo/.
+    Demo(DemoArgs),
     /// A granular-gas run described by a TOML file (event-driven MD).
     Run(RunArgs),
     /// A study: the runs of a run file over a grid of parameters and seeds, with their
@@ -183,6 +184,17 @@ pub struct RodsTableArgs {
     pub out: std::path::PathBuf,
 }
 
+/// Arguments of `haff demo`.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// Output directory: its run files, runs and figures replace earlier ones of the demo.
+    #[arg(long, default_value = "demo")]
+    pub out: std::path::PathBuf,
+    /// Print only the eps(v) table of ice (what `haff demo` printed before it ran gases).
+    #[arg(long)]
+    pub table: bool,
+}
+
 /// Arguments of `haff run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -209,6 +221,10 @@ pub struct RunArgs {
         requires = "checkpoint_every"
     )]
     pub stop_after_samples: Option<String>,
+    /// Validate the run file and print the run it describes (every default filled in, as
+    /// summary.json records it) as TOML; nothing runs, nothing is written. Exit 0 or 2.
+    #[arg(long, conflicts_with_all = ["resume", "out", "checkpoint_every", "force"])]
+    pub check: bool,
 }
 
 /// Arguments of `haff study`.
@@ -617,7 +633,7 @@ fn run(command: Command) -> CliResult {
         Command::Bench(BenchCommand::Checkpoint(args)) => bench::checkpoint(&args),
         Command::Bench(BenchCommand::SoftSphere(args)) => bench::soft_sphere(&args),
         Command::Bench(BenchCommand::Observers(args)) => bench::observers(&args),
-        Command::Demo => demo::run(),
+        Command::Demo(args) => demo::run(&args),
         Command::Run(args) => run::run(&args),
         Command::Study(args) => study::study(&args),
         Command::Rods(RodsCommand::Deterministic(args)) => rods::deterministic(&args),

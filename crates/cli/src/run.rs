@@ -8,6 +8,7 @@ use crate::progress::Bar;
 use crate::RunArgs;
 use sim::outdir::{run_hash, OutputDir, RunState};
 use sim::Simulation;
+use std::io::Write;
 use std::path::PathBuf;
 
 /// `haff run`. Launched by `mpirun -n R` (a binary built with the feature `mpi`), every
@@ -15,6 +16,9 @@ use std::path::PathBuf;
 /// run description happen on every rank alike (rank 0 reports them); a rank that fails
 /// alone once the run goes (writing its files) ends all ranks (MPI_Abort).
 pub fn run(args: &RunArgs) -> CliResult {
+    if args.check {
+        return check(args);
+    }
     let _session = sim::parallel::start()?;
     let root = sim::parallel::world().rank() == 0;
     // Errors of the description are every rank's: rank 0 reports, then all leave together
@@ -99,6 +103,23 @@ fn prepare(args: &RunArgs) -> CliResult<(Simulation, PathBuf, Option<usize>, Opt
         .map(|text| parse_count("--stop-after-samples", text, 1, 1_000_000))
         .transpose()?;
     Ok((simulation, out, every, stop_after))
+}
+
+/// `haff run --check FILE`: the validated description on stdout, the notes on stderr.
+fn check(args: &RunArgs) -> CliResult {
+    let Some(path) = &args.file else {
+        return Err(CliError::argument("--check", "give the run file to check"));
+    };
+    let in_file = CliError::in_file(path);
+    let description = sim::RunDescription::from_path(path).map_err(&in_file)?;
+    let plan = sim::validate(&description).map_err(&in_file)?;
+    for note in &plan.notes {
+        eprintln!("haff run: note: {note}");
+    }
+    let text = plan.description.to_toml().map_err(in_file)?;
+    let mut out = crate::output::stdout();
+    write!(out, "{text}")?;
+    Ok(out.flush()?)
 }
 
 /// Runs `simulation` into `out` (its directory `dir` open on rank 0 only) and reports.

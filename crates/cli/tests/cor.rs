@@ -172,8 +172,8 @@ fn dashpot_capture_has_infinite_duration() {
 }
 
 #[test]
-fn demo_shows_every_law() {
-    let stdout = stdout_of(&["demo"]);
+fn demo_table_shows_every_law() {
+    let stdout = stdout_of(&["demo", "--table"]);
     let header = stdout.lines().nth(1).expect("a table header");
     for column in [
         "v [cm/s]",

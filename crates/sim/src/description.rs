@@ -731,6 +731,12 @@ impl RunDescription {
         Self::from_toml(&text, path)
     }
 
+    /// The description as a TOML run file (what `haff run --check` prints: the normal form
+    /// after validation is the run `summary.json` records under `parameters`).
+    pub fn to_toml(&self) -> Result<String> {
+        toml::to_string(self).map_err(|e| Error::input("run file", e))
+    }
+
     /// The packing fraction of the physical spheres: `system.packing_fraction`, or that of
     /// the spheres (each simulated one standing for `run.particle_weight`) in `system.box`.
     /// NaN if neither is given or the species do not split (validation refuses both first).

@@ -30,34 +30,9 @@ pub fn temperature(
             )
         })
         .collect();
-    let s = &plan.description.system;
-    let tau = match (&plan.law, &s.species, samples.first()) {
-        (LawSpec::Constant(eps), None, Some(first)) if *eps < 1.0 && plan.driving.is_none() => {
-            let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
-            let phi = plan.description.packing_fraction();
-            let t0 = first.temperature;
-            let omega0 = match s.dimension {
-                1 => enskog::<1>(phi, diameter, mass, t0),
-                2 => enskog::<2>(phi, diameter, mass, t0),
-                _ => enskog::<3>(phi, diameter, mass, t0),
-            };
-            // The cooling rate of the HCS carries (1 + 3 a2/16), a2 of van Noije & Ernst
-            // (2D, 3D; Brilliantov & Pöschel 2004, Ch. 7).
-            let tau = match s.dimension {
-                1 => haff_time::<1>(*eps, omega0),
-                2 => {
-                    haff_time::<2>(*eps, omega0)
-                        / (1.0 + 3.0 * van_noije_ernst_a2::<2>(*eps) / 16.0)
-                }
-                _ => {
-                    haff_time::<3>(*eps, omega0)
-                        / (1.0 + 3.0 * van_noije_ernst_a2::<3>(*eps) / 16.0)
-                }
-            };
-            Some((t0, tau))
-        }
-        _ => None,
-    };
+    let tau = samples
+        .first()
+        .and_then(|first| haff_law(plan, first.temperature).map(|tau| (first.temperature, tau)));
     match tau {
         Some((t0, tau)) => {
             let haff = move |t: f64| haff_temperature(t0, tau, t);
@@ -69,6 +44,38 @@ pub fn temperature(
             )
         }
         None => crate::plot::temperature(path, &points, &lines, None),
+    }
+}
+
+/// Haff's time tau of T(t) = T0 / (1 + t/tau)^2 for the run of `plan` starting at T0: a
+/// monodisperse, undriven gas with a constant eps < 1, the Enskog collision frequency at T0
+/// and (2D, 3D) the cooling rate of the homogeneous cooling state, (1 + 3 a2/16) times the
+/// Maxwellian one, a2 of van Noije & Ernst (Brilliantov & Pöschel 2004, Ch. 7). None for
+/// other runs.
+pub fn haff_law(plan: &Plan, t0: f64) -> Option<f64> {
+    let s = &plan.description.system;
+    match (&plan.law, &s.species) {
+        (LawSpec::Constant(eps), None) if *eps < 1.0 && plan.driving.is_none() => {
+            let (diameter, mass) = (plan.species[0].diameter, plan.species[0].mass);
+            let phi = plan.description.packing_fraction();
+            let omega0 = match s.dimension {
+                1 => enskog::<1>(phi, diameter, mass, t0),
+                2 => enskog::<2>(phi, diameter, mass, t0),
+                _ => enskog::<3>(phi, diameter, mass, t0),
+            };
+            Some(match s.dimension {
+                1 => haff_time::<1>(*eps, omega0),
+                2 => {
+                    haff_time::<2>(*eps, omega0)
+                        / (1.0 + 3.0 * van_noije_ernst_a2::<2>(*eps) / 16.0)
+                }
+                _ => {
+                    haff_time::<3>(*eps, omega0)
+                        / (1.0 + 3.0 * van_noije_ernst_a2::<3>(*eps) / 16.0)
+                }
+            })
+        }
+        _ => None,
     }
 }
 

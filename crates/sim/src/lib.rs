@@ -20,6 +20,7 @@
 //! ```
 
 pub mod checkpoint;
+pub mod demo;
 pub mod description;
 pub mod diffusion;
 pub mod driver;
