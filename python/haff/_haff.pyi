@@ -4,10 +4,19 @@ The public API is in haff/__init__.py (haff.eps, haff.Simulation, ...), which wr
 """
 
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, final
 
 import numpy as np
 import numpy.typing as npt
+
+# The runtime's __all__ (PyO3 lists every name a module adds, in registration order).
+__all__ = [
+    "ConfigError", "__version__", "eps", "eps_v", "beta", "dashpot_eps", "law_validity",
+    "coefficients_decimal", "pade_decimal", "rods_deterministic", "rods_closed_form",
+    "rods_collide", "_Simulation", "study_plan", "study_open", "study_run", "study_aggregate",
+    "read_configuration", "write_configuration", "theory_collision_frequency",
+    "theory_haff_time", "theory_a2", "theory_sonine",
+]
 
 __version__: str
 
@@ -17,11 +26,11 @@ class ConfigError(ValueError):
     Declared in the module ``haff`` (its ``__module__``), which re-exports it.
     """
 
-Float1D = npt.NDArray[np.float64]
-Callback = Optional[Callable[[int, int, str], Any]]
+_Float1D = npt.NDArray[np.float64]
+_Callback = Optional[Callable[[int, int, str], Any]]
 
-def eps(vstar: Float1D, law: str) -> tuple[Float1D, int, str]: ...
-def eps_v(v: Float1D, beta: float, law: str) -> tuple[Float1D, int, str]: ...
+def eps(vstar: _Float1D, law: str) -> tuple[_Float1D, int, str]: ...
+def eps_v(v: _Float1D, beta: float, law: str) -> tuple[_Float1D, int, str]: ...
 def beta(
     material: Optional[str],
     radius: float,
@@ -31,7 +40,7 @@ def beta(
     poisson: Optional[float],
     density: Optional[float],
 ) -> float: ...
-def dashpot_eps(damping_ratio: Float1D, criterion: str) -> Float1D: ...
+def dashpot_eps(damping_ratio: _Float1D, criterion: str) -> _Float1D: ...
 def law_validity(law: str) -> tuple[float, float, str]: ...
 def coefficients_decimal(kind: str, order: int, digits: int) -> list[str]: ...
 def pade_decimal(m: int, n: int, digits: int) -> tuple[list[str], list[str], list[float]]: ...
@@ -39,7 +48,7 @@ def rods_deterministic(gamma: float, kappa: float, step: float) -> float: ...
 def rods_closed_form(gamma: float, kappa: float, general: bool) -> float: ...
 def rods_collide(
     gamma: float, kappa: float, bath_ratio: float, realizations: int, seed: int
-) -> Float1D: ...
+) -> _Float1D: ...
 
 def theory_collision_frequency(
     dimension: int, packing_fraction: float, temperature: float, diameter: float, mass: float
@@ -70,7 +79,7 @@ def read_configuration(
     path: str,
     format: str,
     dimension: int = 3,
-    frame: int = -1,
+    frame: int = ...,  # -1: the last frame
     check: bool = True,
     sides: Optional[list[float]] = None,
 ) -> dict[str, Any]: ...
@@ -87,31 +96,32 @@ def write_configuration(
     time: Optional[float] = None,
 ) -> None: ...
 
+@final  # PyO3 classes cannot be subclassed
 class _Simulation:
     @staticmethod
     def from_toml(text: str, origin: str) -> _Simulation: ...
     @staticmethod
     def with_initial(text: str, origin: str, box: list[float], positions: npt.NDArray[np.float64],
-                     velocities: Optional[npt.NDArray[np.float64]] = ..., diameters: Optional[Float1D] = ...,
-                     masses: Optional[Float1D] = ..., species: Optional[list[int]] = ...,
+                     velocities: Optional[npt.NDArray[np.float64]] = ..., diameters: Optional[_Float1D] = ...,
+                     masses: Optional[_Float1D] = ..., species: Optional[list[int]] = ...,
                      spins: Optional[npt.NDArray[np.float64]] = ...) -> _Simulation: ...
     @staticmethod
     def from_path(path: str) -> _Simulation: ...
     @staticmethod
     def load(path: str) -> _Simulation: ...
-    def run(self, callback: Callback = None, stop_after: Optional[int] = None) -> bool: ...
+    def run(self, callback: _Callback = None, stop_after: Optional[int] = None) -> bool: ...
     def advance(
         self,
         time: Optional[float] = None,
         collisions_per_particle: Optional[float] = None,
-        callback: Callback = None,
+        callback: _Callback = None,
     ) -> bool: ...
     def timeseries(self) -> dict[str, np.ndarray]: ...
     def species_timeseries(self) -> dict[str, np.ndarray] | None: ...
     def walls(self) -> dict[str, Any] | None:
         """The columns of walls.csv: time, collisions_per_particle, axis, side, collisions,
         momentum, energy (one row per wall and sample)."""
-    def pressure(self) -> dict[str, Float1D] | None:
+    def pressure(self) -> dict[str, _Float1D] | None:
         """The columns of pressure.csv: time, collisions_per_particle, pxx, pyy, pzz, pxy,
         pxz, pyz, kinetic_xy."""
     def rheology(self) -> str | None:
@@ -119,13 +129,13 @@ class _Simulation:
     def green_kubo(self) -> str | None:
         """summary.json's green_kubo as JSON text (None without output.pressure or under
         [shear])."""
-    def profiles(self) -> dict[str, Float1D] | None:
+    def profiles(self) -> dict[str, _Float1D] | None:
         """The columns of profiles.csv (one row per slab and sample; NaN for empty cells)."""
-    def velocity_histograms(self) -> list[tuple[float, float, float, Float1D, Float1D]]: ...
-    def modes(self) -> dict[str, Float1D]:
+    def velocity_histograms(self) -> list[tuple[float, float, float, _Float1D, _Float1D]]: ...
+    def modes(self) -> dict[str, _Float1D]:
         """The columns of modes.csv: time, collisions_per_particle, k, transverse_energy,
         longitudinal_energy, density_power (one row per sample and shell)."""
-    def structure(self) -> tuple[Float1D, Float1D, list[str], Float1D, Float1D]:
+    def structure(self) -> tuple[_Float1D, _Float1D, list[str], _Float1D, _Float1D]:
         """The columns of structure.csv: (time, collisions_per_particle, function ("S" or
         "g"), x, value), per sample S(k) rows then g(r) rows."""
     def field_files(self) -> list[tuple[float, str]]:
@@ -136,7 +146,7 @@ class _Simulation:
         """Claims dir as haff run --out does; field and snapshot files go there."""
     def particles(
         self,
-    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], Float1D, Float1D]: ...
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], _Float1D, _Float1D]: ...
     def temperature(self) -> float: ...
     def counters(self) -> tuple[int, int, float, int]:
         """(collisions, events, energy_lost, tc_elastic_collisions) so far."""
