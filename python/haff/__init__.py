@@ -24,6 +24,11 @@ Many runs over a grid of parameters and seeds, on threads, processes or a dask c
 
 Bad input raises :class:`haff.ConfigError` (a ``ValueError``) whose message names the
 key or argument and what is allowed.
+
+Every public function and class documents its parameters, units, results and an example
+(``help(haff.Simulation)``, ``help(haff.eps)``, ``help(haff.theory)``, ...). The task-by-task
+guide is the Python page of the user guide, docs/guide/python.md; python/examples/ holds
+two notebooks (a first tour, and a study with error bars against kinetic theory).
 """
 
 from ._haff import ConfigError, __version__

@@ -762,12 +762,12 @@ class Simulation:
         >>> frame = haff.Simulation(gas).run(progress=False).timeseries_frame()
         >>> frame[["collisions_per_particle", "temperature", "a2"]].round(3)
            collisions_per_particle  temperature     a2
-        0                    0.000        1.000 -0.019
-        1                    0.012        0.999 -0.016
-        2                    0.056        0.996 -0.019
-        3                    0.316        0.982 -0.005
-        4                    1.780        0.890 -0.014
-        5                   10.000        0.533 -0.017
+        0                    0.000        1.000 -0.036
+        1                    0.012        0.999 -0.038
+        2                    0.056        0.996 -0.044
+        3                    0.316        0.982 -0.050
+        4                    1.780        0.890 -0.056
+        5                   10.000        0.533 -0.004
         """
         try:
             import pandas

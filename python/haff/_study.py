@@ -268,8 +268,8 @@ def study(base: Union[Mapping[str, Any], PathLike],
     >>> end = e[(e["quantity"] == "temperature") & (e["sample"] == 2)]
     >>> end[["collision.restitution", "mean", "standard_error", "replicas"]].round(4)
         collision.restitution    mean  standard_error  replicas
-    10                    0.7  0.1...          0.0...         3
-    25                    0.9  0.5...          0.0...         3
+    10                    0.7  0.1748          0.0066         3
+    25                    0.9  0.5216          0.0074         3
     """
     try:
         import pandas  # noqa: F401  (the results' tables: checked before any run)
