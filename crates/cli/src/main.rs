@@ -42,7 +42,7 @@ enum Command {
     /// The main job in seconds: a cooling gas against Haff's law and the Maxwellian, a 2D
     /// gas clustering, eps(v) of ice for every law; figures and run files in demo/.
     Demo(DemoArgs),
-    /// A granular-gas run described by a TOML file (event-driven MD).
+    /// A granular-gas run described by a TOML run file (event-driven MD, DSMC, soft-sphere).
     Run(RunArgs),
     /// A study: the runs of a run file over a grid of parameters and seeds, with their
     /// means and standard errors (ensemble.csv, study.json, figures/).
@@ -198,7 +198,7 @@ pub struct DemoArgs {
 /// Arguments of `haff run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The run file (schema in the README); not with --resume.
+    /// The run file (every key: docs/guide/reference.md, `haff schema`); not with --resume.
     pub file: Option<std::path::PathBuf>,
     /// Output directory [default: the run file's name without extension; with --resume
     /// the check-point's directory].
@@ -221,8 +221,9 @@ pub struct RunArgs {
         requires = "checkpoint_every"
     )]
     pub stop_after_samples: Option<String>,
-    /// Validate the run file and print the run it describes (every default filled in, as
-    /// summary.json records it) as TOML; nothing runs, nothing is written. Exit 0 or 2.
+    /// Check the run file as the run would before its first step (keys, ranges, particles
+    /// placed, laws built) and print the run it describes as TOML, every default filled in
+    /// as summary.json records it; nothing runs, nothing is written. Exit 0 or 2.
     #[arg(long, conflicts_with_all = ["resume", "out", "checkpoint_every", "force"])]
     pub check: bool,
 }

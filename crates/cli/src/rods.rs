@@ -280,7 +280,15 @@ pub fn chain(args: &RunArgs) -> CliResult {
             let out = args.out.clone().unwrap_or_else(|| path.with_extension(""));
             let in_file = CliError::in_file(path);
             let description = RingDescription::from_path(path).map_err(&in_file)?;
-            (RingRun::new(&description).map_err(in_file)?, out)
+            let run = RingRun::new(&description).map_err(in_file)?;
+            if args.check {
+                let text = toml::to_string(run.description())
+                    .map_err(|e| CliError::argument("--check", e))?;
+                let mut stdout = stdout();
+                write!(stdout, "{text}")?;
+                return Ok(stdout.flush()?);
+            }
+            (run, out)
         }
         (None, Some(dir)) => {
             let run = RingRun::resume(dir).map_err(CliError::resume)?;

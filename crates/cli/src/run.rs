@@ -105,7 +105,10 @@ fn prepare(args: &RunArgs) -> CliResult<(Simulation, PathBuf, Option<usize>, Opt
     Ok((simulation, out, every, stop_after))
 }
 
-/// `haff run --check FILE`: the validated description on stdout, the notes on stderr.
+/// `haff run --check FILE`: the validated description on stdout, the notes on stderr. The
+/// run is set up as `haff run` sets it up before its first step (particles placed, laws
+/// built, their ranges checked), so that a file it accepts starts; a run pinned to several
+/// MPI ranks (`run.ranks`) is validated only, its engine being built under `mpirun` alone.
 fn check(args: &RunArgs) -> CliResult {
     let Some(path) = &args.file else {
         return Err(CliError::argument("--check", "give the run file to check"));
@@ -115,6 +118,13 @@ fn check(args: &RunArgs) -> CliResult {
     let plan = sim::validate(&description).map_err(&in_file)?;
     for note in &plan.notes {
         eprintln!("haff run: note: {note}");
+    }
+    match plan.description.run.ranks {
+        Some(ranks) if ranks != 1 => eprintln!(
+            "haff run: note: validated only; the engine of a run on {ranks} ranks is set up \
+             under mpirun"
+        ),
+        _ => drop(Simulation::new(&description).map_err(&in_file)?),
     }
     let text = plan.description.to_toml().map_err(in_file)?;
     let mut out = crate::output::stdout();

@@ -7,7 +7,8 @@
 //! The info string of a fenced block says how it is checked:
 //! - `toml`: a complete run file, validated and run (`haff run FILE`); keep it to a second.
 //! - `toml,no_run`: a complete run file, validated only (`haff run --check FILE`).
-//! - `toml,fragment`: part of a run file, merged key by key over [`BASE`] and validated.
+//! - `toml,fragment`: part of a run file, merged key by key over [`BASE`] and validated
+//!   (a fragment that gives `collision.law` replaces the base's `[collision]`).
 //! - `toml,file`: another TOML file (a study file): written for the page's commands only.
 //! - A TOML block whose first line is `# file: NAME` is written to NAME in the page's
 //!   scratch directory (which holds a link `docs` to the repository's docs/), in page order,
@@ -229,6 +230,12 @@ fn check(dir: &Path, block: &Block) -> Vec<String> {
                         Err(e) => return fail(format!("not TOML: {e}")),
                     };
                     let mut whole: toml::Table = BASE.parse().unwrap();
+                    // A fragment giving another law brings that law's keys: the base's
+                    // [collision] (restitution) would be refused beside them.
+                    let law = fragment.get("collision").and_then(|c| c.get("law"));
+                    if law.is_some() {
+                        whole.remove("collision");
+                    }
                     merge(&mut whole, &fragment);
                     std::fs::write(&path, toml::to_string(&whole).unwrap()).unwrap();
                     shell(dir, &format!("haff run --check '{name}' > /dev/null"))
