@@ -26,7 +26,8 @@ def test_the_package_passes_mypy_strict():
 
 def test_the_stubs_match_the_extension(tmp_path):
     """The stub of this checkout (MYPYPATH) against the installed extension (imported from
-    a scratch directory, not from the sources, which hold no compiled module)."""
+    a scratch directory, not from the sources, which hold no compiled module). stubtest
+    analyses without mypy's cache (numpy's stubs included): 20 to 40 s here."""
     env = dict(os.environ, MYPYPATH=str(PYTHON))
     done = mypy("mypy.stubtest", "haff._haff", "--mypy-config-file",
                 str(PYTHON / "pyproject.toml"), cwd=tmp_path, env=env)
