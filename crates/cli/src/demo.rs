@@ -109,8 +109,8 @@ pub fn run(args: &DemoArgs) -> CliResult {
     eps_table(&mut out)?;
     writeln!(
         out,
-        "\nNext: change {} and run it with `haff run {}`; the guide is docs/guide/ \
-         (start at docs/guide/first-run.md).",
+        "\nNext: change {} and run it with `haff run {} --out my-cooling`; the guide is \
+         docs/guide/ (start at docs/guide/first-run.md).",
         shown("cooling.toml"),
         shown("cooling.toml"),
     )?;

@@ -18,7 +18,7 @@ use std::path::Path;
 /// collisions per particle from 20 on, when the gas has reached the homogeneous cooling
 /// state (its a2 relaxes within a few collisions per particle).
 pub const COOLING: &str = r#"# haff demo, part 1: a freely cooling granular gas (Haff 1983).
-# Run it again, or change it, with: haff run cooling.toml
+# Change it and run it with: haff run cooling.toml --out my-cooling
 [system]
 dimension = 3
 particles = 4000
@@ -44,7 +44,7 @@ histogram_bins = 50
 /// dissipation (Goldhirsch & Zanetti 1993); density maps and ParaView snapshots every 20
 /// collisions per particle.
 pub const CLUSTERING: &str = r#"# haff demo, part 2: clustering of a 2D granular gas (Goldhirsch & Zanetti 1993).
-# Run it again, or change it, with: haff run clustering.toml
+# Change it and run it with: haff run clustering.toml --out my-clustering
 [system]
 dimension = 2
 particles = 20000
