@@ -99,7 +99,7 @@ def _json(text: str) -> Dict[str, Any]:
     return value
 
 
-def _build(config: Config, initial: Optional[Mapping[str, Any]] = None) -> "_haff._Simulation":
+def _build(config: Config, initial: Optional[Mapping[str, Any]] = None) -> _haff._Simulation:
     if initial is not None:
         return _build_with_initial(config, initial)
     if isinstance(config, Mapping):
@@ -116,7 +116,7 @@ def _build(config: Config, initial: Optional[Mapping[str, Any]] = None) -> "_haf
         f"config: a dict, a path to a TOML file or TOML text, not {type(config).__name__}")
 
 
-def _build_with_initial(config: Config, initial: Mapping[str, Any]) -> "_haff._Simulation":
+def _build_with_initial(config: Config, initial: Mapping[str, Any]) -> _haff._Simulation:
     """A run whose particles are the arrays of `initial` (see :class:`Simulation`)."""
     from ._particles import _arrays
     if not isinstance(initial, Mapping):
@@ -273,7 +273,7 @@ class Simulation:
 
     @classmethod
     def load(cls, path: PathLike, output_dir: Optional[PathLike] = None,
-             force: bool = False) -> "Simulation":
+             force: bool = False) -> Simulation:
         """The run saved by :meth:`save`, ready to go on bit for bit.
 
         Checked as ``haff run --resume`` checks a check-point (its integrity and its
@@ -407,7 +407,7 @@ class Simulation:
                     "an output directory, haff.Simulation(config, output_dir=DIR) or "
                     "sim.output_dir = DIR")
 
-    def run(self, progress: Optional[bool] = None) -> "Simulation":
+    def run(self, progress: Optional[bool] = None) -> Simulation:
         """Runs to the end, taking the samples of ``run.samples``.
 
         The end is ``run.end_time`` or ``run.collisions_per_particle``; a run that was
@@ -543,7 +543,7 @@ class Simulation:
         """
         return self._sim.species_timeseries()
 
-    def walls(self) -> Optional["pandas.DataFrame"]:
+    def walls(self) -> Optional[pandas.DataFrame]:
         """What the walls of a container (``[[wall]]``) have done, as ``walls.csv``.
 
         Returns
@@ -585,7 +585,7 @@ class Simulation:
                  "energy"]
         return pandas.DataFrame({name: columns[name] for name in order})
 
-    def pressure(self) -> Optional["pandas.DataFrame"]:
+    def pressure(self) -> Optional[pandas.DataFrame]:
         """The pressure tensor at every sample, as ``pressure.csv``.
 
         Recorded with ``[output] pressure = true``, and always with ``[shear]``: the
@@ -690,7 +690,7 @@ class Simulation:
         text = self._sim.green_kubo()
         return None if text is None else _json(text)
 
-    def profiles(self) -> Optional["pandas.DataFrame"]:
+    def profiles(self) -> Optional[pandas.DataFrame]:
         """Profiles along an axis (``[output] profiles = {axis, bins}``), as ``profiles.csv``.
 
         Returns
@@ -740,7 +740,7 @@ class Simulation:
                  "velocity_x", "velocity_y", "velocity_z"]
         return pandas.DataFrame({name: columns[name] for name in order})
 
-    def timeseries_frame(self) -> "pandas.DataFrame":
+    def timeseries_frame(self) -> pandas.DataFrame:
         """The time series (:attr:`timeseries`) as a pandas DataFrame.
 
         Returns
