@@ -15,7 +15,6 @@ page's path and line numbers, so a traceback points into the Markdown file).
 
 from __future__ import annotations
 
-import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,8 +24,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 
-#: An opening fence: three or more backticks (or tildes) and the info string.
-FENCE = re.compile(r"^ {0,3}(`{3,}|~{3,})\s*([^`]*)$")
 #: The first line of a TOML block that is also a file of the scratch directory.
 FILE_LINE = re.compile(r"^#\s*file:\s*(\S+)\s*$")
 
@@ -47,21 +44,25 @@ class Block:
 
 
 def blocks(text: str) -> List[Block]:
-    """The fenced code blocks of a Markdown text, in order."""
+    """The fenced code blocks of a Markdown text, in order, found as the TOML and shell
+    test finds them (crates/cli/tests/docs.rs): a line starting with three backticks
+    (after any indentation) opens a block and the next such line closes it; the body loses
+    the opening fence's indentation (a block inside a list item)."""
     out: List[Block] = []
     lines = text.splitlines()
     i = 0
     while i < len(lines):
-        opening = FENCE.match(lines[i])
-        if not opening:
+        stripped = lines[i].lstrip()
+        if not stripped.startswith("```"):
             i += 1
             continue
-        fence, info = opening.group(1), opening.group(2).strip()
-        closing = re.compile(r"^ {0,3}" + re.escape(fence[0]) + "{" + str(len(fence)) + r",}\s*$")
+        indent = lines[i][:len(lines[i]) - len(stripped)]
+        info = stripped[3:].strip()
         body = []
         j = i + 1
-        while j < len(lines) and not closing.match(lines[j]):
-            body.append(lines[j])
+        while j < len(lines) and not lines[j].lstrip().startswith("```"):
+            line = lines[j]
+            body.append(line[len(indent):] if line.startswith(indent) else line)
             j += 1
         out.append(Block(info, i + 2, "\n".join(body) + "\n"))
         i = j + 1
@@ -106,10 +107,10 @@ def test_the_blocks_are_found():
     first = python[0]
     line = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()[first.line - 1]
     assert line == first.code.splitlines()[0]
-    text = "x\n```toml,fragment\n# file: a.toml\n[run]\n```\n````python\n```\n````\n"
+    text = "x\n```toml,fragment\n# file: a.toml\n[run]\n```\n- item\n\n  ```python\n  x = 1\n  ```\n"
     found = blocks(text)
     assert [(b.info, b.line, b.code) for b in found] == [
-        ("toml,fragment", 3, "# file: a.toml\n[run]\n"), ("python", 7, "```\n")]
+        ("toml,fragment", 3, "# file: a.toml\n[run]\n"), ("python", 9, "x = 1\n")]
 
 
 @pytest.mark.parametrize("page", [p for p in pages() if with_python(p)], ids=page_id)
