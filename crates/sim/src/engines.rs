@@ -100,6 +100,19 @@ pub fn kind_name(kind: EngineKind) -> &'static str {
     }
 }
 
+/// The engine a run file names, for messages: `run.engine = "event-driven"`, for DSMC with its
+/// scheme (`run.engine = "dsmc" with run.dsmc_scheme = "blocks"`), whose abilities differ.
+pub(crate) fn engine_named(description: &RunDescription) -> String {
+    let kind = description.run.engine;
+    match (kind, description.run.dsmc_scheme) {
+        (EngineKind::Dsmc, scheme) => format!(
+            "run.engine = \"dsmc\" with run.dsmc_scheme = \"{}\"",
+            scheme.unwrap_or(DsmcScheme::Blocks).name()
+        ),
+        _ => format!("run.engine = \"{}\"", kind_name(kind)),
+    }
+}
+
 /// What the engine a run file names can do (`run.engine`, for DSMC `run.dsmc_scheme`), known
 /// before its keys are read.
 pub fn abilities_of(description: &RunDescription) -> Abilities {
@@ -197,15 +210,43 @@ fn refuse_foreign_keys(description: &RunDescription) -> Result<()> {
     Ok(())
 }
 
-/// The engine kinds whose default options can do what `can` asks, as
-/// `"event-driven" or "dsmc"` (for messages).
+/// Every DSMC scheme, in the order the run file's documentation lists them.
+const DSMC_SCHEMES: [DsmcScheme; 3] = [DsmcScheme::Blocks, DsmcScheme::Exact, DsmcScheme::Spatial];
+
+/// The engines that can do what `can` asks, for messages: a DSMC that can with some schemes
+/// only is named with them, last (`"event-driven", "soft-sphere" or "dsmc" with
+/// run.dsmc_scheme = "spatial"`), so a message follows the engines' abilities.
 pub(crate) fn kinds_that(can: impl Fn(&Abilities) -> bool) -> String {
-    let names: Vec<String> = KINDS
-        .iter()
-        .filter(|&&kind| can(&kind_abilities(kind, None)))
-        .map(|&k| format!("\"{}\"", kind_name(k)))
-        .collect();
-    names.join(" or ")
+    let mut names: Vec<String> = Vec::new();
+    let mut qualified: Vec<String> = Vec::new();
+    for &kind in &KINDS {
+        let name = format!("\"{}\"", kind_name(kind));
+        if kind != EngineKind::Dsmc {
+            if can(&kind_abilities(kind, None)) {
+                names.push(name);
+            }
+            continue;
+        }
+        let schemes: Vec<String> = DSMC_SCHEMES
+            .iter()
+            .filter(|&&s| can(&dsmc::abilities(s)))
+            .map(|s| format!("\"{}\"", s.name()))
+            .collect();
+        if schemes.len() == DSMC_SCHEMES.len() {
+            names.push(name);
+        } else if !schemes.is_empty() {
+            qualified.push(format!(
+                "{name} with run.dsmc_scheme = {}",
+                schemes.join(" or ")
+            ));
+        }
+    }
+    names.extend(qualified);
+    match names.split_last() {
+        None => "none".to_string(),
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+    }
 }
 
 /// A fresh engine at time 0, from the `[system]` section, and the report of a grown dense

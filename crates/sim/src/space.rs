@@ -73,7 +73,10 @@ pub fn check_output(description: &RunDescription, engine: &Abilities) -> Result<
         if on && !spatial {
             return Err(Error::input(
                 key,
-                "needs positions: run.engine = \"event-driven\" or run.dsmc_scheme = \"spatial\"",
+                format!(
+                    "needs positions: run.engine = {}",
+                    crate::engines::kinds_that(|a| a.positions)
+                ),
             ));
         }
     }

@@ -4,7 +4,7 @@
 
 use super::{Species, WallSpec};
 use crate::description::{EngineKind, RunDescription, AXIS_NAMES};
-use crate::engines::{kind_name, Abilities};
+use crate::engines::{engine_named, kinds_that, Abilities};
 use crate::error::{Error, Result};
 
 /// Checked gravity.
@@ -32,9 +32,9 @@ pub(crate) fn gravity_spec(
         return Err(Error::input(
             "field",
             format!(
-                "run.engine = \"{}\" has no gravity yet; gravity runs in run.engine = \
-                 \"event-driven\"",
-                kind_name(description.run.engine)
+                "{} has no gravity yet; gravity runs in run.engine = {}",
+                engine_named(description),
+                kinds_that(|a| a.walls)
             ),
         ));
     }

@@ -7,7 +7,7 @@
 
 use super::{Species, WallSpec};
 use crate::description::{RunDescription, AXIS_NAMES};
-use crate::engines::{kind_name, kinds_that, Abilities};
+use crate::engines::{engine_named, kind_name, kinds_that, Abilities};
 use crate::error::{Error, Result};
 use gas::shear::Shear;
 
@@ -94,9 +94,9 @@ pub(crate) fn msd_spec(description: &RunDescription, engine: &Abilities) -> Resu
         return Err(Error::input(
             "output.msd",
             format!(
-                "run.engine = \"{}\" keeps no particle's identity through its steps; the \
-                 mean-square displacement is measured with run.engine = {}",
-                kind_name(description.run.engine),
+                "{} keeps no particle's identity through its steps; the mean-square \
+                 displacement is measured with run.engine = {}",
+                engine_named(description),
                 kinds_that(|a| a.displacements)
             ),
         ));

@@ -115,9 +115,11 @@ pub(super) fn check_box_engine(
     if !engine.walls {
         return Err(Error::input(
             "system.box",
-            "this engine has no space (homogeneous DSMC: only the volume counts); give \
-             system.packing_fraction, or run.engine = \"event-driven\" | \"soft-sphere\" | \
-             run.dsmc_scheme = \"spatial\" for a box with sides of its own",
+            format!(
+                "this engine has no space (homogeneous DSMC: only the volume counts); give \
+                 system.packing_fraction, or run.engine = {} for a box with sides of its own",
+                crate::engines::kinds_that(|a| a.walls)
+            ),
         ));
     }
     if engine.point_particles {

@@ -7,7 +7,7 @@ use super::Species;
 use crate::description::{
     EngineKind, LawKind, RunDescription, WallKindName, WallSection, WallSide, Waveform, AXIS_NAMES,
 };
-use crate::engines::{kind_name, Abilities};
+use crate::engines::{engine_named, kinds_that, Abilities};
 use crate::error::{Error, Result};
 use gas::walls::Side;
 use restitution::{Criterion, FormName};
@@ -144,10 +144,10 @@ pub(crate) fn walls_spec(
         return Err(Error::input(
             "wall",
             format!(
-                "run.engine = \"{}\" has no walls here; walls run in run.engine = \
-                 \"event-driven\" and in dsmc_scheme = \"spatial\" (homogeneous DSMC has no \
-                 positions)",
-                kind_name(description.run.engine)
+                "{} has no walls (homogeneous DSMC has no positions); walls run in \
+                 run.engine = {}",
+                engine_named(description),
+                kinds_that(|a| a.walls)
             ),
         ));
     }
