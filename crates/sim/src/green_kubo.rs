@@ -20,6 +20,7 @@
 //! and, in 3D, the dilute Chapman–Enskog value (converged Sonine series), both over
 //! η0(T) = the dilute first Sonine viscosity at the measured temperature.
 
+use crate::output::number;
 use crate::rheology::PressureSeries;
 use crate::validate::{LawSpec, Plan};
 use gas::observe::green_kubo::helfand_viscosity;
@@ -41,10 +42,21 @@ fn not_at_equilibrium(plan: &Plan) -> Option<String> {
     if plan.shear.is_some() {
         return Some("a sheared gas: see rheology".into());
     }
-    if !matches!(plan.law, LawSpec::Constant(a) if a == 1.0) {
-        return Some(
-            "the gas is not elastic (collision.restitution = 1): it is not at equilibrium".into(),
-        );
+    let has = match &plan.law {
+        LawSpec::Constant(a) if *a == 1.0 => None,
+        LawSpec::Constant(a) => Some(format!("collision.restitution = {}", number(*a))),
+        LawSpec::ConstantPairs { .. } => Some("a restitution per pair of species".into()),
+        LawSpec::Dashpot { .. } => Some("collision.law = \"dashpot\"".into()),
+        LawSpec::Viscoelastic { .. } | LawSpec::ViscoelasticPairs { .. } => {
+            Some("collision.law = \"viscoelastic\"".into())
+        }
+        LawSpec::Stochastic { .. } => Some("collision.law = \"stochastic\"".into()),
+    };
+    if let Some(has) = has {
+        return Some(format!(
+            "not elastic: this run has {has}; the equilibrium viscosity needs an elastic gas \
+             (law = \"constant\", restitution = 1)"
+        ));
     }
     if plan.driving.is_some() || !plan.walls.is_empty() || plan.gravity.is_some() {
         return Some("driving, walls or gravity: the gas is not at equilibrium".into());

@@ -64,7 +64,11 @@ fn runs_without_an_equilibrium_viscosity_say_why() {
     let emd = "engine = \"event-driven\"\n";
     let skipped = |gk: serde_json::Value| gk["skipped"].as_str().unwrap_or("").to_string();
     let inelastic = green_kubo(&text(emd, 200, 0.1, 0.9, "end_time = 50\nsamples = 1000\n"));
-    assert!(skipped(inelastic).contains("not elastic"));
+    let why = skipped(inelastic);
+    assert!(
+        why.contains("not elastic") && why.contains("restitution = 0.9"),
+        "{why}"
+    );
     let by_collisions = green_kubo(&text(
         emd,
         200,
