@@ -94,13 +94,7 @@ impl OutputDir {
         match read_manifest(path)? {
             Contents::Missing | Contents::Empty => {}
             Contents::Run(_) if force => remove_outputs(path).map_err(|e| fail(e.to_string()))?,
-            Contents::Run(old) => {
-                return Err(fail(format!(
-                    "holds the outputs of another haff {} run ({:?}); give --force to replace \
-                     them, or --resume to continue that run",
-                    old.command, old.state
-                )))
-            }
+            Contents::Run(old) => return Err(fail(occupied(path, &old, command, hash))),
             Contents::Foreign(file) => {
                 return Err(fail(format!(
                     "holds files that are not a haff run's (e.g. {file}); choose a new or \
@@ -147,10 +141,10 @@ impl OutputDir {
             Contents::Run(old) if !force => Err(Error::input(
                 "--out",
                 format!(
-                    "{}: holds the outputs of another haff run (haff {}, {}); write with force \
+                    "{}: holds the outputs of another {} (description {}); write with force \
                      to replace them",
                     path.display(),
-                    old.command,
+                    command_name(&old.command),
                     old.run_hash
                 ),
             )),
@@ -203,6 +197,43 @@ impl OutputDir {
     pub fn set_state(&mut self, state: RunState) -> Result<()> {
         self.manifest.state = state;
         write_json_file(&self.path.join(MANIFEST), &self.manifest)
+    }
+}
+
+/// Why a new run of `command` with description hash `hash` does not go into `path`, which
+/// holds the outputs of the run of `old`, and what the user can do. The same command and
+/// hash are the same run (the same description: a re-run repeats it), not another one.
+fn occupied(path: &Path, old: &Manifest, command: &str, hash: &str) -> String {
+    let state = match old.state {
+        RunState::Running => "running, or killed",
+        RunState::Stopped => "stopped",
+        RunState::Complete => "complete",
+    };
+    let saved = [
+        crate::checkpoint::FILE_NAME,
+        crate::checkpoint::LEGACY_FILE_NAME,
+    ]
+    .iter()
+    .any(|name| path.join(name).exists());
+    let resume = match old.state != RunState::Complete && saved {
+        true => format!(", or --resume {} to continue it", path.display()),
+        false => String::new(),
+    };
+    if old.command == command && old.run_hash == hash {
+        format!("holds this run's outputs already ({state}); give --force to run it again from the start{resume}")
+    } else {
+        format!(
+            "holds the outputs of another {} ({state}); give --force to replace them{resume}",
+            command_name(&old.command)
+        )
+    }
+}
+
+/// `haff run`, `haff rods chain run`: the run of a manifest's command, for messages.
+fn command_name(command: &str) -> String {
+    match command {
+        "run" => "haff run".to_string(),
+        other => format!("haff {other} run"),
     }
 }
 
@@ -283,7 +314,7 @@ fn remove_outputs(path: &Path) -> std::io::Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::is_space_output;
+    use super::{is_space_output, OutputDir, RunState};
 
     /// `--force` removes the observers' files of the previous run, and only those.
     #[test]
@@ -312,5 +343,40 @@ mod tests {
         ] {
             assert!(!is_space_output(theirs), "{theirs}");
         }
+    }
+
+    /// A second run into a run's directory is told whose outputs are there (the same
+    /// description is this run, not another) and what to give; --resume only where a
+    /// stopped run saved a check-point.
+    #[test]
+    fn a_claimed_directory_says_whose_it_is() {
+        let dir = std::env::temp_dir().join(format!("haff-outdir-{}", std::process::id()));
+        std::fs::remove_dir_all(&dir).ok();
+        let mut first = OutputDir::claim(&dir, "run", "crc32:00000001", false).unwrap();
+        first.set_state(RunState::Complete).unwrap();
+        let refused = |hash: &str| {
+            OutputDir::claim(&dir, "run", hash, false)
+                .unwrap_err()
+                .to_string()
+        };
+        let same = refused("crc32:00000001");
+        assert!(
+            same.contains("this run's outputs already (complete)"),
+            "{same}"
+        );
+        assert!(!same.contains("--resume"), "{same}");
+        let other = refused("crc32:00000002");
+        assert!(
+            other.contains("another haff run (complete); give --force"),
+            "{other}"
+        );
+        first.set_state(RunState::Stopped).unwrap();
+        std::fs::write(dir.join(crate::checkpoint::FILE_NAME), b"").unwrap();
+        let stopped = refused("crc32:00000002");
+        assert!(
+            stopped.contains("(stopped)") && stopped.contains("--resume"),
+            "{stopped}"
+        );
+        std::fs::remove_dir_all(&dir).ok();
     }
 }
