@@ -263,10 +263,14 @@ pub fn two_rods(args: &crate::RodsTwoRodsArgs) -> CliResult {
         TwoRodsError::Output(e) => CliError::from(e),
     })?;
     for s in &summaries {
+        let relaxed = match s.eta_relaxation_collision {
+            Some(k) => format!("eta relaxed at collision {k}"),
+            None => "eta did not relax within the run".to_string(),
+        };
         eprintln!(
-            "M = {}: <E_tr>/E0 = {:.5} (E0/(2M+1) = {:.5}), time mean {:.5} (E0/(4M+1) = {:.5}), <eta> = {:.4} (eta_eq = {:.4}), eta relaxed at collision {:?}; energy drift {:.1e}; {:.1} s",
+            "M = {}: <E_tr>/E0 = {:.5} (E0/(2M+1) = {:.5}), time mean {:.5} (E0/(4M+1) = {:.5}), <eta> = {:.4} (eta_eq = {:.4}), {relaxed}; energy drift {:.1e}; {:.1} s",
             s.modes, s.mean_e_tr, s.equipartition_per_collision, s.time_mean_e_tr, s.equipartition_time,
-            s.mean_eta, s.eta_equilibrium, s.eta_relaxation_collision, s.energy_drift, s.wall_seconds
+            s.mean_eta, s.eta_equilibrium, s.energy_drift, s.wall_seconds
         );
     }
     Ok(())
