@@ -63,7 +63,8 @@ pub struct ReproduceArgs {
     /// Output directory: ID.csv, ID.png, ID.svg, ID.md per item.
     #[arg(long, default_value = "reproduce")]
     pub out: std::path::PathBuf,
-    /// Fewer points and lower orders (seconds for all items).
+    /// Fewer points, lower orders and fewer seeds: most items take seconds, `all` a few
+    /// minutes (213 s on a shared 2-core machine; kinetic-a2 the longest, 73 s).
     #[arg(long)]
     pub quick: bool,
     /// One line per ID: paper, figure or table, typical time, what it shows.
@@ -87,6 +88,17 @@ enum RodsCommand {
     /// Two cold rods colliding on a ring (Figs. 1 and 2 of Giese): energy, entropy, spectrum.
     TwoRods(RodsTwoRodsArgs),
     /// Rod-chain MD of Eq. (2) from a TOML file, optionally against ED + Monte Carlo.
+    // The flags are `haff run`'s; the file and what --check does are the chain's own.
+    #[command(
+        mut_arg("file", |a| a.help(
+            "The chain file ([chain] and [run]; every key: docs/guide/rods.md); not with --resume"
+        )),
+        mut_arg("check", |a| a.help(
+            "Check the chain file as the run would before its first step (keys, ranges, the \
+             ring, the table of \"tabulated\") and print it as TOML, every default filled in; \
+             nothing runs, nothing is written. Exit 0 or 2"
+        ))
+    )]
     Chain(RunArgs),
 }
 
@@ -488,8 +500,11 @@ pub struct BenchDsmcArgs {
 /// Arguments of `haff cor eps`.
 #[derive(Debug, Args)]
 pub struct EpsArgs {
-    /// The law: exact, exact-naive, fast, fast-naive, pade:M/N (0/3, 1/4, 2/5, 3/6) or
-    /// series:K (0 <= K <= 20).
+    /// The law: exact, exact-naive, fast, fast-naive (-naive: the naive end-of-collision
+    /// criterion); pade:M/N, series:K from the computed coefficients (M, N <= 60 and
+    /// M + N <= 112; 0 <= K <= 100; high orders take up to a minute of computer algebra);
+    /// pade-paper:M/N, series-paper:K as printed (Table I of MP2011: 0/3, 1/4, 2/5, 3/6;
+    /// Table V of SP2008: 0 <= K <= 20).
     #[arg(long, allow_hyphen_values = true)]
     pub law: String,
     /// Scaled impact speeds v*, comma-separated, each 0 <= v* <= 1e6.
