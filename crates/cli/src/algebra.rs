@@ -59,8 +59,9 @@ pub fn pade(args: &PadeArgs) -> CliResult {
             "--m/--n",
             format!(
                 "[{m}/{n}] needs h_0..h_{} and about {seconds:.0} s; allowed: at most about \
-                 {MAX_SECONDS} s, m + n <= 100",
-                m + n
+                 {MAX_SECONDS} s, m + n <= {}",
+                m + n,
+                restitution::series::max_chain_order()
             ),
         ));
     }

@@ -119,10 +119,9 @@ impl Series {
     }
 }
 
-/// The high-precision h_0 ..= h_K (at least) from the chain, cached for the largest order
-/// computed so far (shared by the computed series and Padé approximants).
 /// The largest chain order whose coefficients the computer algebra computes within
-/// [`series::coefficients::MAX_SECONDS`] (bounded work; about 112 on this machine kind).
+/// [`series::coefficients::MAX_SECONDS`] by its estimate (112): the bound of M + N of
+/// [`crate::pade::Pade::computed`] and of `haff cor pade`.
 pub fn max_chain_order() -> usize {
     use series::coefficients::{Settings, MAX_SECONDS};
     (2..=1000)
@@ -131,6 +130,8 @@ pub fn max_chain_order() -> usize {
         .unwrap_or(2)
 }
 
+/// The high-precision h_0 ..= h_K (at least) from the chain, cached for the largest order
+/// computed so far (shared by the computed series and Padé approximants).
 pub(crate) fn computed_chain(order: usize) -> Arc<[series::power::Real]> {
     static CACHE: Mutex<Option<Arc<[series::power::Real]>>> = Mutex::new(None);
     let mut cache = CACHE
