@@ -15,6 +15,7 @@ mod progress;
 mod reproduce;
 mod rods;
 mod run;
+mod schema;
 mod study;
 
 use clap::error::ErrorKind;
@@ -52,6 +53,18 @@ enum Command {
     Rods(RodsCommand),
     /// The figures and tables of the papers, recomputed: CSV, PNG, SVG and a note per ID.
     Reproduce(ReproduceArgs),
+    /// The JSON Schema of the run file (for editors: completion, hover docs, errors as
+    /// you type; docs/guide/editors.md), or with --reference its keys as Markdown.
+    Schema(SchemaArgs),
+}
+
+/// Arguments of `haff schema`.
+#[derive(Debug, Args)]
+pub struct SchemaArgs {
+    /// Print the Markdown reference of every key (docs/guide/reference.md) instead of the
+    /// schema.
+    #[arg(long)]
+    pub reference: bool,
 }
 
 /// Arguments of `haff reproduce`.
@@ -658,6 +671,7 @@ fn run(command: Command) -> CliResult {
         Command::Rods(RodsCommand::TwoRods(args)) => rods::two_rods(&args),
         Command::Rods(RodsCommand::Chain(args)) => rods::chain(&args),
         Command::Reproduce(args) => reproduce::reproduce(&args),
+        Command::Schema(args) => schema::schema(&args),
     }
 }
 

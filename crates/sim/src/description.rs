@@ -48,54 +48,69 @@
 
 use crate::error::{Error, Result};
 use restitution::{Criterion, FormName};
+use schemars::JsonSchema;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+mod json_schema;
 mod snapshot_format;
 pub use snapshot_format::{SnapshotFormat, SnapshotFormats};
 
-/// A whole run file.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+/// A whole run file: `[system]`, `[collision]` and `[run]`, and the optional sections.
+// The doc comments of these types are the descriptions of the JSON Schema of the run file
+// (`crate::schema`, `haff schema`, docs/run-file.schema.json, docs/guide/reference.md):
+// they are written for users. The `schemars` ranges are those validation enforces.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RunDescription {
+    /// The particles, their box and their initial state.
     pub system: SystemSection,
+    /// The collision law and its parameters.
     pub collision: CollisionSection,
+    /// The engine, how far the run goes and what it samples.
     pub run: RunSection,
-    /// `[output]`: the observers of space (spatial engines only).
+    /// What a run records of space: modes, structure, fields, snapshots, profiles.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<OutputSection>,
-    /// `[driving]`: energy fed in, for a steady state instead of free cooling.
+    /// Energy fed in, for a steady state instead of free cooling.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub driving: Option<DrivingSection>,
-    /// `[[wall]]`: the walls of a container (none: the periodic box).
+    /// The walls of a container (none: the periodic box).
     #[serde(default, rename = "wall", skip_serializing_if = "Vec::is_empty")]
     pub walls: Vec<WallSection>,
-    /// `[field]`: forces on every sphere (gravity).
+    /// Forces on every sphere: gravity.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub field: Option<FieldSection>,
-    /// `[shear]`: uniform shear flow (Lees–Edwards boundaries).
+    /// Uniform shear flow (Lees–Edwards boundaries).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shear: Option<ShearSection>,
 }
 
 /// `[shear]`: the uniform shear flow u = rate · y e_x (flow along x, gradient along y):
 /// Lees–Edwards boundaries in the event-driven engine, soft-sphere MD and the spatial DSMC,
-/// the frame moving with the flow in the homogeneous DSMC (`gas::shear`). `pressure.csv` and `summary.json`'s `rheology`
-/// come with it; `timeseries.csv`'s temperature is that of the velocities relative to the
-/// flow.
+/// the frame moving with the flow in the homogeneous DSMC. `pressure.csv` and the
+/// `rheology` of `summary.json` come with it; the temperature of `timeseries.csv` is that
+/// of the velocities relative to the flow. Needs 2 or 3 dimensions and no walls, gravity,
+/// `output.modes` or `output.structure`.
 ///
 /// ```toml
 /// [shear]
 /// rate = 0.5
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+// The homogeneous DSMC shears in the co-moving frame (`gas::shear`).
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ShearSection {
+    /// The shear rate du_x/dy (1/time), positive or negative: 1e-30 <= |rate| <= 1e30.
+    /// A rate at which the images slide past the whole box within a collision time is
+    /// refused (the flow would no longer be resolved by collisions).
+    #[schemars(range(min = -1e30, max = 1e30))]
     pub rate: f64,
 }
 
-/// `[field]`: a uniform acceleration of every sphere, along axes closed by walls.
+/// `[field]`: a uniform acceleration of every sphere, along axes closed by walls (along a
+/// periodic axis the gas would fall forever). Not with `[driving]` or `[shear]`.
 ///
 /// ```toml
 /// [field]
@@ -103,16 +118,26 @@ pub struct ShearSection {
 /// rest_height = 1e-4           # a floor sends spheres at least this high (default
 ///                              # 1e-4 of the smallest diameter; the resting rule)
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FieldSection {
+    /// The acceleration g, one component per dimension (length/time^2): each 0 or
+    /// 1e-30 <= |g| <= 1e30, non-zero only along axes with walls on both sides.
+    #[schemars(length(min = 1, max = 3), inner(range(min = -1e30, max = 1e30)))]
     pub gravity: Vec<f64>,
+    /// The resting rule of the event-driven engine: a floor sends a sphere off at least as
+    /// fast as a bounce this high needs, so that spheres coming to rest do not collide
+    /// infinitely often (a length, 0 up to the smallest diameter; default 1e-4 of the
+    /// smallest diameter). Not for soft-sphere MD, whose contacts come to rest by themselves.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub rest_height: Option<f64>,
 }
 
-/// One `[[wall]]`: a flat wall on one side of one axis (`gas::walls`); an axis is periodic
-/// unless both its sides have a wall.
+/// `[[wall]]`: a flat wall on one side of one axis. An axis is periodic unless both its
+/// sides have a wall; one wall per side. Walls run in the event-driven engine, soft-sphere
+/// MD (where they are contacts of the particles' material: no thermal walls, no law of
+/// their own) and the spatial DSMC.
 ///
 /// ```toml
 /// [[wall]]
@@ -123,57 +148,86 @@ pub struct FieldSection {
 /// # law = "viscoelastic", beta = 0.1   # or another law of [collision] with its keys
 /// # temperature = 2.0  # thermal: diffuse re-emission from the wall's Maxwellian
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+// The walls themselves: `gas::walls`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallSection {
+    /// The axis the wall closes: `x`, `y` (2D and 3D) or `z` (3D).
     pub axis: AxisName,
+    /// The side of the axis: `low` (at 0) or `high` (at the box side).
     pub side: WallSide,
+    /// What the wall does to a sphere hitting it.
     pub kind: WallKindName,
-    /// Restitution and vibrating walls: the coefficient of restitution (default 1).
+    /// Restitution and vibrating walls with `law = "constant"`: the coefficient of
+    /// restitution of the sphere–wall contact, 0 <= e <= 1 (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0, max = 1), extend("default" = 1.0))]
     pub restitution: Option<f64>,
     /// Restitution and vibrating walls: the law of their contacts, with the keys of
     /// `[collision]`'s law of that name (default `constant`, with `restitution`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<json_schema::WallLaw>", extend("default" = "constant"))]
     pub law: Option<LawKind>,
-    /// `law = "dashpot"`: the damping ratio.
+    /// `law = "dashpot"`: the damping ratio R >= 0 of the linear dash-pot.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub damping_ratio: Option<f64>,
-    /// `law = "dashpot"`: the end-of-contact criterion.
+    /// `law = "dashpot"`: when a contact ends (default `improved`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        with = "Option<json_schema::CriterionName>",
+        extend("default" = "improved")
+    )]
     pub criterion: Option<Criterion>,
-    /// `law = "viscoelastic"`: β of the sphere–wall contact.
+    /// `law = "viscoelastic"`: the material constant β > 0 of the sphere–wall contact, in
+    /// (time/length)^(1/5) (or the wall's material: `young`, `poisson`,
+    /// `dissipative_constant`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub beta: Option<f64>,
-    /// `law = "viscoelastic"`: the form of eps(v) (default as in `[collision]`).
+    /// `law = "viscoelastic"`: how eps(v) is evaluated (default `fast`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<json_schema::FormText>", extend("default" = "fast"))]
     pub form: Option<FormName>,
-    /// `law = "viscoelastic"` without `beta`: the wall's material, Young modulus (a key
-    /// left out is the particles' of `[collision]`; none: a wall of the particles' material).
+    /// `law = "viscoelastic"` without `beta`: the wall's Young modulus Y > 0, in the units
+    /// of the system. Each of `young`, `poisson`, `dissipative_constant` left out is the
+    /// particles' of `[collision]` (all left out: a wall of the particles' material).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub young: Option<f64>,
-    /// The wall's material: Poisson ratio.
+    /// `law = "viscoelastic"` without `beta`: the wall's Poisson ratio, -1 < nu < 0.5.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = -1, "exclusiveMaximum" = 0.5))]
     pub poisson: Option<f64>,
-    /// The wall's material: dissipative constant A (a time).
+    /// `law = "viscoelastic"` without `beta`: the wall's dissipative constant A >= 0 (a
+    /// time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub dissipative_constant: Option<f64>,
-    /// Thermal walls: the wall's temperature.
+    /// Thermal walls: the wall's temperature, which re-emits spheres from its Maxwellian
+    /// (required; 1e-12 to 1e12 times `system.temperature`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub temperature: Option<f64>,
-    /// Vibrating walls: the amplitude of the wall's motion.
+    /// Vibrating walls: the amplitude A of the wall's motion, a length: the wall sweeps the
+    /// layer 2A inside the box from its face (required; 1e-30 <= A <= 1e30, the sweeps of an
+    /// axis' walls below its side minus the largest diameter).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub amplitude: Option<f64>,
-    /// Vibrating walls: the frequency of the wall's motion.
+    /// Vibrating walls: the frequency f of the wall's motion, cycles per unit time
+    /// (required; 1e-30 <= f <= 1e30, the top speed 2π A f at most 1e6 thermal speeds).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub frequency: Option<f64>,
-    /// Vibrating walls: the waveform of the wall's motion.
+    /// Vibrating walls: the waveform of the wall's motion (default `sine`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("default" = "sine"))]
     pub waveform: Option<Waveform>,
 }
 
-/// `wall.axis`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// An axis of the box.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum AxisName {
     X,
@@ -194,21 +248,28 @@ impl AxisName {
     }
 }
 
-/// `wall.side`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The side of an axis a wall stands on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum WallSide {
+    /// At coordinate 0.
     Low,
+    /// At the box side L.
     High,
 }
 
-/// `wall.kind`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// What a wall does to a sphere hitting it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum WallKindName {
+    /// Specular reflection, no energy lost.
     Elastic,
+    /// Reflection with a law of restitution (`restitution`, or `law` and its keys).
     Restitution,
+    /// Diffuse re-emission from the wall's Maxwellian at `temperature`.
     Thermal,
+    /// A wall moving along its axis (`amplitude`, `frequency`, `waveform`), bouncing
+    /// spheres with a law of restitution in its frame.
     Vibrating,
 }
 
@@ -224,24 +285,27 @@ impl WallKindName {
     }
 }
 
-/// `wall.waveform`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The motion of a vibrating wall.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Waveform {
+    /// Displaced A (1 - cos 2π f t) into the box.
     Sine,
+    /// Into the box and back at the speed 4 A f, once a period.
     Triangle,
+    /// Into the box at the speed 2 A f over a period, then back to the face at once.
     Sawtooth,
 }
 
-/// `[driving]`: energy fed in for a steady state (`gas::driving`). White noise
-/// (`kind = "white-noise"`): every particle's velocity receives Gaussian kicks of variance
-/// `strength` per component and unit time (a random acceleration, the same for every
-/// species). The Gaussian thermostat (`kind = "gaussian-thermostat"`): every velocity is
-/// scaled about the mean by one factor that holds the temperature at `temperature`
-/// (default: `system.temperature`); the steady state has the HCS's shape. DSMC (blocks)
-/// applies either at every step; the event-driven engine at the times k `interval`
-/// (default: a tenth of the mean free time at the larger of the initial and the expected
-/// steady temperature), renewing every prediction.
+/// `[driving]`: energy fed in for a steady state. White noise (`kind = "white-noise"`):
+/// every particle's velocity receives Gaussian kicks of variance `strength` per component
+/// and unit time (a random acceleration, the same for every species). The Gaussian
+/// thermostat (`kind = "gaussian-thermostat"`): every velocity is scaled about the mean by
+/// one factor that holds the temperature at `temperature` (default: `system.temperature`);
+/// the steady state has the HCS's shape. DSMC (blocks) applies either at every step; the
+/// event-driven engine at the times k `interval` (default: a tenth of the mean free time at
+/// the larger of the initial and the expected steady temperature), renewing every
+/// prediction. Not with the stochastic law nor with gravity.
 ///
 /// ```toml
 /// [driving]
@@ -249,31 +313,41 @@ pub enum Waveform {
 /// strength = 1.0
 /// # interval = 0.01   (event-driven only)
 /// ```
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+// The driving itself: `gas::driving`.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DrivingSection {
+    /// The kind of driving.
     pub kind: DrivingKind,
-    /// White noise: xi^2, the velocity variance per component and unit time.
+    /// White noise (required): xi^2 > 0, the velocity variance per component and unit time
+    /// (length^2/time^3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub strength: Option<f64>,
-    /// Gaussian thermostat: the temperature held.
+    /// Gaussian thermostat: the temperature held, > 0 (default `system.temperature`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub temperature: Option<f64>,
-    /// Event-driven: the time between applications.
+    /// Event-driven engine: the time between applications, > 0 (default a tenth of the
+    /// mean free time at the larger of the initial and the expected steady temperature).
+    /// DSMC drives at every step: leave it out.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub interval: Option<f64>,
 }
 
-/// `driving.kind`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The kind of driving.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum DrivingKind {
+    /// Gaussian kicks of variance `strength` per component and unit time.
     WhiteNoise,
+    /// Every velocity scaled about the mean to hold `temperature`.
     GaussianThermostat,
 }
 
-/// `[output]`: what a run records of space, at the samples of its schedule. Checked by
-/// `crate::space::check_output`.
+/// `[output]`: what a run records of space, at the samples of its schedule: the engines
+/// with positions (event-driven, soft-sphere, `dsmc_scheme = "spatial"`).
 ///
 /// ```toml
 /// [output]
@@ -284,28 +358,42 @@ pub enum DrivingKind {
 /// # format = "lammps-dump": snapshots.lammpstrj, "xyz": snapshots.xyz (one frame per
 /// # snapshot), or a list: format = ["vtk", "xyz"]
 /// ```
-#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize)]
+// Checked by `crate::space::check_output`.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSection {
+    /// `modes.csv`: the hydrodynamic modes at the smallest wave vectors (the shells of
+    /// `mode_shells`), at every sample. Needs a cubic box.
     #[serde(default)]
     pub modes: bool,
-    /// Largest |n|² of the mode shells (default 3).
+    /// The shells of wave vectors of `modes`: k = 2π n / L with |n|^2 up to this,
+    /// 1 ..= 100 (default 3). Only with `modes = true`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1, max = 100), extend("default" = 3))]
     pub mode_shells: Option<usize>,
+    /// `structure.csv`: the static structure factor S(k) and the pair correlation g(r).
+    /// Needs a cubic box.
     #[serde(default)]
     pub structure: bool,
+    /// Coarse-grained fields (density, velocity, temperature, vorticity) on a grid:
+    /// `fields_NNNNNN.vti` and `fields.pvd` (ParaView).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fields: Option<FieldsOutput>,
+    /// The particles: snapshots in one or more formats.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub snapshots: Option<SnapshotsOutput>,
+    /// Profiles across slabs normal to an axis (`profiles.csv`): density, packing
+    /// fraction, temperature and its components, mean velocity.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub profiles: Option<ProfilesOutput>,
-    /// The pressure tensor at every sample (`pressure.csv`; always under `[shear]`).
+    /// The pressure tensor at every sample (`pressure.csv`; always on under `[shear]`).
     #[serde(default, skip_serializing_if = "is_false")]
+    #[schemars(extend("default" = false))]
     pub pressure: bool,
     /// The mean-square displacement at every sample (`msd.csv`; the event-driven engine,
     /// soft-sphere MD and spatial DSMC on one process; not under `[shear]`).
     #[serde(default, skip_serializing_if = "is_false")]
+    #[schemars(extend("default" = false))]
     pub msd: bool,
 }
 
@@ -315,68 +403,105 @@ fn is_false(x: &bool) -> bool {
 
 /// `output.profiles`: slabs along `axis`, `bins` of them, at every sample
 /// (`profiles.csv`).
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ProfilesOutput {
+    /// The axis across the slabs (one of the box's: `x`, `y` in 2D and 3D, `z` in 3D).
     pub axis: AxisName,
+    /// The number of slabs, 1 ..= 100000.
+    #[schemars(range(min = 1, max = 100_000))]
     pub bins: usize,
 }
 
 /// `output.fields`: coarse-grained fields every `every` samples on a `grid`^D grid.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FieldsOutput {
+    /// A field every this many samples, 1 ..= 1e6.
+    #[schemars(range(min = 1, max = 1_000_000))]
     pub every: usize,
+    /// Cells per side of the grid: 3 ..= 256 in 3D, 4096 in 2D, 2^20 in 1D.
+    #[schemars(range(min = 3, max = 1_048_576))]
     pub grid: usize,
 }
 
 /// `output.snapshots`: the particles every `every` samples, in one or more formats.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SnapshotsOutput {
+    /// A snapshot every this many samples, 1 ..= 1e6.
+    #[schemars(range(min = 1, max = 1_000_000))]
     pub every: usize,
+    /// A format or a list of distinct formats (default `vtk`).
     #[serde(default)]
     pub format: SnapshotFormats,
 }
 
-/// `[system]`: the particles and their initial state.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+/// `[system]`: the particles, their box and their initial state: a placement
+/// (`particles`, `packing_fraction` or `box`, one kind of sphere or `species`, velocities
+/// drawn at `temperature`) or the particles of a file or another run (`initial`).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SystemSection {
+    /// 1 (rods on a line), 2 (disks) or 3 (spheres).
     #[serde(default = "three")]
+    #[schemars(range(min = 1, max = 3))]
     pub dimension: u32,
-    /// The number of particles (with `initial`: the file's, filled in by validation).
+    /// The number of particles N, 2 <= N <= 1e8. Required unless `initial` gives the
+    /// particles (then leave it out).
+    // With `initial`: the file's, filled in by validation.
     #[serde(default)]
+    #[schemars(range(min = 2, max = 100_000_000), transform = json_schema::no_default)]
     pub particles: usize,
-    /// The spheres' volume over the (cubic) box's; or `box`.
+    /// The spheres' volume over the (cubic) box's: 1e-12 <= phi <= 0.6 in 3D, 0.8 in 2D,
+    /// 0.9 in 1D; above 0.45 (3D), 0.7 (2D) the spheres are grown from a lattice
+    /// (Lubachevsky–Stillinger). Give either this or `box`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-12, max = 0.9))]
     pub packing_fraction: Option<f64>,
-    /// The sides of the box, one per dimension (instead of `packing_fraction`).
+    /// The sides of the box, one per dimension, each 1e-30 ..= 1e30 and at least 4 largest
+    /// diameters (instead of `packing_fraction`; the engines with space only: event-driven,
+    /// soft-sphere, spatial DSMC).
     #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
+    #[schemars(length(min = 1, max = 3), inner(range(min = 1e-30, max = 1e30)))]
     pub sides: Option<Vec<f64>>,
-    /// 1.0 unless `species` is given (filled in by [`RunDescription::normalize`]).
+    /// The diameter of the spheres, 1e-30 ..= 1e30 (default 1; not with `species`).
+    // Filled in by [`RunDescription::normalize`] unless `species` is given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-30, max = 1e30), extend("default" = 1.0))]
     pub diameter: Option<f64>,
+    /// The mass of the spheres, 1e-30 ..= 1e30 (default 1; not with `species`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-30, max = 1e30), extend("default" = 1.0))]
     pub mass: Option<f64>,
-    /// A mixture instead of `diameter` and `mass`.
+    /// A mixture instead of `diameter` and `mass`: one entry per species, species differing
+    /// in diameter or mass.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(length(min = 1))]
     pub species: Option<Vec<SpeciesEntry>>,
+    /// The initial temperature T = m <v^2> / d (an energy, k_B = 1), 1e-30 ..= 1e30: the
+    /// velocities are drawn from its Maxwellian. Not with the velocities of `initial`.
     #[serde(default = "one")]
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub temperature: f64,
+    /// The seed of the run's random numbers (placement, velocities, the engines' draws).
     #[serde(default = "first_seed")]
     pub seed: u64,
-    /// Rough particles: the inertia factor q, I = q m d^2 / 4 (0.4 a solid sphere, the
-    /// default; 2/3 a hollow one; disks: 0.5 a solid disk, the default).
+    /// Rough particles: the inertia factor q of I = q m d^2 / 4, 0 < q <= 2/3 for spheres
+    /// (0.4 a solid sphere, the default; 2/3 a hollow one), 0 < q <= 1/2 for disks (0.5 a
+    /// solid disk, the default). 2D and 3D.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 2.0 / 3.0))]
     pub inertia: Option<f64>,
-    /// Rough particles: the rotational temperature of the start, I <w^2> / d_rot
-    /// (default: `temperature`).
+    /// Rough particles: the rotational temperature of the start, I <w^2> / d_rot, 0 or
+    /// 1e-30 ..= 1e30 (default `temperature`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0, max = 1e30))]
     pub rotational_temperature: Option<f64>,
     /// The particles from a file or from another run instead of a placement: their number,
-    /// box, diameters, masses and velocities (the normal form holds them resolved:
-    /// `crate::validate` fills in `particles`, `box`, the species and the temperature).
+    /// box, diameters, masses and (if the file has them) velocities.
+    // The normal form holds them resolved: `crate::validate` fills in `particles`, `box`,
+    // the species and the temperature.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub initial: Option<InitialSection>,
     /// Whether the run file gave `temperature` (not serialized: a file's velocities and a
@@ -385,61 +510,83 @@ pub struct SystemSection {
     pub temperature_given: bool,
 }
 
-/// `system.initial`: where the particles come from.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+/// `system.initial`: the particles of a file (`file`) or of another run (`run`), one of
+/// them. The file gives the box and positions, and whatever it has of diameters, masses
+/// and velocities; what it lacks comes from `system.diameter`, `system.mass` (or
+/// `density`) and `system.temperature`. Leave out `system.particles`,
+/// `system.packing_fraction`, `system.box` and `system.species`.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct InitialSection {
-    /// A particle file (`sim::particles`), relative to the working directory.
+    /// A particle file, relative to the working directory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
-    /// Its format (`csv`, `lammps-dump`, `xyz`, ...; by default from the file's extension).
+    /// The format of `file` (default: from its extension).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<json_schema::ParticleFormat>")]
     pub format: Option<String>,
-    /// The frame of a file of several (0 the first, -1 the last: the default).
+    /// The frame of a file of several: from 0 the first, negative from the end (-1 the
+    /// last, the default).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("default" = -1))]
     pub frame: Option<i64>,
-    /// The output directory of another haff run: its last check-point.
+    /// The output directory of another haff run: the particles of its check-point, else of
+    /// its last snapshot.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub run: Option<String>,
     /// The total momentum of the file's velocities: reported and kept (`keep`, the
     /// default) or removed (`remove`: the mass-weighted mean velocity subtracted).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("default" = "keep"))]
     pub momentum: Option<MomentumPolicy>,
-    /// The particles' mass density, for files without masses: m = density x the ball's
-    /// volume (pi/6 d^3, pi/4 d^2 in 2D, d in 1D).
+    /// The particles' mass density, for files without masses: m = density × the ball's
+    /// volume (π/6 d^3, π/4 d^2 in 2D, d in 1D), 1e-30 ..= 1e30. Not with `system.mass`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub density: Option<f64>,
 }
 
-/// `system.initial.momentum`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// What becomes of the total momentum of a file's velocities.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum MomentumPolicy {
+    /// Reported and kept.
     Keep,
+    /// Removed: the mass-weighted mean velocity subtracted.
     Remove,
 }
 
-/// One entry of `system.species`.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+/// One entry of `system.species`: a kind of sphere and its share of the particles.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SpeciesEntry {
+    /// The diameter of this species, 1e-30 ..= 1e30.
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub diameter: f64,
+    /// The mass of this species, 1e-30 ..= 1e30.
+    #[schemars(range(min = 1e-30, max = 1e30))]
     pub mass: f64,
-    /// Number fraction (normalized over the species).
+    /// The number fraction, > 0 (normalized over the species).
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub fraction: f64,
-    /// Viscoelastic material of this species (law = "viscoelastic"): Young modulus; a key
-    /// left out is taken from `[collision]`. Unlike species collide with the pair's beta
-    /// (`restitution::material::MaterialPair`).
+    /// `law = "viscoelastic"`: this species' Young modulus Y > 0 (a key of the species'
+    /// material left out is taken from `[collision]`; unlike species collide with the
+    /// pair's β).
+    // `restitution::material::MaterialPair`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub young: Option<f64>,
-    /// Viscoelastic material of this species: Poisson ratio.
+    /// `law = "viscoelastic"`: this species' Poisson ratio, -1 < nu < 0.5.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = -1, "exclusiveMaximum" = 0.5))]
     pub poisson: Option<f64>,
-    /// Viscoelastic material of this species: dissipative constant A (a time).
+    /// `law = "viscoelastic"`: this species' dissipative constant A >= 0 (a time).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub dissipative_constant: Option<f64>,
     /// Rough particles: this species' inertia factor (default `system.inertia`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0, "maximum" = 2.0 / 3.0))]
     pub inertia: Option<f64>,
 }
 
@@ -459,15 +606,15 @@ impl SpeciesEntry {
     }
 }
 
-/// `collision.law`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The collision law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum LawKind {
     /// A constant coefficient of restitution (`restitution`).
     Constant,
     /// The linear dash-pot (`damping_ratio`, `criterion`).
     Dashpot,
-    /// Viscoelastic spheres (`beta`, `form`).
+    /// Viscoelastic spheres (`beta` or the material, `form`).
     Viscoelastic,
     /// Giese's stochastic law with per-particle baths (`modes`, `distribution`, `table`,
     /// `bath_temperature`).
@@ -486,13 +633,13 @@ impl LawKind {
     }
 }
 
-/// `collision.distribution` of the stochastic law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// Where the stochastic law draws eps^2 from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Distribution {
     /// Eq. (7) of Giese.
     Glauber,
-    /// p(eps^2) tabulated from Eq. (3) by `haff rods table`.
+    /// p(eps^2) tabulated from Eq. (3) by `haff rods table` (`table`).
     Tabulated,
 }
 
@@ -542,79 +689,120 @@ impl<'de> Deserialize<'de> for RestitutionValue {
     }
 }
 
-/// `[collision]`: the law and its parameters. The stochastic keys are refused for the
-/// other laws by [`crate::validate`]; keys of another deterministic law are still accepted
-/// and ignored (as they always were).
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+/// `[collision]`: the law and its parameters. Each key belongs to one law (the stochastic
+/// keys, and every key of a law other than the run's, are refused).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CollisionSection {
+    /// The collision law.
     pub law: LawKind,
-    // The four keys below are written as null when absent (summary.json has always
+    // The five keys below are written as null when absent (summary.json has always
     // listed them).
+    /// `law = "constant"` (required): the coefficient of restitution 0 <= eps <= 1, one for
+    /// every pair, or a symmetric matrix with one row per species of `system.species`
+    /// (`[[e11, e12], [e12, e22]]`). The event-driven engine refuses 0 (sticking spheres)
+    /// unless `tc` is set.
     #[serde(default)]
+    #[schemars(with = "Option<json_schema::Restitution>")]
     pub restitution: Option<RestitutionValue>,
+    /// `law = "dashpot"` (required): the damping ratio R >= 0 of the linear dash-pot.
     #[serde(default)]
+    #[schemars(range(min = 0))]
     pub damping_ratio: Option<f64>,
+    /// `law = "dashpot"`: when a contact ends (default `improved`).
     #[serde(default)]
+    #[schemars(
+        with = "Option<json_schema::CriterionName>",
+        extend("default" = "improved")
+    )]
     pub criterion: Option<Criterion>,
+    /// `law = "viscoelastic"`: the material constant β > 0 of Müller & Pöschel (2011), in
+    /// (time/length)^(1/5): eps depends on v* = β^(1/2) v^(1/10). Or, instead, the
+    /// material: `young`, `poisson`, `dissipative_constant` (or `material`).
     #[serde(default)]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub beta: Option<f64>,
+    /// `law = "viscoelastic"`: how eps(v*) is evaluated (default `fast`).
     #[serde(default)]
+    #[schemars(with = "Option<json_schema::FormText>", extend("default" = "fast"))]
     pub form: Option<FormName>,
-    /// Viscoelastic material: a built-in one by name (`steel`, `soda-lime-glass`,
-    /// `aluminium`, `ice`: Young modulus, Poisson ratio and density in SI; the masses follow
-    /// from the density), with `dissipative_constant` in s.
+    /// `law = "viscoelastic"`, 3D: a built-in material by name, its Young modulus, Poisson
+    /// ratio and density in SI units (the masses follow from the density: give diameters in
+    /// m), with `dissipative_constant` in s. A `young` or `poisson` given overrides the
+    /// table's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(with = "Option<json_schema::MaterialName>")]
     pub material: Option<String>,
-    /// Viscoelastic material: Young modulus (instead of beta, with `poisson` and
-    /// `dissipative_constant`), in the units of the system.
+    /// `law = "viscoelastic"`: the Young modulus Y > 0 of the particles' material, in the
+    /// units of the system (with `poisson` and `dissipative_constant`, instead of `beta`;
+    /// β = (3/2) A (ρ / m_eff)^(2/5), ρ = 2 Y sqrt(R_eff) / (3 (1 - nu^2))).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub young: Option<f64>,
-    /// Viscoelastic material: Poisson ratio.
+    /// `law = "viscoelastic"`: the Poisson ratio of the particles' material, -1 < nu < 0.5.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = -1, "exclusiveMaximum" = 0.5))]
     pub poisson: Option<f64>,
-    /// Viscoelastic material: the dissipative constant A of Eq. (2) of MP2011 (a time).
+    /// `law = "viscoelastic"`: the dissipative constant A >= 0 of the particles' material
+    /// (a time; Eq. (2) of Müller & Pöschel 2011).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub dissipative_constant: Option<f64>,
-    /// Contact duration of the TC model (0 or absent: off).
+    /// The contact duration of the TC model, a time >= 0: a collision is elastic if either
+    /// partner collided less than `tc` ago, which stops the inelastic collapse of the
+    /// event-driven engine (0 or absent: off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0))]
     pub tc: Option<f64>,
-    /// Stochastic law: Glauber (default) or tabulated.
+    /// `law = "stochastic"`: where eps^2 is drawn from (default `glauber`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("default" = "glauber"))]
     pub distribution: Option<Distribution>,
-    /// Stochastic law: internal vibration modes per particle.
+    /// `law = "stochastic"` (required): the internal vibration modes per particle, >= 1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1))]
     pub modes: Option<u32>,
-    /// Stochastic law: initial bath temperature of every particle (default 0: cold).
+    /// `law = "stochastic"`: the initial bath temperature of every particle, 0 (cold, the
+    /// default) or 1e-30 ..= 1e30.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0, max = 1e30), extend("default" = 0.0))]
     pub bath_temperature: Option<f64>,
-    /// Stochastic tabulated law: a table written by `haff rods table` (a path relative to
-    /// the working directory).
+    /// `law = "stochastic"`, `distribution = "tabulated"` (required): a table written by
+    /// `haff rods table`, a path relative to the working directory.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub table: Option<String>,
-    /// Rough particles: the tangential restitution beta in [-1, 1] (-1: smooth, the
-    /// default; `restitution::rough`), one for all pairs or a symmetric matrix with a row
-    /// per species of `system.species`.
+    /// Rough particles (2D and 3D): the tangential restitution -1 <= β <= 1 (-1: smooth,
+    /// the default; 1: perfectly rough), one for all pairs or a symmetric matrix with a row
+    /// per species of `system.species`. Soft-sphere MD takes `friction` alone instead.
+    // The tangential rule: `restitution::rough`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        with = "Option<json_schema::TangentialRestitution>",
+        extend("default" = -1.0)
+    )]
     pub tangential_restitution: Option<RestitutionValue>,
-    /// Rough particles: Coulomb's friction coefficient of Walton's model (the contact
-    /// slides where sticking would need a tangential impulse beyond mu times the normal
-    /// one).
+    /// Rough particles: Coulomb's friction coefficient 0 <= mu <= 1e30 of Walton's model
+    /// (the contact slides where sticking would need a tangential impulse beyond mu times
+    /// the normal one; soft-sphere MD: the cut of the tangential force).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 0, max = 1e30))]
     pub friction: Option<f64>,
 }
 
-/// `run.engine`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The engine of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum EngineKind {
+    /// Event-driven molecular dynamics of hard spheres: exact collisions in order.
     EventDriven,
+    /// Direct simulation Monte Carlo (`dsmc_scheme`).
     Dsmc,
+    /// Soft-sphere molecular dynamics of the viscoelastic (Hertz) contact force.
     SoftSphere,
 }
 
-/// `run.dsmc_scheme`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The scheme of the DSMC.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum DsmcScheme {
     /// Homogeneous, the exact process in parallel blocks.
@@ -636,58 +824,100 @@ impl DsmcScheme {
     }
 }
 
-/// `run.spacing` of the samples.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// How the samples are spread over the run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Spacing {
+    /// The first at 0, the others log-spaced from a thousandth of the run to its end.
     Log,
+    /// Evenly spaced from 0 to the end.
     Linear,
 }
 
-/// `[run]`: the engine, how far to go and what to record.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+/// `[run]`: the engine, how far the run goes (`collisions_per_particle` or `end_time`,
+/// exactly one) and what it samples; the keys of each engine are refused for the others.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RunSection {
+    /// The engine.
     #[serde(default = "event_driven")]
     pub engine: EngineKind,
+    /// Run until this many collisions per particle, > 0 (each collision counts for both
+    /// partners); or `end_time`.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub collisions_per_particle: Option<f64>,
+    /// Run until this time, > 0; or `collisions_per_particle`.
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub end_time: Option<f64>,
+    /// The number of samples (rows of `timeseries.csv`), 2 ..= 1e6.
     #[serde(default = "two_hundred")]
+    #[schemars(range(min = 2, max = 1_000_000))]
     pub samples: usize,
+    /// How the samples are spread over the run.
     #[serde(default = "log")]
     pub spacing: Spacing,
-    /// Where to take velocity histograms (unit of the stop criterion).
+    /// Velocity histograms at these points of the run (in the unit of the stop criterion:
+    /// collisions per particle or time), each in 0 ..= the end, distinct, at most 10000.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(length(max = 10_000), inner(range(min = 0)))]
     pub histogram_at: Option<Vec<f64>>,
-    /// Bins of the velocity histograms (default [`crate::observer::HISTOGRAM_BINS`]).
+    /// The bins of the velocity histograms, 4 ..= 10000 (default 60).
+    // The default: [`crate::observer::HISTOGRAM_BINS`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        range(min = 4, max = 10_000),
+        extend("default" = crate::observer::HISTOGRAM_BINS)
+    )]
     pub histogram_bins: Option<usize>,
-    /// DSMC: blocks (default), exact or spatial.
+    /// `engine = "dsmc"`: the scheme (default `blocks`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("default" = "blocks"))]
     pub dsmc_scheme: Option<DsmcScheme>,
-    /// DSMC blocks: particles per block.
+    /// `dsmc_scheme = "blocks"`: particles per block, 2 ..= 2^32 - 1 (default 4096).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        range(min = 2, max = 4_294_967_295_u64),
+        extend("default" = gas::dsmc::DEFAULT_BLOCK_SIZE)
+    )]
     pub block_size: Option<usize>,
-    /// DSMC blocks / spatial: collisions per particle per step (or `time_step`).
+    /// `dsmc_scheme = "blocks"` or `"spatial"`: the step size in collisions per particle per
+    /// step, 1e-4 ..= 100 (default: the engine's); or `time_step`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1e-4, max = 100))]
     pub collisions_per_step: Option<f64>,
+    /// The time step, > 0: DSMC (`blocks`, `spatial`; with `end_time`, at most 1e8 steps),
+    /// or soft-sphere MD (4 to 1e6 steps per contact duration); or `collisions_per_step`,
+    /// `steps_per_contact`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub time_step: Option<f64>,
-    /// Spatial DSMC: width of the collision cells.
+    /// `dsmc_scheme = "spatial"`: the width of the collision cells, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("exclusiveMinimum" = 0))]
     pub collision_cell_width: Option<f64>,
-    /// Spatial DSMC: the physical particles each simulated particle stands for (SPARTA's
-    /// `fnum`; default 1). The box holds `system.particles` x weight spheres at
-    /// `system.packing_fraction`, so a weight below 1 puts more simulated particles into
-    /// each mean free path.
+    /// `dsmc_scheme = "spatial"`: the physical particles each simulated particle stands for
+    /// (SPARTA's `fnum`), 2 / `system.particles` ..= 1e6 (default 1). The box holds
+    /// `system.particles` × weight spheres at `system.packing_fraction`, so a weight below 1
+    /// puts more simulated particles into each mean free path.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        range(max = 1e6),
+        extend("exclusiveMinimum" = 0, "default" = 1.0)
+    )]
     pub particle_weight: Option<f64>,
-    /// Soft-sphere MD: time steps per Hertz contact duration (or `time_step`).
+    /// `engine = "soft-sphere"`: time steps per Hertz contact duration, 4 ..= 1e6 (default
+    /// 50); or `time_step`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(
+        range(min = 4, max = 1e6),
+        extend("default" = gas::soft::DEFAULT_STEPS_PER_CONTACT)
+    )]
     pub steps_per_contact: Option<f64>,
-    /// Spatial DSMC: the MPI ranks the run must be launched on (`mpirun -n RANKS`; a binary
-    /// built with the feature `mpi`). Without it, a run takes the ranks it is launched on.
+    /// The MPI ranks the run must be launched on (`mpirun -n RANKS`; a haff built with the
+    /// feature `mpi`), 1 ..= 1e6; more than one for `dsmc_scheme = "spatial"` only. Without
+    /// it, a run takes the ranks it is launched on.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(range(min = 1, max = 1_000_000))]
     pub ranks: Option<usize>,
 }
 

@@ -42,6 +42,7 @@ pub mod rheology;
 pub mod rod_ring;
 pub mod rough;
 pub mod schedule;
+pub mod schema;
 pub mod simulation;
 pub mod snapshots;
 pub mod space;

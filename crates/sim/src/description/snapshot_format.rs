@@ -1,11 +1,15 @@
 //! `output.snapshots.format`: the formats of particle snapshots, a name or a list of
 //! names in the run file (`crate::snapshots` writes them).
 
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
 
-/// One value of `output.snapshots.format`. A new format is a variant here, its name in
-/// [`SnapshotFormat::name`] and its writer in `crate::snapshots`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// A format of particle snapshots.
+// A new format is a variant here, its name in [`SnapshotFormat::name`] (the schema's
+// `rename_all` spells the same names: tested) and its writer in `crate::snapshots`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, JsonSchema)]
+#[schemars(rename_all = "kebab-case")]
 pub enum SnapshotFormat {
     /// VTK XML: one `.vtu` per snapshot and a `.pvd` time series (ParaView).
     Vtk,
@@ -14,7 +18,8 @@ pub enum SnapshotFormat {
     /// An extended XYZ trajectory, `snapshots.xyz` (OVITO, ASE).
     Xyz,
     /// An H5MD trajectory, `snapshots.h5md` (h5py, MDAnalysis, OVITO), with the
-    /// temperature and the energy lost as observables (the feature `h5md`).
+    /// temperature and the energy lost as observables (a haff built with the feature
+    /// `h5md`).
     H5md,
 }
 
@@ -88,6 +93,28 @@ impl SnapshotFormats {
 impl Default for SnapshotFormats {
     fn default() -> Self {
         SnapshotFormats(vec![SnapshotFormat::Vtk])
+    }
+}
+
+impl JsonSchema for SnapshotFormats {
+    fn schema_name() -> Cow<'static, str> {
+        "SnapshotFormats".into()
+    }
+
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let one = generator.subschema_for::<SnapshotFormat>();
+        json_schema!({
+            "anyOf": [
+                one,
+                {
+                    "description": "Several formats, each at most once.",
+                    "type": "array",
+                    "items": one,
+                    "minItems": 1,
+                    "uniqueItems": true,
+                },
+            ]
+        })
     }
 }
 
