@@ -8,7 +8,8 @@
 //!
 //! The schema is a necessary condition, not a sufficient one: a run file that validation
 //! accepts satisfies it, but it does not know what depends on other keys (one law's keys
-//! refused for another, the packing limit of each dimension, a matrix per species).
+//! refused for another, the packing limit of each dimension, a matrix per species). It is
+//! a schema of TOML: it has no `null` (an optional key is one left out).
 
 mod reference;
 
@@ -53,21 +54,54 @@ pub fn run_file_schema_text() -> String {
     text
 }
 
-/// Drops the `format` annotations schemars gives numbers (`double`, `uint32`, ...: no JSON
-/// Schema formats; `type` and the ranges say it) and the `default: null` of the keys
-/// `summary.json` lists as null (TOML has no null: such a key has no default).
+/// Makes schemars' output a schema of TOML for editors: no `format` annotations on numbers
+/// (`double`, `uint32`, ...: no JSON Schema formats; `type` and the ranges say it); no
+/// `null` (TOML has none: an optional key is one left out, and a validator reports the
+/// error inside an optional table instead of "not valid under any of the schemas" of a
+/// `null` alternative), nor `default: null`; and an `enum` beside the `oneOf` of named
+/// values, so that validators list the allowed names.
 fn tidy(schema: &mut Schema) {
-    if schema
-        .get("default")
-        .is_some_and(serde_json::Value::is_null)
-    {
+    use serde_json::Value;
+    let is_null = |v: &Value| v == "null" || v.get("type").is_some_and(|t| t == "null");
+    if schema.get("default").is_some_and(Value::is_null) {
         schema.remove("default");
     }
-    let numeric = |t: &serde_json::Value| match t {
-        serde_json::Value::String(s) => s == "number" || s == "integer",
-        serde_json::Value::Array(a) => a.iter().any(|x| x == "number" || x == "integer"),
-        _ => false,
-    };
+    if let Some(Value::Array(types)) = schema.get("type") {
+        let kept: Vec<Value> = types.iter().filter(|t| !is_null(t)).cloned().collect();
+        let kept = match kept.as_slice() {
+            [one] => one.clone(),
+            _ => Value::Array(kept),
+        };
+        schema.insert("type".into(), kept);
+    }
+    if let Some(Value::Array(alternatives)) = schema.get("anyOf") {
+        let kept: Vec<Value> = alternatives
+            .iter()
+            .filter(|a| !is_null(a))
+            .cloned()
+            .collect();
+        if let [one] = kept.as_slice() {
+            let one = one.as_object().cloned().unwrap_or_default();
+            schema.remove("anyOf");
+            for (k, v) in one {
+                if schema.get(&k).is_none() {
+                    schema.insert(k, v);
+                }
+            }
+        } else {
+            schema.insert("anyOf".into(), Value::Array(kept));
+        }
+    }
+    if let Some(Value::Array(alternatives)) = schema.get("oneOf") {
+        let names: Option<Vec<Value>> = alternatives
+            .iter()
+            .map(|a| a.get("const").filter(|c| c.is_string()).cloned())
+            .collect();
+        if let Some(names) = names {
+            schema.insert("enum".into(), Value::Array(names));
+        }
+    }
+    let numeric = |t: &Value| t == "number" || t == "integer";
     if schema.get("type").is_some_and(numeric) {
         schema.remove("format");
     }

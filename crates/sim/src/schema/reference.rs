@@ -299,7 +299,8 @@ impl Page {
     /// an enumeration, constants, or those of its alternatives and entries.
     fn values(&self, s: &Map<String, Value>) -> Vec<(String, Option<String>)> {
         let mut out: Vec<(String, Option<String>)> = Vec::new();
-        if let Some(Value::Array(names)) = s.get("enum") {
+        // An `enum` beside a `oneOf` of constants repeats their names without descriptions.
+        if let (Some(Value::Array(names)), None) = (s.get("enum"), s.get("oneOf")) {
             out.extend(names.iter().map(|n| (n.to_string(), None)));
         }
         if let Some(value) = s.get("const") {
