@@ -58,8 +58,10 @@ pub fn run_file_schema_text() -> String {
 /// (`double`, `uint32`, ...: no JSON Schema formats; `type` and the ranges say it); no
 /// `null` (TOML has none: an optional key is one left out, and a validator reports the
 /// error inside an optional table instead of "not valid under any of the schemas" of a
-/// `null` alternative), nor `default: null`; and an `enum` beside the `oneOf` of named
-/// values, so that validators list the allowed names.
+/// `null` alternative), nor `default: null`; and named values as an `enum` (validators
+/// list the names; taplo completes a key once, not once per name as for a `oneOf` of
+/// constants), their descriptions kept in `enumDescriptions` (an annotation of VS Code's
+/// JSON schemas; the reference page lists them).
 fn tidy(schema: &mut Schema) {
     use serde_json::Value;
     let is_null = |v: &Value| v == "null" || v.get("type").is_some_and(|t| t == "null");
@@ -98,7 +100,14 @@ fn tidy(schema: &mut Schema) {
             .map(|a| a.get("const").filter(|c| c.is_string()).cloned())
             .collect();
         if let Some(names) = names {
+            let about: Vec<Value> = alternatives
+                .iter()
+                .map(|a| a.get("description").cloned().unwrap_or_else(|| "".into()))
+                .collect();
+            schema.remove("oneOf");
+            schema.insert("type".into(), "string".into());
             schema.insert("enum".into(), Value::Array(names));
+            schema.insert("enumDescriptions".into(), Value::Array(about));
         }
     }
     let numeric = |t: &Value| t == "number" || t == "integer";
@@ -184,13 +193,13 @@ mod tests {
         assert_eq!(field_names::<RunDescription>()[5], "wall");
     }
 
-    /// The consts of the `oneOf` of definition `name`.
+    /// The names of the `enum` of definition `name`.
     fn consts(schema: &serde_json::Value, name: &str) -> Vec<String> {
-        schema["$defs"][name]["oneOf"]
+        schema["$defs"][name]["enum"]
             .as_array()
             .unwrap()
             .iter()
-            .map(|v| v["const"].as_str().unwrap().to_string())
+            .map(|v| v.as_str().unwrap().to_string())
             .collect()
     }
 

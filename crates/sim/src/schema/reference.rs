@@ -299,9 +299,14 @@ impl Page {
     /// an enumeration, constants, or those of its alternatives and entries.
     fn values(&self, s: &Map<String, Value>) -> Vec<(String, Option<String>)> {
         let mut out: Vec<(String, Option<String>)> = Vec::new();
-        // An `enum` beside a `oneOf` of constants repeats their names without descriptions.
-        if let (Some(Value::Array(names)), None) = (s.get("enum"), s.get("oneOf")) {
-            out.extend(names.iter().map(|n| (n.to_string(), None)));
+        if let Some(Value::Array(names)) = s.get("enum") {
+            let about = s.get("enumDescriptions").and_then(Value::as_array);
+            out.extend(names.iter().enumerate().map(|(i, n)| {
+                let description = about
+                    .and_then(|a| a.get(i)?.as_str())
+                    .filter(|d| !d.is_empty());
+                (n.to_string(), description.map(str::to_string))
+            }));
         }
         if let Some(value) = s.get("const") {
             out.push((value.to_string(), text_of(s.get("description"))));
