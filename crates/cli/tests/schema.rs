@@ -10,7 +10,9 @@ use std::path::Path;
 
 /// Compares `file` (relative to the repository) with what `haff ARGS` prints.
 fn assert_current(file: &str, args: &[&str]) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(file);
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
     let printed = stdout_of(args);
     if committed != printed {

@@ -454,14 +454,15 @@ pub struct SystemSection {
     #[schemars(range(min = 2, max = 100_000_000), transform = json_schema::no_default)]
     pub particles: usize,
     /// The spheres' volume over the (cubic) box's: 1e-12 <= phi <= 0.6 in 3D, 0.8 in 2D,
-    /// 0.9 in 1D; above 0.45 (3D), 0.7 (2D) the spheres are grown from a lattice
-    /// (Lubachevsky–Stillinger). Give either this or `box`.
+    /// 0.9 in 1D; above 0.45 (3D), 0.7 (2D) the spheres are grown (Lubachevsky–Stillinger).
+    /// Give either this or `box`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(range(min = 1e-12, max = 0.9))]
     pub packing_fraction: Option<f64>,
-    /// The sides of the box, one per dimension, each 1e-30 ..= 1e30 and at least 4 largest
-    /// diameters (instead of `packing_fraction`; the engines with space only: event-driven,
-    /// soft-sphere, spatial DSMC).
+    /// The sides of the box, one per dimension, each 1e-30 ..= 1e30 and, for spheres with
+    /// extent (not the spatial DSMC's points), at least 4 largest diameters (instead of
+    /// `packing_fraction`; the engines with space only: event-driven, soft-sphere, spatial
+    /// DSMC).
     #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
     #[schemars(length(min = 1, max = 3), inner(range(min = 1e-30, max = 1e30)))]
     pub sides: Option<Vec<f64>>,

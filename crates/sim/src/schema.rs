@@ -8,7 +8,8 @@
 //!
 //! The schema is a necessary condition, not a sufficient one: a run file that validation
 //! accepts satisfies it, but it does not know what depends on other keys (one law's keys
-//! refused for another, the packing limit of each dimension, a matrix per species).
+//! refused for another, the packing limit of each dimension, a matrix per species). It is
+//! a schema of TOML: it has no `null` (an optional key is one left out).
 
 mod reference;
 
@@ -53,21 +54,63 @@ pub fn run_file_schema_text() -> String {
     text
 }
 
-/// Drops the `format` annotations schemars gives numbers (`double`, `uint32`, ...: no JSON
-/// Schema formats; `type` and the ranges say it) and the `default: null` of the keys
-/// `summary.json` lists as null (TOML has no null: such a key has no default).
+/// Makes schemars' output a schema of TOML for editors: no `format` annotations on numbers
+/// (`double`, `uint32`, ...: no JSON Schema formats; `type` and the ranges say it); no
+/// `null` (TOML has none: an optional key is one left out, and a validator reports the
+/// error inside an optional table instead of "not valid under any of the schemas" of a
+/// `null` alternative), nor `default: null`; and named values as an `enum` (validators
+/// list the names; taplo completes a key once, not once per name as for a `oneOf` of
+/// constants), their descriptions kept in `enumDescriptions` (an annotation of VS Code's
+/// JSON schemas; the reference page lists them).
 fn tidy(schema: &mut Schema) {
-    if schema
-        .get("default")
-        .is_some_and(serde_json::Value::is_null)
-    {
+    use serde_json::Value;
+    let is_null = |v: &Value| v == "null" || v.get("type").is_some_and(|t| t == "null");
+    if schema.get("default").is_some_and(Value::is_null) {
         schema.remove("default");
     }
-    let numeric = |t: &serde_json::Value| match t {
-        serde_json::Value::String(s) => s == "number" || s == "integer",
-        serde_json::Value::Array(a) => a.iter().any(|x| x == "number" || x == "integer"),
-        _ => false,
-    };
+    if let Some(Value::Array(types)) = schema.get("type") {
+        let kept: Vec<Value> = types.iter().filter(|t| !is_null(t)).cloned().collect();
+        let kept = match kept.as_slice() {
+            [one] => one.clone(),
+            _ => Value::Array(kept),
+        };
+        schema.insert("type".into(), kept);
+    }
+    if let Some(Value::Array(alternatives)) = schema.get("anyOf") {
+        let kept: Vec<Value> = alternatives
+            .iter()
+            .filter(|a| !is_null(a))
+            .cloned()
+            .collect();
+        if let [one] = kept.as_slice() {
+            let one = one.as_object().cloned().unwrap_or_default();
+            schema.remove("anyOf");
+            for (k, v) in one {
+                if schema.get(&k).is_none() {
+                    schema.insert(k, v);
+                }
+            }
+        } else {
+            schema.insert("anyOf".into(), Value::Array(kept));
+        }
+    }
+    if let Some(Value::Array(alternatives)) = schema.get("oneOf") {
+        let names: Option<Vec<Value>> = alternatives
+            .iter()
+            .map(|a| a.get("const").filter(|c| c.is_string()).cloned())
+            .collect();
+        if let Some(names) = names {
+            let about: Vec<Value> = alternatives
+                .iter()
+                .map(|a| a.get("description").cloned().unwrap_or_else(|| "".into()))
+                .collect();
+            schema.remove("oneOf");
+            schema.insert("type".into(), "string".into());
+            schema.insert("enum".into(), Value::Array(names));
+            schema.insert("enumDescriptions".into(), Value::Array(about));
+        }
+    }
+    let numeric = |t: &Value| t == "number" || t == "integer";
     if schema.get("type").is_some_and(numeric) {
         schema.remove("format");
     }
@@ -150,13 +193,13 @@ mod tests {
         assert_eq!(field_names::<RunDescription>()[5], "wall");
     }
 
-    /// The consts of the `oneOf` of definition `name`.
+    /// The names of the `enum` of definition `name`.
     fn consts(schema: &serde_json::Value, name: &str) -> Vec<String> {
-        schema["$defs"][name]["oneOf"]
+        schema["$defs"][name]["enum"]
             .as_array()
             .unwrap()
             .iter()
-            .map(|v| v["const"].as_str().unwrap().to_string())
+            .map(|v| v.as_str().unwrap().to_string())
             .collect()
     }
 

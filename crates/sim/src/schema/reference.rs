@@ -300,7 +300,13 @@ impl Page {
     fn values(&self, s: &Map<String, Value>) -> Vec<(String, Option<String>)> {
         let mut out: Vec<(String, Option<String>)> = Vec::new();
         if let Some(Value::Array(names)) = s.get("enum") {
-            out.extend(names.iter().map(|n| (n.to_string(), None)));
+            let about = s.get("enumDescriptions").and_then(Value::as_array);
+            out.extend(names.iter().enumerate().map(|(i, n)| {
+                let description = about
+                    .and_then(|a| a.get(i)?.as_str())
+                    .filter(|d| !d.is_empty());
+                (n.to_string(), description.map(str::to_string))
+            }));
         }
         if let Some(value) = s.get("const") {
             out.push((value.to_string(), text_of(s.get("description"))));
