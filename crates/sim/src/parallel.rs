@@ -87,8 +87,12 @@ pub fn abort_others(code: i32) {
 }
 
 /// Which engines spread over ranks, for error messages.
-pub(crate) const SPREADING: &str = "only run.engine = \"dsmc\" with dsmc_scheme = \"spatial\" \
-     or \"blocks\" spreads over ranks";
+pub(crate) fn spreading() -> String {
+    format!(
+        "only run.engine = {} spreads over ranks",
+        crate::engines::kinds_that(|a| a.ranks)
+    )
+}
 
 /// Checks the plan against the ranks the run is launched on: `run.ranks` must match, and
 /// only the spatial DSMC engine and the homogeneous one's block scheme spread over ranks.
@@ -112,7 +116,10 @@ pub fn check_ranks(plan: &Plan, size: usize) -> Result<()> {
     if size > 1 && !plan.engine.abilities().ranks {
         return Err(Error::input(
             "run.engine",
-            format!("launched on {size} ranks: {SPREADING}; run this engine in one process"),
+            format!(
+                "launched on {size} ranks: {}; run this engine in one process",
+                spreading()
+            ),
         ));
     }
     Ok(())

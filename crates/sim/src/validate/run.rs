@@ -38,7 +38,7 @@ pub(super) fn check_ranks(r: &RunSection, engine: &Abilities) -> Result<()> {
         if ranks > 1 && !engine.ranks {
             return Err(Error::input(
                 "run.ranks",
-                format!("several ranks: {}", crate::parallel::SPREADING),
+                format!("several ranks: {}", crate::parallel::spreading()),
             ));
         }
     }
