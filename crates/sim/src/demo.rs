@@ -260,16 +260,9 @@ mod tests {
     /// of a known sequence with mean 0.5 and variance 1/12 within its statistics.
     #[test]
     fn batch_means_of_a_uniform_sequence() {
-        // A low-discrepancy sequence would understate the error; use a fixed LCG instead.
-        let mut x: u64 = 12345;
-        let values: Vec<f64> = (0..1000)
-            .map(|_| {
-                x = x
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                (x >> 11) as f64 / (1u64 << 53) as f64
-            })
-            .collect();
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+        let values: Vec<f64> = (0..1000).map(|_| rng.random::<f64>()).collect();
         let (mean, error) = batch_mean(&values);
         let exact = (1.0f64 / 12.0 / 1000.0).sqrt();
         // The error estimate from 10 blocks has a relative spread of 1/sqrt(2 * 9) = 24 %.
